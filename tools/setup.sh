@@ -1,0 +1,14 @@
+#!/bin/sh
+# Installs the Debian packages the project needs, when they are missing.
+set -eu
+PKGS="build-essential cmake pkg-config libsystemc-dev verilator libglm-dev libgtest-dev libmpfr-dev libgmp-dev zlib1g-dev"
+missing=""
+for p in $PKGS; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  echo "setup: installing$missing"
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $missing
+fi
