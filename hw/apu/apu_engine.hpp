@@ -1,0 +1,73 @@
+// One interface to an APU, whichever engine runs it (the C++ ISS or the
+// verilated RTL core): the MPU-side port (banks, hand-over, start) and a
+// cycle-by-cycle view for lockstep co-simulation and stall profiling.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "microword.hpp"
+
+namespace mc1::apu {
+
+// Why a cycle issued no word (docs/apu-isa.md, in priority order).
+enum class Stall : std::uint8_t { None = 0, Bank, Raw, Waw, Cc, Struct, Drain };
+constexpr int kStallKinds = 7;
+const char* stall_name(Stall s);
+
+enum class Fault : std::uint8_t {
+  None = 0, ReservedOp, DataAddress, PcOverflow, CallOverflow, CallUnderflow
+};
+const char* fault_name(Fault f);
+
+enum class RunState : std::uint8_t { Idle, Running, Halted, Faulted };
+
+// An architectural state change, stamped with the cycle in which it becomes
+// visible (an FP result's completion cycle, a store's issue cycle, ...).
+struct Commit {
+  enum class Kind : std::uint8_t { FReg, AReg, Mem, Cc, Flags };
+  Kind kind;
+  std::uint16_t index;  // register number or data address; 0 for CC/FLAGS
+  std::uint32_t value;
+  bool operator==(const Commit& o) const {
+    return kind == o.kind && index == o.index && value == o.value;
+  }
+};
+
+// What one clock cycle did.
+struct CycleRecord {
+  std::uint64_t cycle = 0;
+  std::uint16_t pc = 0;       // the word issued or stalled this cycle
+  bool issued = false;
+  Stall stall = Stall::None;  // reason when !issued and running
+  std::uint8_t psel = 0, dsel = 0;
+  std::vector<Commit> commits;  // in a fixed order: FReg (by index), AReg, Mem, Cc, Flags
+};
+
+class ApuEngine {
+ public:
+  virtual ~ApuEngine() = default;
+
+  // MPU side: always the bank the APU is not using.
+  virtual void write_program(std::uint16_t addr, const Encoded& word) = 0;
+  virtual void write_data(std::uint16_t addr, std::uint32_t value) = 0;
+  virtual std::uint32_t read_data(std::uint16_t addr) const = 0;
+  virtual void hand_over_program() = 0;
+  virtual void hand_over_data() = 0;
+  virtual bool program_ready() const = 0;
+  virtual bool data_ready() const = 0;
+  virtual void start(std::uint16_t pc) = 0;
+
+  // One APU clock; fills `rec` with what happened in that cycle.
+  virtual void step(CycleRecord& rec) = 0;
+
+  virtual RunState state() const = 0;
+  virtual Fault fault() const = 0;
+  virtual std::uint64_t cycle() const = 0;
+  virtual std::uint32_t freg(int i) const = 0;
+  virtual std::uint16_t areg(int i) const = 0;
+  virtual std::uint8_t flags() const = 0;
+  virtual std::uint8_t cc() const = 0;
+};
+
+}  // namespace mc1::apu
