@@ -1,0 +1,291 @@
+// FP24 adder unit: ADD, SUB, CMP, FLOAT, FIX, NEG, ABS of the APU
+// (docs/fp24.md, docs/fp24-rtl.md; op codes on in_op[2:0]).
+//
+// Two stages, latency 2, one issue per cycle:
+//   s1: unpack with DAZ; ADD/SUB: order the operands by magnitude, align the
+//       smaller one (guard, round and a sticky bit jammed into the LSB) and
+//       add or subtract; FLOAT: take the integer's magnitude. Both leave an
+//       unnormalised sum for stage 2. CMP, FIX, NEG, ABS and the zero/inf/NaN
+//       cases of ADD/SUB finish here as a "direct" result.
+//   s2: count leading zeros and normalise the sum, round and pack
+//       (fp24_round); or pass the direct result on.
+// rst_n is synchronous and clears only the valid bits. The unused op code 7
+// gives result 0, flags 0.
+module fp24_add #(
+    parameter int EXP_W  = 7,
+    parameter int FRAC_W = 16
+) (
+    input  logic                   clk,
+    input  logic                   rst_n,
+    input  logic                   in_valid,
+    input  logic [2:0]             in_op,
+    input  logic [EXP_W+FRAC_W:0]  in_a,
+    input  logic [EXP_W+FRAC_W:0]  in_b,
+    output logic                   out_valid,
+    output logic [EXP_W+FRAC_W:0]  out_result,
+    output logic [4:0]             out_flags
+);
+  localparam logic [2:0] OP_ADD = 3'd0, OP_SUB = 3'd1, OP_CMP = 3'd2, OP_FLOAT = 3'd3,
+                         OP_FIX = 3'd4, OP_NEG = 3'd5, OP_ABS = 3'd6;
+
+  localparam int W      = 1 + EXP_W + FRAC_W;
+  localparam int SIG_W  = FRAC_W + 1;          // significand 1.f
+  localparam int GRS_W  = 3;                   // guard, round, sticky below it
+  localparam int SUM_W  = 1 + SIG_W + GRS_W;   // carry + significand + GRS
+  localparam int SHIFT_W = 5;                  // alignment distance, clamped
+  localparam int NORM_W = 32;                  // SUM_W rounded up to 2^5 for the LZC
+  localparam int SEXP_W = EXP_W + 2;           // unbounded exponent, two's complement
+  localparam int INT_W  = 16;                  // FLOAT/FIX integer width
+  localparam int BIAS_I = (1 << (EXP_W - 1)) - 1;
+  localparam logic [EXP_W-1:0]  EXP_ONES = '1;
+  // The sum's bit SUM_W-2 weighs 2^(e - bias) of the larger operand; the
+  // stage-2 exponent is (that exponent + 1) - leading zeros of the sum.
+  // FLOAT puts its integer at bit 0 (weight 2^0) of the same sum.
+  localparam logic [SEXP_W-1:0] FLOAT_EXP = SEXP_W'(BIAS_I + SUM_W - 1);
+  // FIX: a = 1.f * 2^(e - bias); its integer part is {1,f} >> (FIX_EXP - e).
+  localparam logic [EXP_W-1:0]  FIX_EXP = EXP_W'(BIAS_I + FRAC_W);
+  // Below FIX_MIN, |a| < 1/2: the shift is clamped to SIG_W (all bits lost).
+  localparam logic [EXP_W-1:0]  FIX_MIN = EXP_W'(BIAS_I + FRAC_W - SIG_W);
+  localparam logic [EXP_W-1:0]  FIX_OVF = EXP_W'(BIAS_I + INT_W);             // |a| >= 2^16
+  localparam logic [W-1:0] CANON_NAN = {1'b0, EXP_ONES, 1'b1, {(FRAC_W - 1) {1'b0}}};
+
+  // ---- stage 1 ----------------------------------------------------------------
+  logic              a_sign, b_sign;
+  logic [EXP_W-1:0]  a_exp, b_exp;
+  logic [FRAC_W-1:0] a_frac, b_frac;
+  logic              a_zero, b_zero, a_inf, b_inf, a_nan, b_nan;
+  logic [W-2:0]      a_mag, b_mag;      // |x| after DAZ, ordered like the value
+  logic [SIG_W-1:0]  a_sig, b_sig;      // 1.f, or 0 for a zero
+
+  always_comb begin
+    {a_sign, a_exp, a_frac} = in_a;
+    {b_sign, b_exp, b_frac} = in_b;
+    a_zero = (a_exp == '0);
+    b_zero = (b_exp == '0);
+    a_inf  = (a_exp == EXP_ONES) && (a_frac == '0);
+    b_inf  = (b_exp == EXP_ONES) && (b_frac == '0);
+    a_nan  = (a_exp == EXP_ONES) && (a_frac != '0);
+    b_nan  = (b_exp == EXP_ONES) && (b_frac != '0);
+    a_mag  = a_zero ? '0 : in_a[W-2:0];
+    b_mag  = b_zero ? '0 : in_b[W-2:0];
+    a_sig  = {!a_zero, a_mag[FRAC_W-1:0]};
+    b_sig  = {!b_zero, b_mag[FRAC_W-1:0]};
+  end
+
+  // ADD/SUB datapath: big + (-1)^eff_sub * small, |big| >= |small|.
+  logic                   b_sign_eff;    // b's sign as it is added
+  logic                   eff_sub;
+  logic                   swap;          // |b| > |a|
+  logic                   big_sign;
+  logic [EXP_W-1:0]       big_exp, small_exp, exp_diff;
+  logic [SIG_W-1:0]       big_sig, small_sig;
+  logic [SHIFT_W-1:0]     shift;
+  logic [SUM_W-2:0]       small_al;      // aligned small significand
+  logic [SUM_W-2:0]       small_lost;    // bits shifted out below GRS
+  logic [SUM_W-1:0]       small_ext, big_ext, sum;
+
+  always_comb begin
+    b_sign_eff = b_sign ^ (in_op == OP_SUB);
+    eff_sub    = a_sign ^ b_sign_eff;
+    swap       = b_mag > a_mag;
+    big_sign   = swap ? b_sign_eff : a_sign;
+    big_exp    = swap ? b_exp : a_exp;
+    small_exp  = swap ? a_exp : b_exp;
+    // A zero contributes a zero significand (its exponent field is 0).
+    big_sig    = swap ? b_sig : a_sig;
+    small_sig  = swap ? a_sig : b_sig;
+    exp_diff   = big_exp - small_exp;
+    // Beyond SUM_W - 1 places every bit of small is below the sum: sticky only.
+    shift      = (exp_diff > EXP_W'(SUM_W - 1)) ? SHIFT_W'(SUM_W - 1) : exp_diff[SHIFT_W-1:0];
+    {small_al, small_lost} = {small_sig, {GRS_W{1'b0}}, {(SUM_W - 1) {1'b0}}} >> shift;
+    // Jamming the lost bits into the LSB keeps the rounding exact: the true
+    // and the jammed sum then lie strictly between the same two multiples of
+    // 2 LSBs, and the guard bit of the result is never below bit 1.
+    small_ext  = {1'b0, small_al[SUM_W-2:1], small_al[0] | (small_lost != '0)};
+    big_ext    = {1'b0, big_sig, {GRS_W{1'b0}}};
+    sum        = eff_sub ? big_ext - small_ext : big_ext + small_ext;
+  end
+
+  // FLOAT: the magnitude of the two's-complement integer in in_a[15:0].
+  logic             int_sign;
+  logic [INT_W-1:0] int_mag;
+
+  always_comb begin
+    int_sign = in_a[INT_W-1];
+    int_mag  = int_sign ? -in_a[INT_W-1:0] : in_a[INT_W-1:0];
+  end
+
+  // FIX: truncate toward zero, saturate, 16-bit two's complement.
+  logic [5:0]       fix_shift;     // 1..17
+  logic [SIG_W-1:0] fix_int;       // integer part of |a|
+  logic [FRAC_W-1:0] fix_lost;     // dropped fraction bits
+  logic             fix_range;     // result representable
+  logic [INT_W-1:0] fix_result;
+  logic [4:0]       fix_flags;
+
+  always_comb begin
+    fix_shift = (a_exp < FIX_MIN) ? 6'(SIG_W) : 6'(FIX_EXP - a_exp);
+    {fix_int, fix_lost} = {a_sig, {FRAC_W{1'b0}}} >> fix_shift;
+    // -32768 (and -32768.x) is the one value of magnitude 2^15 in range.
+    fix_range = (a_exp < FIX_OVF) && !fix_int[SIG_W-1] &&
+                (!fix_int[INT_W-1] || (a_sign && fix_int[INT_W-2:0] == '0));
+    if (a_nan) begin
+      fix_result = {1'b0, {(INT_W - 1) {1'b1}}};
+      fix_flags  = 5'b10000;
+    end else if (!fix_range) begin  // includes +-inf
+      fix_result = {a_sign, {(INT_W - 1) {!a_sign}}};
+      fix_flags  = 5'b10000;
+    end else begin
+      fix_result = a_sign ? -fix_int[INT_W-1:0] : fix_int[INT_W-1:0];
+      fix_flags  = {4'b0000, fix_lost != '0};
+    end
+  end
+
+  // CMP: order of the values; -0 == +0 (both magnitudes are 0 after DAZ).
+  // Shares the adder's magnitude comparator (swap is |b| > |a|).
+  logic       mag_eq, cmp_eq, cmp_lt;
+  logic [3:0] cmp_cond;
+
+  always_comb begin
+    mag_eq = (a_mag == b_mag);
+    cmp_eq = mag_eq && ((a_sign == b_sign) || (a_mag == '0));
+    cmp_lt = !cmp_eq && (a_sign ? (!b_sign || !(swap || mag_eq)) : (!b_sign && swap));
+    if (a_nan || b_nan) cmp_cond = 4'b1000;
+    else                cmp_cond = {1'b0, !cmp_eq && !cmp_lt, cmp_eq, cmp_lt};
+  end
+
+  // Stage-1 register bank. A "direct" op has its final result in s1_result /
+  // s1_flags; otherwise stage 2 normalises and rounds s1_sum.
+  logic              s1_valid;
+  logic              s1_direct;
+  logic [W-1:0]      s1_result;
+  logic [4:0]        s1_flags;
+  logic              s1_sign;       // sign of a nonzero sum
+  logic              s1_zero_sign;  // sign of an exact zero sum
+  logic [SEXP_W-1:0] s1_exp;        // exponent of sum bit SUM_W-2, plus 1
+  logic [SUM_W-1:0]  s1_sum;
+
+  logic              d_direct;
+  logic [W-1:0]      d_result;
+  logic [4:0]        d_flags;
+
+  always_comb begin
+    d_direct = 1'b1;
+    d_result = '0;
+    d_flags  = 5'b00000;
+    case (in_op)
+      OP_ADD, OP_SUB: begin
+        if (a_nan || b_nan) begin
+          d_result = CANON_NAN;
+        end else if (a_inf && b_inf && eff_sub) begin
+          d_result = CANON_NAN;
+          d_flags  = 5'b10000;
+        end else if (a_inf) begin
+          d_result = in_a;
+        end else if (b_inf) begin
+          d_result = {b_sign_eff, in_b[W-2:0]};
+        end else begin
+          d_direct = 1'b0;
+        end
+      end
+      OP_FLOAT: d_direct = 1'b0;
+      OP_CMP: begin
+        d_result = {{(W - 4) {1'b0}}, cmp_cond};
+        d_flags  = {cmp_cond[3], 4'b0000};  // NV for a NaN operand
+      end
+      OP_FIX: begin
+        d_result = {{(W - INT_W) {1'b0}}, fix_result};
+        d_flags  = fix_flags;
+      end
+      OP_NEG:   d_result = a_nan ? CANON_NAN : {!a_sign, a_mag};
+      OP_ABS:   d_result = a_nan ? CANON_NAN : {1'b0, a_mag};
+      default:  ;
+    endcase
+  end
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) s1_valid <= 1'b0;
+    else        s1_valid <= in_valid;
+    if (in_valid) begin
+      s1_direct <= d_direct;
+      s1_result <= d_result;
+      s1_flags  <= d_flags;
+      if (in_op == OP_FLOAT) begin
+        s1_sign      <= int_sign;
+        s1_zero_sign <= 1'b0;
+        s1_exp       <= FLOAT_EXP;
+        s1_sum       <= {{(SUM_W - INT_W) {1'b0}}, int_mag};
+      end else begin
+        s1_sign      <= big_sign;
+        // An exact zero sum is +0 but for (-0) + (-0) and (-0) - (+0).
+        s1_zero_sign <= a_sign && b_sign_eff;
+        s1_exp       <= {2'b00, big_exp} + {{(SEXP_W - 1) {1'b0}}, 1'b1};
+        s1_sum       <= sum;
+      end
+    end
+  end
+
+  // ---- stage 2: normalise, round, pack -----------------------------------------
+  logic [NORM_W-1:0] n16, n8, n4, n2, n1, n0;
+  logic [4:0]        lzc;
+  logic              sum_zero;
+  logic [SEXP_W-1:0] rnd_exp;
+  logic [W-1:0]      rnd_result;
+  logic [4:0]        rnd_flags;
+
+  always_comb begin
+    // Leading-zero count and left shift in one pass, 16/8/4/2/1.
+    n16    = {s1_sum, {(NORM_W - SUM_W) {1'b0}}};
+    lzc[4] = (n16[NORM_W-1-:16] == '0);
+    n8     = lzc[4] ? {n16[NORM_W-17:0], 16'b0} : n16;
+    lzc[3] = (n8[NORM_W-1-:8] == '0);
+    n4     = lzc[3] ? {n8[NORM_W-9:0], 8'b0} : n8;
+    lzc[2] = (n4[NORM_W-1-:4] == '0);
+    n2     = lzc[2] ? {n4[NORM_W-5:0], 4'b0} : n4;
+    lzc[1] = (n2[NORM_W-1-:2] == '0);
+    n1     = lzc[1] ? {n2[NORM_W-3:0], 2'b0} : n2;
+    lzc[0] = !n1[NORM_W-1];
+    n0     = lzc[0] ? {n1[NORM_W-2:0], 1'b0} : n1;
+    sum_zero = !n0[NORM_W-1];
+    rnd_exp  = s1_exp - {{(SEXP_W - 5) {1'b0}}, lzc};
+  end
+
+  fp24_round #(
+      .EXP_W (EXP_W),
+      .FRAC_W(FRAC_W),
+      .SEXP_W(SEXP_W)
+  ) u_round (
+      .sign  (s1_sign),
+      .exp   (rnd_exp),
+      .frac  (n0[NORM_W-2-:FRAC_W]),
+      .guard (n0[NORM_W-2-FRAC_W]),
+      .sticky(n0[NORM_W-3-FRAC_W:0] != '0),
+      .result(rnd_result),
+      .flags (rnd_flags)
+  );
+
+  logic         s2_valid;
+  logic [W-1:0] s2_result;
+  logic [4:0]   s2_flags;
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) s2_valid <= 1'b0;
+    else        s2_valid <= s1_valid;
+    if (s1_valid) begin
+      if (s1_direct) begin
+        s2_result <= s1_result;
+        s2_flags  <= s1_flags;
+      end else if (sum_zero) begin
+        s2_result <= {s1_zero_sign, {(W - 1) {1'b0}}};
+        s2_flags  <= 5'b00000;
+      end else begin
+        s2_result <= rnd_result;
+        s2_flags  <= rnd_flags;
+      end
+    end
+  end
+
+  assign out_valid  = s2_valid;
+  assign out_result = s2_result;
+  assign out_flags  = s2_flags;
+endmodule
