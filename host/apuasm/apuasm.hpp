@@ -1,0 +1,76 @@
+// The APU assembler as a library (docs/apu-asm.md): source text to microwords,
+// binary images in and out, listings. The `apuasm` program, the co-simulator
+// and the MPU firmware loader all go through this interface.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "microword.hpp"
+
+namespace mc1::apuasm {
+
+// A place in a source file; line and col count from 1 (col in bytes).
+struct Loc {
+  std::string file;
+  int line = 0;
+  int col = 0;
+};
+
+struct Diagnostic {
+  Loc loc;
+  std::string message;
+  std::string str() const;  // "file:line:col: error: message" (GNU style)
+};
+
+// Every error of one assembly run; what() is their str() lines joined by '\n'.
+class AsmError : public std::runtime_error {
+ public:
+  explicit AsmError(std::vector<Diagnostic> diags);
+  const std::vector<Diagnostic>& diagnostics() const { return diags_; }
+
+ private:
+  std::vector<Diagnostic> diags_;
+};
+
+// One source line as the assembler saw it (after .include and macro
+// expansion), for the listing.
+struct ListingLine {
+  Loc loc;            // col unused
+  std::string text;   // the line as written (macro lines after substitution)
+  int addr = -1;      // the word this line emits, or -1
+  int depth = 0;      // 0: top file; >0: inside .include or macro expansion
+};
+
+struct Program {
+  std::vector<apu::Encoded> words;           // address 0 .. highest emitted address
+  std::map<std::string, std::int64_t> symbols;  // labels and .equ constants
+  std::vector<ListingLine> listing;
+};
+
+// Assembles `source`; `filename` names it in diagnostics, and .include paths
+// are relative to its directory. Throws AsmError listing every error found.
+Program assemble(const std::string& source, const std::string& filename = "<input>");
+Program assemble_file(const std::string& path);
+
+// The listing: "AAAA  hhhhhhhhhhhhhhhh_llllllllllllllll  source" per emitting
+// line, blank address and encoding columns for the others.
+std::string listing_text(const Program& p);
+
+// Binary image: "APU1", word count (u32 LE), then per word lo (u64 LE) and hi
+// (u64 LE). Readers throw std::runtime_error naming the file on a bad image.
+std::string image_bytes(const std::vector<apu::Encoded>& words);
+std::vector<apu::Encoded> parse_image(const std::string& bytes, const std::string& name = "<image>");
+void write_image(const std::string& path, const std::vector<apu::Encoded>& words);
+std::vector<apu::Encoded> load_image(const std::string& path);
+
+// Verilog $readmemh text: one word per line, 32 hex digits, bit 127 first.
+std::string readmemh_text(const std::vector<apu::Encoded>& words);
+
+// "AAAA  hhhhhhhhhhhhhhhh_llllllllllllllll  disassembly" per word.
+std::string disassembly_text(const std::vector<apu::Encoded>& words);
+
+}  // namespace mc1::apuasm

@@ -1,0 +1,689 @@
+// The APU assembler and disassembler (host/apuasm, hw/apu/disasm): encodings,
+// diagnostics, round trips, directives, listing and image formats.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <string>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "apuasm.hpp"
+#include "disasm.hpp"
+
+namespace mc1::apuasm {
+namespace {
+
+using apu::AddOp;
+using apu::Encoded;
+using apu::FuncOp;
+using apu::IntOp;
+using apu::MemOp;
+using apu::MicroWord;
+using apu::SeqOp;
+
+Encoded one(const std::string& line) {
+  const auto p = assemble(line + "\n", "t.apu");
+  EXPECT_EQ(p.words.size(), 1u) << line;
+  return p.words.empty() ? Encoded{} : p.words[0];
+}
+
+MicroWord decoded(const std::string& line) { return MicroWord::decode(one(line)); }
+
+// The diagnostics of a source that must not assemble.
+std::vector<std::string> errors(const std::string& src, const std::string& file = "e.apu") {
+  try {
+    assemble(src, file);
+  } catch (const AsmError& e) {
+    std::vector<std::string> out;
+    for (const auto& d : e.diagnostics()) out.push_back(d.str());
+    return out;
+  }
+  ADD_FAILURE() << "assembled without error:\n" << src;
+  return {};
+}
+
+std::string first_error(const std::string& src) {
+  const auto e = errors(src);
+  return e.empty() ? "" : e[0];
+}
+
+// A scratch directory for .include tests, removed at the end.
+class TempDir {
+ public:
+  TempDir() {
+    char tmpl[] = "/tmp/apuasm_test_XXXXXX";
+    path_ = mkdtemp(tmpl);
+  }
+  ~TempDir() {
+    for (const auto& f : files_) std::remove(f.c_str());
+    for (auto it = dirs_.rbegin(); it != dirs_.rend(); ++it) rmdir(it->c_str());
+    rmdir(path_.c_str());
+  }
+  std::string write(const std::string& name, const std::string& text) {
+    const std::string p = path_ + "/" + name;
+    const auto slash = name.find('/');
+    if (slash != std::string::npos) {
+      dirs_.push_back(path_ + "/" + name.substr(0, slash));
+      mkdir(dirs_.back().c_str(), 0700);
+    }
+    std::ofstream(p) << text;
+    files_.push_back(p);
+    return p;
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::vector<std::string> files_, dirs_;
+};
+
+// ---------------------------------------------------------------------------
+// Encodings, field by field and as hex.
+
+TEST(ApuAsmEncode, MulField) {
+  const auto w = decoded("mul f1, f2, f3");
+  EXPECT_TRUE(w.m.en);
+  EXPECT_EQ(w.m.d, 1);
+  EXPECT_EQ(w.m.a, 2);
+  EXPECT_EQ(w.m.b, 3);
+  // en | d<<1 | a<<7 | b<<13
+  EXPECT_EQ(apu::encoding_hex(one("mul f1, f2, f3")), "0000000000000000_0000000000006103");
+}
+
+TEST(ApuAsmEncode, AdderOps) {
+  auto w = decoded("sub f63, f0, f62");
+  EXPECT_TRUE(w.a.en);
+  EXPECT_EQ(w.a.op, AddOp::Sub);
+  EXPECT_EQ(w.a.d, 63);
+  EXPECT_EQ(w.a.a, 0);
+  EXPECT_EQ(w.a.b, 62);
+  // bit 19 en, op 1 at 20, d 63 at 23, a 0 at 29, b 62 at 35
+  const std::uint64_t lo = (1ull << 19) | (1ull << 20) | (63ull << 23) | (62ull << 35);
+  EXPECT_EQ(one("sub f63, f0, f62"), (Encoded{lo, 0}));
+
+  w = decoded("cmp f5, f6");
+  EXPECT_EQ(w.a.op, AddOp::Cmp);
+  EXPECT_EQ(w.a.d, 0);
+  EXPECT_EQ(w.a.a, 5);
+  EXPECT_EQ(w.a.b, 6);
+  w = decoded("fix f7, f8");
+  EXPECT_EQ(w.a.op, AddOp::Fix);
+  EXPECT_EQ(w.a.d, 7);
+  EXPECT_EQ(w.a.a, 8);
+  EXPECT_EQ(w.a.b, 0);
+  EXPECT_EQ(decoded("float f1, f2").a.op, AddOp::Float);
+  EXPECT_EQ(decoded("neg f1, f2").a.op, AddOp::Neg);
+  EXPECT_EQ(decoded("abs f1, f2").a.op, AddOp::Abs);
+  EXPECT_EQ(decoded("fadd f1, f2, f3").a.op, AddOp::Add);
+}
+
+TEST(ApuAsmEncode, FunctionUnit) {
+  const auto w = decoded("cos f10, f33");
+  EXPECT_TRUE(w.f.en);
+  EXPECT_EQ(w.f.op, FuncOp::Cos);
+  EXPECT_EQ(w.f.d, 10);
+  EXPECT_EQ(w.f.a, 33);
+  // bit 41 en, op 3 at 42, d 10 at 44, a 33 at 50
+  const std::uint64_t lo = (1ull << 41) | (3ull << 42) | (10ull << 44) | (33ull << 50);
+  EXPECT_EQ(one("cos f10, f33"), (Encoded{lo, 0}));
+}
+
+TEST(ApuAsmEncode, DataMoves) {
+  auto w = decoded("ld f9, [a1+4]");
+  EXPECT_EQ(w.d.op, MemOp::Ld);
+  EXPECT_EQ(w.d.f, 9);
+  EXPECT_EQ(w.d.base, 1);
+  EXPECT_EQ(w.d.disp, 4);
+  EXPECT_EQ(apu::encoding_hex(one("ld f9, [a1+4]")), "0000000000000041_2500000000000000");
+  w = decoded("st f2, [a15-128]");
+  EXPECT_EQ(w.d.op, MemOp::St);
+  EXPECT_EQ(w.d.f, 2);
+  EXPECT_EQ(w.d.base, 15);
+  EXPECT_EQ(w.d.disp, -128);
+  EXPECT_EQ(decoded("st f2, [a3]").d.disp, 0);
+  EXPECT_EQ(decoded("ld f2, [ a3 + 2*3 ]").d.disp, 6);
+  EXPECT_EQ(decoded("ld f2, [a3+127]").d.disp, 127);
+}
+
+TEST(ApuAsmEncode, IntegerOps) {
+  auto w = decoded("addi a1, a2, -3");
+  EXPECT_EQ(w.i.op, IntOp::Addi);
+  EXPECT_EQ(w.i.d, 1);
+  EXPECT_EQ(w.i.s, 2);
+  EXPECT_EQ(w.i.t, 0);
+  EXPECT_EQ(w.i.imm, 0xFFFD);
+  // op 2 at 76, d 1 at 80, s 2 at 86, imm 0xfffd at 94
+  unsigned __int128 all = (static_cast<unsigned __int128>(2) << 76) | (static_cast<unsigned __int128>(1) << 80) |
+                          (static_cast<unsigned __int128>(2) << 86) | (static_cast<unsigned __int128>(0xFFFD) << 94);
+  EXPECT_EQ(one("addi a1, a2, -3"),
+            (Encoded{static_cast<std::uint64_t>(all), static_cast<std::uint64_t>(all >> 64)}));
+  EXPECT_EQ(decoded("li a5, 65535").i.imm, 0xFFFF);
+  EXPECT_EQ(decoded("li a5, -32768").i.imm, 0x8000);
+  w = decoded("xor a3, a4, a5");
+  EXPECT_EQ(w.i.op, IntOp::Xor);
+  EXPECT_EQ(w.i.t, 5);
+  w = decoded("add a3, a4, a5");
+  EXPECT_EQ(w.i.op, IntOp::Add);
+  EXPECT_FALSE(w.a.en);
+  w = decoded("movaf f40, a7");
+  EXPECT_EQ(w.i.op, IntOp::Movaf);
+  EXPECT_EQ(w.i.d, 40);
+  EXPECT_EQ(w.i.s, 7);
+  w = decoded("movfa a7, f40");
+  EXPECT_EQ(w.i.op, IntOp::Movfa);
+  EXPECT_EQ(w.i.d, 7);
+  EXPECT_EQ(w.i.imm, 40);
+  EXPECT_EQ(decoded("shl a1, a1, 15").i.imm, 15);
+  EXPECT_EQ(decoded("andi a1, a1, 0xff00").i.imm, 0xFF00);
+}
+
+TEST(ApuAsmEncode, LifConstants) {
+  EXPECT_EQ(decoded("lif f1, 1.5").i.imm, 0x3F80);
+  EXPECT_EQ(decoded("lif f1, 1.0").i.imm, 0x3F00);
+  EXPECT_EQ(decoded("lif f1, -2").i.imm, 0xC000);
+  EXPECT_EQ(decoded("lif f1, 0.375").i.imm, 0x3D80);  // 1.5 * 2^-2
+  EXPECT_EQ(decoded("lif f1, 256.0").i.imm, 0x4700);
+  EXPECT_EQ(decoded("lif f1, 1.99609375").i.imm, 0x3FFF);
+  EXPECT_EQ(decoded("lif f1, 0.0").i.imm, 0x0000);
+  EXPECT_EQ(decoded("lif f1, -0.0").i.imm, 0x8000);
+  EXPECT_EQ(decoded("lif f1, inf").i.imm, 0x7F00);
+  EXPECT_EQ(decoded("lif f1, -inf").i.imm, 0xFF00);
+  EXPECT_EQ(decoded("lif f1, nan").i.imm, 0x7F80);
+  EXPECT_EQ(decoded("lif f1, 0x0123").i.imm, 0x0123);
+  EXPECT_EQ(decoded("lif f1, 15e-1").i.imm, 0x3F80);
+  EXPECT_EQ(decoded("lif f62, 1.5").i.d, 62);
+}
+
+TEST(ApuAsmEncode, Sequencer) {
+  auto w = decoded("bcc lt+eq, 5");
+  EXPECT_EQ(w.s.op, SeqOp::Bcc);
+  EXPECT_EQ(w.s.r, 3);
+  EXPECT_EQ(w.s.target, 5);
+  // op 2 at 110 (hi bit 46), r 3 at 114, target 5 at 118
+  EXPECT_EQ(one("bcc lt+eq, 5"), (Encoded{0, (2ull << 46) | (3ull << 50) | (5ull << 54)}));
+  EXPECT_EQ(decoded("bcc un, 1").s.r, 8);
+  EXPECT_EQ(decoded("bncc 0xF, 1").s.r, 15);
+  w = decoded("ble 9");
+  EXPECT_EQ(w.s.op, SeqOp::Bcc);
+  EXPECT_EQ(w.s.r, 3);
+  w = decoded("bne 9");
+  EXPECT_EQ(w.s.op, SeqOp::Bncc);
+  EXPECT_EQ(w.s.r, 2);
+  EXPECT_EQ(decoded("bge 9").s.r, 6);
+  EXPECT_EQ(decoded("bord 9").s.op, SeqOp::Bncc);
+  w = decoded("dbnz a2, 1023");
+  EXPECT_EQ(w.s.op, SeqOp::Dbnz);
+  EXPECT_EQ(w.s.r, 2);
+  EXPECT_EQ(w.s.target, 1023);
+  EXPECT_EQ(decoded("halt").s.op, SeqOp::Halt);
+  EXPECT_EQ(apu::encoding_hex(one("halt")), "0003000000000000_0000000000000000");
+  EXPECT_EQ(decoded("swapd").s.op, SeqOp::Swapd);
+  EXPECT_EQ(decoded("ret").s.op, SeqOp::Ret);
+  EXPECT_EQ(decoded("swapp 7").s.target, 7);
+  EXPECT_EQ(one("nop"), Encoded{});
+}
+
+TEST(ApuAsmEncode, FullWordAnySlotOrderAndCase) {
+  const auto a = one("mul f1, f2, f3 | add f4, f5, f6 | sin f7, f8 | ld f9, [a1+4] | addi a1, a1, 8 | dbnz a2, 0");
+  const auto b = one("DBNZ A2, 0 | ADDI a1, a1, 8 | Ld F9, [A1+4] | sin f7, f8 | add f4, f5, f6 | mul f1, f2, f3");
+  EXPECT_EQ(a, b);
+  const auto w = MicroWord::decode(a);
+  EXPECT_TRUE(w.m.en && w.a.en && w.f.en);
+  EXPECT_EQ(w.f.op, FuncOp::Sin);
+  EXPECT_EQ(w.d.op, MemOp::Ld);
+  EXPECT_EQ(w.i.imm, 8);
+  EXPECT_EQ(w.s.op, SeqOp::Dbnz);
+  EXPECT_EQ(apu::encoding_hex(a), "0009000200412041_25207a30a2086103");
+}
+
+// ---------------------------------------------------------------------------
+// Diagnostics: every error class at its file:line:col.
+
+TEST(ApuAsmErrors, RegisterWrittenTwice) {
+  EXPECT_EQ(first_error("nop\n  mul f1, f2, f3 | add f1, f2, f2\n"),
+            "e.apu:2:24: error: f1 is written twice in one word (also at column 7)");
+  EXPECT_EQ(first_error("ld f5, [a1] | lif f5, 1.0\n"),
+            "e.apu:1:19: error: f5 is written twice in one word (also at column 4)");
+  // CMP writes no F register, ST reads its register.
+  EXPECT_NO_THROW(assemble("cmp f1, f2 | mul f1, f1, f1 | st f1, [a0]\n"));
+}
+
+TEST(ApuAsmErrors, ARegisterWrittenByIAndDbnz) {
+  EXPECT_EQ(first_error("addi a2, a2, 1 | dbnz a2, 0\n"),
+            "e.apu:1:23: error: a2 is written twice in one word (DBNZ and the I slot at column 6)");
+  EXPECT_NO_THROW(assemble("addi a3, a2, 1 | dbnz a2, 0\n"));
+  EXPECT_NO_THROW(assemble("movaf f2, a2 | dbnz a2, 0\n"));
+}
+
+TEST(ApuAsmErrors, TwoInstructionsForOneSlot) {
+  EXPECT_EQ(first_error("li a1, 1 | lif f1, 1.0\n"),
+            "e.apu:1:12: error: two instructions for the I (integer) slot in one word (the other at column 1)");
+  EXPECT_EQ(first_error("add f1, f2, f3 | cmp f4, f5\n"),
+            "e.apu:1:18: error: two instructions for the A (adder) slot in one word (the other at column 1)");
+}
+
+TEST(ApuAsmErrors, OutOfRangeFields) {
+  EXPECT_EQ(first_error("mul f64, f1, f2"), "e.apu:1:5: error: no such F register 'f64' (f0..f63)");
+  EXPECT_EQ(first_error("li a16, 0"), "e.apu:1:4: error: no such A register 'a16' (a0..a15)");
+  EXPECT_EQ(first_error("ld f1, [a1+128]"), "e.apu:1:11: error: displacement 128 out of range -128..127");
+  EXPECT_EQ(first_error("ld f1, [a1-129]"), "e.apu:1:11: error: displacement -129 out of range -128..127");
+  EXPECT_EQ(first_error("li a1, 65536"), "e.apu:1:8: error: immediate 65536 out of range -32768..65535");
+  EXPECT_EQ(first_error("li a1, -32769"), "e.apu:1:8: error: immediate -32769 out of range -32768..65535");
+  EXPECT_EQ(first_error("jmp 1024"), "e.apu:1:5: error: branch target 1024 out of range 0..1023");
+  EXPECT_EQ(first_error("shl a1, a1, 16"), "e.apu:1:13: error: shift amount 16 out of range 0..15");
+  EXPECT_EQ(first_error("bcc 16, 0"), "e.apu:1:5: error: CC mask 16 out of range 0..15");
+  EXPECT_EQ(first_error("lif f1, 1.3"),
+            "e.apu:1:9: error: 1.3 is not exactly representable as an FP24 constant with an 8-bit fraction "
+            "(nearest: 1.30078125 = 0x3f4d)");
+  EXPECT_EQ(first_error("lif f1, 1e30"),
+            "e.apu:1:9: error: 1e30 is not exactly representable as an FP24 constant with an 8-bit fraction "
+            "(out of range)");
+  // 1 + 2^-9 is exact in binary64 but needs a 9th fraction bit.
+  EXPECT_NE(first_error("lif f1, 1.001953125").find("e.apu:1:9: error: 1.001953125 is not exactly"), std::string::npos);
+  // Rounds to an FP24 value in binary64 but is not that value.
+  EXPECT_NE(first_error("lif f1, 1.50000000000000000000001").find("not exactly representable"), std::string::npos);
+  EXPECT_EQ(first_error("lif f1, 0x10000"), "e.apu:1:9: error: raw LIF immediate 0x10000 is wider than 16 bits");
+  EXPECT_EQ(first_error(".org 1024"), "e.apu:1:6: error: .org address 1024 out of range 0..1023");
+}
+
+TEST(ApuAsmErrors, ProgramTooLarge) {
+  std::string src;
+  for (int k = 0; k < 1025; ++k) src += "  nop\n";
+  EXPECT_EQ(errors(src), std::vector<std::string>{"e.apu:1025:3: error: program larger than 1024 words"});
+  EXPECT_EQ(first_error(".org 1023\nnop\nhalt\n"), "e.apu:3:1: error: program larger than 1024 words");
+}
+
+TEST(ApuAsmErrors, Labels) {
+  EXPECT_EQ(first_error("  jmp nowhere\n"), "e.apu:1:7: error: undefined symbol 'nowhere'");
+  EXPECT_EQ(first_error("x: nop\n  x: nop\n"), "e.apu:2:3: error: duplicate symbol 'x' (first defined at e.apu:1:1)");
+  EXPECT_EQ(first_error(".equ N, 1\nN: nop\n"), "e.apu:2:1: error: duplicate symbol 'N' (first defined at e.apu:1:6)");
+  EXPECT_EQ(first_error("f3: nop\n"), "e.apu:1:1: error: 'f3' is a mnemonic or register name");
+  EXPECT_EQ(first_error(".equ A, B\n.equ B, 1\n"), "e.apu:1:9: error: undefined symbol 'B'");
+}
+
+TEST(ApuAsmErrors, SyntaxAndOperands) {
+  EXPECT_EQ(first_error("frob f1"), "e.apu:1:1: error: unknown mnemonic 'frob'");
+  EXPECT_EQ(first_error("mul f1, f2"), "e.apu:1:1: error: 'mul' takes 3 operands: mul fd, fa, fb");
+  EXPECT_EQ(first_error("mul f1, a2, f3"), "e.apu:1:9: error: expected an F register (f0..f63), got 'a2'");
+  EXPECT_EQ(first_error("ld f1, a2"), "e.apu:1:8: error: expected a data address [aN], [aN+disp] or [aN-disp], got 'a2'");
+  EXPECT_EQ(first_error("nop | | halt"), "e.apu:1:7: error: empty slot between '|'");
+  EXPECT_EQ(first_error(".bogus 1"), "e.apu:1:1: error: unknown directive '.bogus'");
+  EXPECT_EQ(first_error("li a1, 1.5"), "e.apu:1:9: error: malformed number (a float is allowed only in lif)");
+  EXPECT_EQ(first_error("li a1, (1+2"), "e.apu:1:12: error: expected ')'");
+  EXPECT_EQ(first_error("li a1, 4/0"), "e.apu:1:9: error: division by zero");
+  EXPECT_EQ(first_error(".endm"), "e.apu:1:1: error: .endm without .macro");
+  EXPECT_EQ(first_error(".org 4\nnop\n.org 4\nhalt\n"),
+            "e.apu:4:1: error: address 0x0004 already holds the word of e.apu:2:1");
+}
+
+TEST(ApuAsmErrors, AllErrorsReportedInSourceOrder) {
+  const auto e = errors("  jmp later\nmul f64, f1, f1\nok: nop\nli a1, 70000\nok: nop\n", "m.apu");
+  ASSERT_EQ(e.size(), 4u);
+  EXPECT_EQ(e[0], "m.apu:1:7: error: undefined symbol 'later'");
+  EXPECT_EQ(e[1], "m.apu:2:5: error: no such F register 'f64' (f0..f63)");
+  EXPECT_EQ(e[2], "m.apu:4:8: error: immediate 70000 out of range -32768..65535");
+  EXPECT_EQ(e[3], "m.apu:5:1: error: duplicate symbol 'ok' (first defined at m.apu:3:1)");
+  // Every bad slot of one word is reported.
+  EXPECT_EQ(errors("mul f99, f1, f1 | ld f1, [a1+999]").size(), 2u);
+}
+
+TEST(ApuAsmErrors, ExceptionText) {
+  try {
+    assemble("nop\nfrob\n", "x.apu");
+    FAIL();
+  } catch (const AsmError& e) {
+    EXPECT_STREQ(e.what(), "x.apu:2:1: error: unknown mnemonic 'frob'");
+    EXPECT_EQ(e.diagnostics().at(0).loc.line, 2);
+    EXPECT_EQ(e.diagnostics().at(0).loc.col, 1);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Directives: labels, .equ, .org, .include, macros.
+
+TEST(ApuAsmDirectives, LabelsEquOrg) {
+  const auto p = assemble(
+      ".equ BASE, 0x10\n"
+      ".equ OFF, (BASE << 2) - 3 * 2 + (7 >> 1) - (~0 & 1) + 10 % 4 + (6 ^ 3)\n"  // 64-6+3-1+2+5 = 67
+      "start: li a1, OFF\n"
+      "  jmp end\n"
+      ".org BASE\n"
+      "end: a: b: jmp start\n",
+      "t.apu");
+  EXPECT_EQ(p.symbols.at("OFF"), 67);
+  EXPECT_EQ(p.symbols.at("end"), 16);
+  EXPECT_EQ(p.symbols.at("b"), 16);
+  ASSERT_EQ(p.words.size(), 17u);
+  EXPECT_EQ(MicroWord::decode(p.words[0]).i.imm, 67);
+  EXPECT_EQ(MicroWord::decode(p.words[1]).s.target, 16);
+  EXPECT_EQ(p.words[5], Encoded{});  // the gap .org left
+  EXPECT_EQ(MicroWord::decode(p.words[16]).s.op, SeqOp::Jmp);
+  EXPECT_EQ(MicroWord::decode(p.words[16]).s.target, 0);
+}
+
+TEST(ApuAsmDirectives, CommentsBothStyles) {
+  const auto p = assemble("halt ; semicolon\n  # hash\nret # hash\n\n", "t.apu");
+  ASSERT_EQ(p.words.size(), 2u);
+  EXPECT_EQ(MicroWord::decode(p.words[1]).s.op, SeqOp::Ret);
+}
+
+TEST(ApuAsmDirectives, RawWord) {
+  const auto p = assemble(".word 0x0003000000000000_0000000000000001\n.word 0xff\n", "t.apu");
+  EXPECT_EQ(p.words[0], (Encoded{1, 0x0003000000000000}));
+  EXPECT_EQ(p.words[1], (Encoded{0xFF, 0}));
+}
+
+TEST(ApuAsmDirectives, IncludeRelativeToIncludingFile) {
+  TempDir dir;
+  dir.write("lib/consts.inc", ".equ SIX, 6\n.include \"more.inc\"\n");
+  dir.write("lib/more.inc", ".equ SEVEN, 7\n  frob\n");
+  const auto top = dir.write("top.apu", ".include \"lib/consts.inc\"\nli a1, SIX+SEVEN\n");
+  try {
+    assemble_file(top);
+    FAIL();
+  } catch (const AsmError& err) {
+    ASSERT_EQ(err.diagnostics().size(), 1u);
+    EXPECT_EQ(err.diagnostics()[0].str(), dir.path() + "/lib/more.inc:2:3: error: unknown mnemonic 'frob'");
+  }
+  dir.write("lib/more.inc", ".equ SEVEN, 7\n");
+  const auto p = assemble_file(top);
+  ASSERT_EQ(p.words.size(), 1u);
+  EXPECT_EQ(MicroWord::decode(p.words[0]).i.imm, 13);
+  EXPECT_EQ(first_error(".include \"no/such.inc\"\n"), "e.apu:1:10: error: cannot read include file 'no/such.inc'");
+}
+
+TEST(ApuAsmDirectives, Macros) {
+  const auto p = assemble(
+      ".macro madd d, a, b, c\n"
+      "  mul \\d, \\a, \\b\n"
+      "  add \\d, \\d, \\c\n"
+      ".endm\n"
+      ".macro spin n\n"
+      "  li a1, \\n\n"
+      "L\\@: dbnz a1, L\\@\n"
+      ".endm\n"
+      "  madd f1, f2, f3, f4\n"
+      "  spin 3\n"
+      "  spin 4*2\n",
+      "t.apu");
+  ASSERT_EQ(p.words.size(), 6u);
+  const auto m = MicroWord::decode(p.words[0]);
+  EXPECT_EQ(m.m.d, 1);
+  EXPECT_EQ(m.m.b, 3);
+  EXPECT_EQ(MicroWord::decode(p.words[1]).a.b, 4);
+  EXPECT_EQ(MicroWord::decode(p.words[3]).s.target, 3);
+  EXPECT_EQ(MicroWord::decode(p.words[4]).i.imm, 8);
+  EXPECT_EQ(MicroWord::decode(p.words[5]).s.target, 5);
+  EXPECT_EQ(p.symbols.at("L1"), 3);  // expansion 0 is madd
+  EXPECT_EQ(p.symbols.at("L2"), 5);
+
+  EXPECT_EQ(first_error(".macro m a\n  li a1, \\a\n.endm\n  m 1, 2\n"),
+            "e.apu:4:3: error: macro 'm' takes 1 argument(s), got 2");
+  EXPECT_EQ(first_error(".macro m a\n  li a1, \\b\n.endm\n  m 1\n"),
+            "e.apu:2:10: error: unknown macro parameter '\\b' (in macro 'm' invoked at e.apu:4:3)");
+  EXPECT_EQ(first_error(".macro m a\n  li a1, \\a\n.endm\n  m 70000\n"),
+            "e.apu:2:10: error: immediate 70000 out of range -32768..65535 (in macro 'm' invoked at e.apu:4:3)");
+  EXPECT_EQ(first_error(".macro m a\n nop\n"), "e.apu:1:8: error: .macro without .endm");
+  EXPECT_EQ(first_error(".macro mul a\n.endm\n"), "e.apu:1:8: error: macro name 'mul' is an instruction mnemonic");
+}
+
+// ---------------------------------------------------------------------------
+// Disassembly round trips.
+
+// One line per op of every slot, in the disassembler's own spelling.
+const char* const kEveryOp[] = {
+    "nop",
+    "mul f1, f2, f3",
+    "add f4, f5, f6",
+    "sub f7, f8, f9",
+    "cmp f10, f11",
+    "float f12, f13",
+    "fix f14, f15",
+    "neg f16, f17",
+    "abs f18, f19",
+    "recip f20, f21",
+    "sqrt f22, f23",
+    "sin f24, f25",
+    "cos f26, f27",
+    "ld f28, [a1+4]",
+    "st f29, [a2-7]",
+    "ld f30, [a3]",
+    "li a1, -3",
+    "addi a2, a3, 100",
+    "add a4, a5, a6",
+    "sub a7, a8, a9",
+    "muli a10, a11, -1000",
+    "shl a12, a13, 3",
+    "shr a14, a15, 15",
+    "sra a1, a2, 1",
+    "andi a3, a4, 0x00ff",
+    "ori a5, a6, 0x8000",
+    "xor a7, a8, a9",
+    "movaf f31, a10",
+    "movfa a11, f32",
+    "lif f33, 1.5",
+    "lif f33, -0.0",
+    "lif f33, inf",
+    "lif f33, 0x7f80",
+    "jmp 0x010",
+    "bcc lt+eq, 0x011",
+    "bncc gt+un, 0x012",
+    "bcc 0, 0x012",
+    "dbnz a2, 0x013",
+    "bz a3, 0x014",
+    "bnz a4, 0x015",
+    "bltz a5, 0x016",
+    "call 0x3ff",
+    "ret",
+    "swapd",
+    "swapp 0x020",
+    "halt",
+    "mul f1, f2, f3 | add f4, f5, f6 | sin f7, f8 | ld f9, [a1+4] | addi a1, a1, 8 | dbnz a2, 0x002",
+};
+
+TEST(ApuDisasm, EveryOpRoundTripsAsText) {
+  for (const char* line : kEveryOp) {
+    const auto e = one(line);
+    EXPECT_EQ(apu::disassemble(e), line);
+    EXPECT_EQ(one(apu::disassemble(e)), e) << line;
+  }
+}
+
+TEST(ApuDisasm, LifLiteralTextCoversAllImmediates) {
+  // Every 16-bit LIF immediate prints as a literal that assembles back to it
+  // (64 programs of 1024 words).
+  for (unsigned base = 0; base < 0x10000; base += 1024) {
+    std::string src;
+    for (unsigned imm = base; imm < base + 1024; ++imm)
+      src += "lif f1, " + apu::lif_literal_text(static_cast<std::uint16_t>(imm)) + "\n";
+    const auto p = assemble(src, "lif.apu");
+    ASSERT_EQ(p.words.size(), 1024u);
+    for (unsigned k = 0; k < 1024; ++k) ASSERT_EQ(MicroWord::decode(p.words[k]).i.imm, base + k);
+  }
+}
+
+// Random words whose every field is legal and canonical (unused fields zero,
+// no double writes): disassemble -> assemble is bit-exact.
+MicroWord random_legal(std::mt19937& rng) {
+  auto r = [&](unsigned n) { return static_cast<unsigned>(rng() % n); };
+  MicroWord w;
+  if (r(2)) w.m = {true, std::uint8_t(r(64)), std::uint8_t(r(64)), std::uint8_t(r(64))};
+  if (r(2)) {
+    w.a.en = true;
+    w.a.op = AddOp(r(7));
+    w.a.d = w.a.op == AddOp::Cmp ? 0 : std::uint8_t(r(64));
+    w.a.a = std::uint8_t(r(64));
+    const bool two = w.a.op == AddOp::Add || w.a.op == AddOp::Sub || w.a.op == AddOp::Cmp;
+    w.a.b = two ? std::uint8_t(r(64)) : 0;
+  }
+  if (r(2)) w.f = {true, FuncOp(r(4)), std::uint8_t(r(64)), std::uint8_t(r(64))};
+  w.d.op = MemOp(r(3));
+  if (w.d.op != MemOp::None) {
+    w.d.f = std::uint8_t(r(64));
+    w.d.base = std::uint8_t(r(16));
+    w.d.disp = static_cast<std::int8_t>(r(256));
+  }
+  w.i.op = IntOp(r(15));
+  switch (w.i.op) {
+    case IntOp::None: break;
+    case IntOp::Li: w.i.d = std::uint8_t(r(16)); w.i.imm = std::uint16_t(r(65536)); break;
+    case IntOp::Add:
+    case IntOp::Sub:
+    case IntOp::Xor: w.i.d = std::uint8_t(r(16)); w.i.s = std::uint8_t(r(16)); w.i.t = std::uint8_t(r(16)); break;
+    case IntOp::Movaf: w.i.d = std::uint8_t(r(64)); w.i.s = std::uint8_t(r(16)); break;
+    case IntOp::Movfa: w.i.d = std::uint8_t(r(16)); w.i.imm = std::uint16_t(r(64)); break;
+    case IntOp::Lif: w.i.d = std::uint8_t(r(64)); w.i.imm = std::uint16_t(r(65536)); break;
+    case IntOp::Shl:
+    case IntOp::Shr:
+    case IntOp::Sra: w.i.d = std::uint8_t(r(16)); w.i.s = std::uint8_t(r(16)); w.i.imm = std::uint16_t(r(16)); break;
+    default: w.i.d = std::uint8_t(r(16)); w.i.s = std::uint8_t(r(16)); w.i.imm = std::uint16_t(r(65536)); break;
+  }
+  w.s.op = SeqOp(r(13));
+  switch (w.s.op) {
+    case SeqOp::Jmp:
+    case SeqOp::Call:
+    case SeqOp::Swapp: w.s.target = std::uint16_t(r(1024)); break;
+    case SeqOp::Bcc:
+    case SeqOp::Bncc:
+    case SeqOp::Dbnz:
+    case SeqOp::Bz:
+    case SeqOp::Bnz:
+    case SeqOp::Bltz: w.s.r = std::uint8_t(r(16)); w.s.target = std::uint16_t(r(1024)); break;
+    default: break;
+  }
+  return w;
+}
+
+TEST(ApuDisasm, RandomLegalWordsRoundTrip) {
+  std::mt19937 rng(20240601);
+  int legal = 0;
+  for (int n = 0; n < 20000; ++n) {
+    const MicroWord w = random_legal(rng);
+    const Encoded e = w.encode();
+    const std::string text = apu::disassemble(w);
+    if (!apu::noncanonical_reason(w).empty()) {
+      // Only double writes make a random word here illegal.
+      EXPECT_NE(apu::noncanonical_reason(w).find("written twice"), std::string::npos) << text;
+      EXPECT_EQ(text.rfind(".word 0x", 0), 0u) << text;
+    } else {
+      ++legal;
+      EXPECT_EQ(text.find(".word"), std::string::npos) << text;
+    }
+    ASSERT_EQ(one(text), e) << text;
+  }
+  EXPECT_GT(legal, 10000);
+}
+
+TEST(ApuDisasm, ArbitraryBitsRoundTripThroughWord) {
+  std::mt19937_64 rng(7);
+  for (int n = 0; n < 2000; ++n) {
+    const Encoded e{rng(), rng()};
+    ASSERT_EQ(one(apu::disassemble(e)), e) << apu::disassemble(e);
+  }
+  // A reserved op is shown, but as a raw word.
+  MicroWord w;
+  w.i.op = IntOp::Reserved;
+  EXPECT_EQ(apu::disassemble(w), ".word 0x000000000000f000_0000000000000000  ; int.op15");
+  EXPECT_EQ(apu::noncanonical_reason(w), "reserved I-slot op");
+  w = MicroWord{};
+  w.a = {true, AddOp::Neg, 1, 2, 3};  // NEG ignores b
+  EXPECT_EQ(apu::noncanonical_reason(w), "nonzero unused field");
+}
+
+TEST(ApuDisasm, Helpers) {
+  EXPECT_EQ(apu::cc_mask_text(0), "0");
+  EXPECT_EQ(apu::cc_mask_text(5), "lt+gt");
+  EXPECT_EQ(apu::cc_mask_text(15), "lt+eq+gt+un");
+  EXPECT_EQ(apu::lif_literal_text(0x3F80), "1.5");
+  EXPECT_EQ(apu::lif_literal_text(0x4000), "2.0");
+  EXPECT_EQ(apu::lif_literal_text(0xBF00), "-1.0");
+  EXPECT_EQ(apu::lif_literal_text(0x0001), "0x0001");  // e = 0: reads as zero, no literal
+  EXPECT_EQ(apu::lif_literal_text(0x0100), "0x0100");  // 2^-62: 44 digits, shown raw
+  EXPECT_EQ(apu::lif_literal_text(0xFF00), "-inf");
+}
+
+// ---------------------------------------------------------------------------
+// Listing, image formats.
+
+TEST(ApuAsmOutput, ListingFormat) {
+  const auto p = assemble("# top\nstart: mul f1, f2, f3\n  halt\n", "t.apu");
+  EXPECT_EQ(listing_text(p),
+            "                                         # top\n"
+            "0000  0000000000000000_0000000000006103  start: mul f1, f2, f3\n"
+            "0001  0003000000000000_0000000000000000    halt\n");
+  EXPECT_EQ(disassembly_text(p.words),
+            "0000  0000000000000000_0000000000006103  mul f1, f2, f3\n"
+            "0001  0003000000000000_0000000000000000  halt\n");
+  EXPECT_EQ(readmemh_text(p.words),
+            "00000000000000000000000000006103\n"
+            "00030000000000000000000000000000\n");
+}
+
+TEST(ApuAsmOutput, ImageBytes) {
+  const std::vector<Encoded> words = {{0x0123456789ABCDEFull, 0xFEDCBA9876543210ull}, {1, 2}};
+  const std::string b = image_bytes(words);
+  ASSERT_EQ(b.size(), 8u + 32u);
+  EXPECT_EQ(b.substr(0, 4), "APU1");
+  EXPECT_EQ(static_cast<unsigned char>(b[4]), 2);
+  EXPECT_EQ(static_cast<unsigned char>(b[8]), 0xEF);   // lo, little-endian
+  EXPECT_EQ(static_cast<unsigned char>(b[16]), 0x10);  // hi
+  EXPECT_EQ(static_cast<unsigned char>(b[24]), 1);
+  EXPECT_EQ(static_cast<unsigned char>(b[32]), 2);
+  EXPECT_EQ(parse_image(b), words);
+  EXPECT_THROW(parse_image("APU0" + b.substr(4)), std::runtime_error);
+  EXPECT_THROW(parse_image(b.substr(0, b.size() - 1)), std::runtime_error);
+
+  TempDir dir;
+  const std::string path = dir.path() + "/x.bin";
+  write_image(path, words);
+  EXPECT_EQ(load_image(path), words);
+  std::remove(path.c_str());
+}
+
+// ---------------------------------------------------------------------------
+// The sample kernels assemble, and their loops are where they claim.
+
+std::string kernel_path(const std::string& name) {
+  std::string here = __FILE__;
+  return here.substr(0, here.find_last_of('/')) + "/../firmware/kernels/" + name;
+}
+
+TEST(ApuKernels, Xform4) {
+  const auto p = assemble_file(kernel_path("xform4.apu"));
+  const int loop = static_cast<int>(p.symbols.at("loop"));
+  const int last = static_cast<int>(p.symbols.at("last"));
+  EXPECT_EQ(last - loop, 16);  // one vertex per 16 words
+  const auto tail = MicroWord::decode(p.words[static_cast<size_t>(last - 1)]);
+  EXPECT_EQ(tail.s.op, SeqOp::Dbnz);
+  EXPECT_EQ(tail.s.target, loop);
+  // The multiplier issues in every word of the loop, the adder in 12 of 16.
+  int muls = 0, adds = 0;
+  for (int a = loop; a < last; ++a) {
+    const auto w = MicroWord::decode(p.words[static_cast<size_t>(a)]);
+    muls += w.m.en;
+    adds += w.a.en;
+  }
+  EXPECT_EQ(muls, 16);
+  EXPECT_EQ(adds, 12);
+  EXPECT_EQ(MicroWord::decode(p.words[0]).s.op, SeqOp::Swapd);
+}
+
+TEST(ApuKernels, Shade) {
+  const auto p = assemble_file(kernel_path("shade.apu"));
+  bool units[3] = {}, cmp = false, call = false;
+  for (const auto& e : p.words) {
+    const auto w = MicroWord::decode(e);
+    units[0] |= w.m.en;
+    units[1] |= w.a.en;
+    units[2] |= w.f.en;
+    cmp |= w.a.en && w.a.op == AddOp::Cmp;
+    call |= w.s.op == SeqOp::Call;
+  }
+  EXPECT_TRUE(units[0] && units[1] && units[2] && cmp && call);
+  EXPECT_EQ(MicroWord::decode(p.words[static_cast<size_t>(p.symbols.at("done"))]).s.op, SeqOp::Halt);
+}
+
+}  // namespace
+}  // namespace mc1::apuasm
