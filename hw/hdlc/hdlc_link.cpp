@@ -1,0 +1,495 @@
+#include "hdlc_link.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace mc1::hdlc {
+
+// ---------------------------------------------------------------- faults
+
+FaultyWire::FaultyWire(LinkFaults f) : f_(std::move(f)), rng_(f_.seed) {
+  std::sort(f_.flip_bits.begin(), f_.flip_bits.end());
+  draw_gap();
+}
+
+// splitmix64: tiny, portable, so a seed means the same flips everywhere.
+std::uint64_t FaultyWire::next_random() {
+  std::uint64_t z = (rng_ += 0x9E3779B97F4A7C15ULL);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+// Independent flips with probability p: the gap to the next one is geometric.
+void FaultyWire::draw_gap() {
+  if (f_.bit_error_rate <= 0.0) {
+    gap_ = std::numeric_limits<std::uint64_t>::max();
+    return;
+  }
+  if (f_.bit_error_rate >= 1.0) {
+    gap_ = 0;
+    return;
+  }
+  const double u = (static_cast<double>(next_random() >> 11) + 1.0) * 0x1.0p-53;  // (0,1]
+  const double g = std::floor(std::log(u) / std::log1p(-f_.bit_error_rate));
+  gap_ = g >= 1.8e19 ? std::numeric_limits<std::uint64_t>::max() : static_cast<std::uint64_t>(g);
+}
+
+Bits FaultyWire::receive(const Bits& sent, Picos start, std::uint64_t bit_rate_bps) {
+  Bits out = sent;
+  for (std::size_t i = 0; i < out.size(); ++i, ++seen_) {
+    const Picos t = start + static_cast<Picos>(static_cast<unsigned __int128>(i) *
+                                               1'000'000'000'000ULL / bit_rate_bps);
+    bool dead = false;
+    for (const DeadWindow& w : f_.dead) dead = dead || (t >= w.begin && t < w.end);
+    bool flip = std::binary_search(f_.flip_bits.begin(), f_.flip_bits.end(), seen_);
+    if (gap_ == 0) {
+      flip = !flip;
+      draw_gap();
+    } else if (gap_ != std::numeric_limits<std::uint64_t>::max()) {
+      --gap_;
+    }
+    if (dead) {
+      out[i] = 1;  // a dead line marks: the receiver sees idle
+      ++dead_;
+    } else if (flip) {
+      out[i] ^= 1;
+      ++flipped_;
+    }
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- state
+
+struct Network::Segment {
+  Bytes info;
+  MessageId msg;
+};
+
+struct Network::Sender {
+  std::uint8_t address = 0;
+  unsigned line = 0;
+  unsigned from_station = 0;
+  std::vector<unsigned> peers;   // stations that acknowledge
+  Receiver* reverse = nullptr;   // whose V(R) rides in our I-frames as N(R)
+  std::deque<Segment> frames;    // frames[0] has sequence number `base`
+  std::uint64_t base = 0, next = 0, highest = 0;  // absolute sequence numbers
+  std::vector<std::uint64_t> acked;               // per peer
+  bool timer_running = false;
+  std::uint64_t timer_gen = 0;
+  std::deque<std::pair<MessageId, std::uint64_t>> open;  // message, last sequence number
+  SenderStats stats;
+};
+
+struct Network::Receiver {
+  Sender* sender = nullptr;  // the far end (for message bookkeeping only)
+  unsigned station = 0;
+  std::size_t peer_index = 0;  // our index in sender->peers
+  unsigned ack_line = 0;
+  std::uint8_t ack_address = 0;
+  std::uint64_t vr = 0;
+  bool rej_sent = false;
+  Bytes assembly;
+  bool ack_pending = false;
+  Supervisory ack_kind = Supervisory::RR;
+  Picos ack_due = 0;
+  ReceiverStats stats;
+};
+
+struct Network::Endpoint {
+  unsigned station = 0;
+  FaultyWire wire;
+  Decoder decoder;
+  Picos last_end = 0;
+};
+
+struct Network::Line {
+  unsigned index = 0;
+  unsigned tx_station = 0;
+  std::vector<Endpoint> rx;
+  std::vector<Sender*> senders;
+  std::vector<Receiver*> ackers;  // receivers whose RR/REJ go out on this line
+  std::size_t rr_sender = 0, rr_acker = 0;
+  bool busy = false;
+  Picos wake_at = ~Picos{0};
+  LineStats stats;
+};
+
+// ---------------------------------------------------------------- set-up
+
+Network::Network(const TimingParams& t, unsigned nc_count) : t_(t), nc_count_(nc_count) {
+  if (nc_count < 1 || nc_count > kAddrNcLast)
+    throw std::invalid_argument("hdlc::Network: NC count must be 1..254");
+  t_.validate();
+  for (unsigned l = 0; l <= nc_count; ++l) {
+    auto line = std::make_unique<Line>();
+    line->index = l;
+    line->tx_station = l;  // line 0 is the RC's, line k is NC k's
+    if (l == 0)
+      for (unsigned k = 1; k <= nc_count; ++k) line->rx.push_back(Endpoint{k, FaultyWire{}, Decoder{}, 0});
+    else
+      line->rx.push_back(Endpoint{0, FaultyWire{}, Decoder{}, 0});
+    lines_.push_back(std::move(line));
+  }
+  auto make_sender = [](std::uint8_t addr, unsigned line, unsigned from,
+                        std::vector<unsigned> peers) {
+    auto s = std::make_unique<Sender>();
+    s->address = addr;
+    s->line = line;
+    s->from_station = from;
+    s->acked.assign(peers.size(), 0);
+    s->peers = std::move(peers);
+    return s;
+  };
+  auto make_receiver = [](Sender* s, unsigned station, std::size_t peer, unsigned ack_line,
+                          std::uint8_t ack_addr) {
+    auto r = std::make_unique<Receiver>();
+    r->sender = s;
+    r->station = station;
+    r->peer_index = peer;
+    r->ack_line = ack_line;
+    r->ack_address = ack_addr;
+    return r;
+  };
+  std::vector<unsigned> all;
+  for (unsigned k = 1; k <= nc_count; ++k) all.push_back(k);
+  broadcast_ = make_sender(kAddrBroadcast, 0, 0, all);
+  for (unsigned k = 1; k <= nc_count; ++k) {
+    const auto addr = static_cast<std::uint8_t>(k);
+    to_nc_.push_back(make_sender(addr, 0, 0, {k}));
+    to_rc_.push_back(make_sender(kAddrRc, k, k, {0}));
+    at_nc_.push_back(make_receiver(to_nc_.back().get(), k, 0, k, kAddrRc));
+    bcast_at_nc_.push_back(make_receiver(broadcast_.get(), k, k - 1, k, kAddrBroadcast));
+    at_rc_.push_back(make_receiver(to_rc_.back().get(), 0, 0, 0, addr));
+    to_nc_.back()->reverse = at_rc_.back().get();
+    to_rc_.back()->reverse = at_nc_.back().get();
+    lines_[0]->senders.push_back(to_nc_.back().get());
+    lines_[0]->ackers.push_back(at_rc_.back().get());
+    lines_[k]->senders.push_back(to_rc_.back().get());
+    lines_[k]->ackers.push_back(at_nc_.back().get());
+    lines_[k]->ackers.push_back(bcast_at_nc_.back().get());
+  }
+  lines_[0]->senders.push_back(broadcast_.get());
+}
+
+Network::~Network() = default;
+
+void Network::set_faults(Direction d, unsigned nc, const LinkFaults& f) {
+  if (nc < 1 || nc > nc_count_) throw std::out_of_range("hdlc::Network::set_faults: bad NC");
+  Endpoint& ep = d == Direction::Down ? lines_[0]->rx[nc - 1] : lines_[nc]->rx[0];
+  ep.wire = FaultyWire(f);
+}
+
+// ---------------------------------------------------------------- events
+
+void Network::at(Picos t, std::function<void()> fn) {
+  events_.push(Event{std::max(t, now_), ev_seq_++, std::move(fn)});
+}
+
+void Network::step() {
+  Event e = events_.top();
+  events_.pop();
+  now_ = e.t;
+  e.fn();
+}
+
+void Network::run_until(Picos t) {
+  while (!events_.empty() && events_.top().t <= t) step();
+  now_ = std::max(now_, t);
+}
+
+bool Network::run_until_complete(MessageId id, Picos limit) {
+  while (!messages_.at(id).complete) {
+    if (events_.empty() || events_.top().t > limit) return false;
+    step();
+  }
+  return true;
+}
+
+bool Network::all_complete() const {
+  return std::all_of(messages_.begin(), messages_.end(),
+                     [](const MessageStatus& m) { return m.complete; });
+}
+
+bool Network::run_until_all_complete(Picos limit) {
+  while (!all_complete()) {
+    if (events_.empty() || events_.top().t > limit) return false;
+    step();
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------- sending
+
+MessageId Network::send(Picos when, unsigned from, std::uint8_t address, Bytes data) {
+  Sender* s = nullptr;
+  if (from == 0 && address == kAddrBroadcast) {
+    s = broadcast_.get();
+  } else if (from == 0 && address >= 1 && address <= nc_count_) {
+    s = to_nc_[address - 1].get();
+  } else if (from >= 1 && from <= nc_count_ && address == kAddrRc) {
+    s = to_rc_[from - 1].get();
+  } else {
+    throw std::invalid_argument("hdlc::Network::send: no link from station " +
+                                std::to_string(from) + " to address " + std::to_string(address));
+  }
+  const MessageId id = messages_.size();
+  MessageStatus st;
+  st.from_station = from;
+  st.address = address;
+  st.delivered.assign(s->peers.size(), 0);
+  const std::size_t chunk = t_.hdlc_max_info_bytes - 1;
+  st.frames = data.empty() ? 1 : (data.size() + chunk - 1) / chunk;
+  messages_.push_back(st);
+  at(when, [this, s, id, data = std::move(data), chunk] {
+    messages_[id].submitted = now_;
+    const std::size_t n = messages_[id].frames;
+    for (std::size_t i = 0; i < n; ++i) {
+      Segment seg;
+      seg.msg = id;
+      seg.info.push_back(i + 1 == n ? 1 : 0);  // segment octet: bit 0 = last
+      const std::size_t b = i * chunk, e = std::min(data.size(), b + chunk);
+      seg.info.insert(seg.info.end(), data.begin() + b, data.begin() + e);
+      s->frames.push_back(std::move(seg));
+    }
+    s->open.emplace_back(id, s->base + s->frames.size() - 1);
+    try_transmit(*lines_[s->line]);
+  });
+  return id;
+}
+
+bool Network::sendable(const Sender& s) const {
+  if (s.next < s.highest) return true;  // going back: resend
+  return s.next < s.base + s.frames.size() && s.next - s.base < t_.hdlc_window;
+}
+
+void Network::try_transmit(Line& l) {
+  if (l.busy) return;
+  // Acknowledgements first: they free the far end's window.
+  Picos earliest = ~Picos{0};
+  const std::size_t na = l.ackers.size();
+  for (std::size_t i = 0; i < na; ++i) {
+    Receiver& r = *l.ackers[(l.rr_acker + i) % na];
+    if (!r.ack_pending) continue;
+    if (r.ack_due > now_) {
+      earliest = std::min(earliest, r.ack_due);
+      continue;
+    }
+    l.rr_acker = (l.rr_acker + i + 1) % na;
+    r.ack_pending = false;
+    (r.ack_kind == Supervisory::REJ ? r.stats.rej_sent : r.stats.rr_sent)++;
+    Frame f;
+    f.address = r.ack_address;
+    f.control = Control::super(r.ack_kind, static_cast<std::uint8_t>(r.vr & 7)).octet();
+    transmit(l, f, nullptr);
+    return;
+  }
+  const std::size_t ns = l.senders.size();
+  for (std::size_t i = 0; i < ns; ++i) {
+    Sender& s = *l.senders[(l.rr_sender + i) % ns];
+    if (!sendable(s)) continue;
+    l.rr_sender = (l.rr_sender + i + 1) % ns;
+    const std::uint64_t seq = s.next++;
+    const bool again = seq < s.highest;
+    if (!again) s.highest = seq + 1;
+    ++s.stats.i_frames;
+    if (again) {
+      ++s.stats.retransmissions;
+      ++l.stats.retransmissions;
+    }
+    std::uint8_t nr = 0;
+    if (s.reverse) {
+      nr = static_cast<std::uint8_t>(s.reverse->vr & 7);
+      // The piggybacked N(R) is as good as a pending RR.
+      if (s.reverse->ack_pending && s.reverse->ack_kind == Supervisory::RR) {
+        s.reverse->ack_pending = false;
+      }
+    }
+    Frame f;
+    f.address = s.address;
+    f.control = Control::info(static_cast<std::uint8_t>(seq & 7), nr).octet();
+    f.info = s.frames[seq - s.base].info;
+    transmit(l, f, &s);
+    return;
+  }
+  if (earliest != ~Picos{0} && earliest != l.wake_at) {
+    l.wake_at = earliest;
+    at(earliest, [this, &l, earliest] {
+      if (l.wake_at == earliest) l.wake_at = ~Picos{0};
+      try_transmit(l);
+    });
+  }
+}
+
+void Network::transmit(Line& l, const Frame& f, Sender* s) {
+  if (trace_) trace_(now_, l.index, f);
+  Bits bits = encode(f);
+  const Picos start = now_;
+  const Picos dur = t_.hdlc_bits_ps(bits.size());
+  l.busy = true;
+  ++l.stats.frames;
+  (s ? l.stats.i_frames : l.stats.s_frames)++;
+  if (s) l.stats.info_bytes += f.info.size();
+  l.stats.wire_bits += bits.size();
+  at(start + dur, [this, &l, bits = std::move(bits), start, s] { frame_end(l, bits, start, s); });
+}
+
+void Network::start_timer(Sender& s, Picos from) {
+  s.timer_running = true;
+  const std::uint64_t gen = ++s.timer_gen;
+  at(from + t_.hdlc_t1_timeout_ns * 1000, [this, &s, gen] {
+    if (!s.timer_running || gen != s.timer_gen) return;
+    s.timer_running = false;
+    if (s.base < s.highest) {
+      // T1 expired: go back to the oldest unacknowledged frame (for a broadcast,
+      // the slowest NC's) and send everything again.
+      ++s.stats.timeouts;
+      s.next = s.base;
+      try_transmit(*lines_[s.line]);
+    }
+  });
+}
+
+// ---------------------------------------------------------------- receiving
+
+void Network::frame_end(Line& l, const Bits& bits, Picos start, Sender* s) {
+  l.stats.busy_ps += now_ - start;
+  for (Endpoint& ep : l.rx) {
+    const Bits got = ep.wire.receive(bits, start, t_.hdlc_bit_rate_bps);
+    if (start > ep.last_end) ep.decoder.idle();  // the line idled in between
+    ep.last_end = now_;
+    std::vector<Frame> frames;
+    ep.decoder.feed(got, frames);
+    for (const Frame& f : frames) dispatch(l, ep, f);
+  }
+  if (s && !s->timer_running && s->base < s->highest) start_timer(*s, now_);
+  l.busy = false;
+  try_transmit(l);
+}
+
+void Network::dispatch(Line& l, Endpoint& ep, const Frame& f) {
+  const auto c = Control::parse(f.control);
+  if (!c || c->type == FrameType::U) return;  // links are up from time 0; no U traffic
+  if (l.index == 0) {  // an NC hears the RC
+    const unsigned k = ep.station;
+    if (f.address == k) {
+      if (c->type == FrameType::I) on_info(*at_nc_[k - 1], f, *c);
+      on_ack(*to_rc_[k - 1], 0, c->nr, c->type == FrameType::S && c->s == Supervisory::REJ);
+    } else if (f.address == kAddrBroadcast && c->type == FrameType::I) {
+      on_info(*bcast_at_nc_[k - 1], f, *c);
+    }
+    return;
+  }
+  const unsigned k = l.index;  // the RC hears NC k
+  const bool rej = c->type == FrameType::S && c->s == Supervisory::REJ;
+  if (f.address == kAddrRc) {
+    if (c->type == FrameType::I) on_info(*at_rc_[k - 1], f, *c);
+    on_ack(*to_nc_[k - 1], 0, c->nr, rej);
+  } else if (f.address == kAddrBroadcast && c->type == FrameType::S) {
+    on_ack(*broadcast_, k - 1, c->nr, rej);
+  }
+}
+
+void Network::schedule_ack(Receiver& r, Supervisory kind) {
+  if (!r.ack_pending) {
+    r.ack_pending = true;
+    r.ack_due = now_ + t_.hdlc_turnaround_ns * 1000;
+    r.ack_kind = kind;
+  } else if (kind == Supervisory::REJ) {
+    r.ack_kind = kind;
+  }
+  try_transmit(*lines_[r.ack_line]);
+}
+
+void Network::on_info(Receiver& r, const Frame& f, const Control& c) {
+  if (c.ns != (r.vr & 7) || f.info.empty()) {
+    ++r.stats.out_of_sequence;
+    // One REJ per gap; anything else out of sequence (a duplicate after a lost
+    // ack) is answered with RR so the sender always learns V(R).
+    schedule_ack(r, r.rej_sent ? Supervisory::RR : Supervisory::REJ);
+    r.rej_sent = true;
+    return;
+  }
+  Sender& s = *r.sender;
+  const MessageId id = s.frames.at(r.vr - s.base).msg;  // bookkeeping only
+  ++r.vr;
+  ++r.stats.accepted;
+  r.rej_sent = false;
+  r.assembly.insert(r.assembly.end(), f.info.begin() + 1, f.info.end());
+  if (f.info[0] & 1) {
+    ++r.stats.messages;
+    messages_[id].delivered[r.peer_index] = now_;
+    deliveries_.push_back(Delivery{now_, r.station, s.from_station, s.address, id,
+                                   std::move(r.assembly)});
+    r.assembly.clear();
+  }
+  if (r.ack_pending) r.ack_kind = Supervisory::RR;  // the gap is closed
+  schedule_ack(r, Supervisory::RR);
+}
+
+void Network::on_ack(Sender& s, std::size_t peer, std::uint8_t nr, bool rej) {
+  std::uint64_t& a = s.acked[peer];
+  const std::uint64_t d = (nr - a) & 7;
+  if (d > s.highest - a) return;  // N(R) outside the window: stale, ignore
+  a += d;
+  if (rej) {
+    ++s.stats.rej_received;
+    s.next = std::min(s.next, a);
+  }
+  const std::uint64_t base = *std::min_element(s.acked.begin(), s.acked.end());
+  if (base > s.base) {
+    s.frames.erase(s.frames.begin(), s.frames.begin() + static_cast<long>(base - s.base));
+    s.base = base;
+    while (!s.open.empty() && s.open.front().second < base) {
+      MessageStatus& m = messages_[s.open.front().first];
+      m.complete = true;
+      m.completed = now_;
+      ++s.stats.messages_completed;
+      s.open.pop_front();
+    }
+    if (s.base < s.highest)
+      start_timer(s, now_);
+    else
+      s.timer_running = false;
+  }
+  s.next = std::max(s.next, s.base);
+  try_transmit(*lines_[s.line]);
+}
+
+// ---------------------------------------------------------------- results
+
+const MessageStatus& Network::status(MessageId id) const { return messages_.at(id); }
+
+std::vector<Delivery> Network::take_deliveries() {
+  std::vector<Delivery> d;
+  d.swap(deliveries_);
+  return d;
+}
+
+const LineStats& Network::down_line() const { return lines_[0]->stats; }
+const LineStats& Network::up_line(unsigned nc) const { return lines_.at(nc)->stats; }
+
+ReceiveStats Network::receive_stats(Direction d, unsigned nc) const {
+  const Endpoint& ep = d == Direction::Down ? lines_[0]->rx.at(nc - 1) : lines_.at(nc)->rx[0];
+  return ReceiveStats{ep.decoder.counters(), ep.wire.bits_flipped(), ep.wire.bits_dead()};
+}
+
+const SenderStats& Network::sender_to_nc(unsigned nc) const { return to_nc_.at(nc - 1)->stats; }
+const SenderStats& Network::sender_broadcast() const { return broadcast_->stats; }
+const SenderStats& Network::sender_to_rc(unsigned nc) const { return to_rc_.at(nc - 1)->stats; }
+const ReceiverStats& Network::receiver_at_nc(unsigned nc) const {
+  return at_nc_.at(nc - 1)->stats;
+}
+const ReceiverStats& Network::broadcast_receiver_at_nc(unsigned nc) const {
+  return bcast_at_nc_.at(nc - 1)->stats;
+}
+const ReceiverStats& Network::receiver_at_rc(unsigned nc) const {
+  return at_rc_.at(nc - 1)->stats;
+}
+
+}  // namespace mc1::hdlc

@@ -1,0 +1,189 @@
+// Reliable HDLC links between the RC and its NCs (s2), simulated at the bit
+// level with fault injection. docs/hdlc.md describes the protocol.
+//
+// Topology: the RC transmits on one multidrop downstream line that every NC
+// hears (so a broadcast is one transmission); each NC answers on its own
+// upstream line to the RC. Logical links, each go-back-N with a window of
+// hdlc_window (<= 7) and the timer T1:
+//   RC -> NC k     I-frames address k on the downstream line, acks (RR/REJ)
+//                  address 0 on NC k's upstream line;
+//   RC -> all NCs  I-frames address 0xFF (own sequence numbers), each NC acks
+//                  with RR/REJ address 0xFF on its upstream line; the RC keeps
+//                  per-NC acknowledgement state and the window base is the
+//                  slowest NC; a go-back retransmission is again a broadcast;
+//   NC k -> RC     I-frames address 0 on the upstream line, acks address k on
+//                  the downstream line.
+// A message is cut into I-frames whose information field starts with one
+// segment octet (bit 0 = last segment of the message).
+//
+// Nothing is lost: there is no retry limit (N2 is infinite), so every message
+// arrives exactly once and in order once the line works again.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <queue>
+#include <vector>
+
+#include "hdlc_frame.hpp"
+#include "timing_params.hpp"
+
+namespace mc1::hdlc {
+
+struct DeadWindow {
+  Picos begin = 0;  // [begin, end): bits sent in this span arrive as idle 1s
+  Picos end = 0;
+};
+
+// Faults of one receiving end of a line.
+struct LinkFaults {
+  double bit_error_rate = 0.0;  // independent flips, seeded, deterministic
+  std::uint64_t seed = 1;
+  std::vector<DeadWindow> dead;
+  std::vector<std::uint64_t> flip_bits;  // absolute received-bit indices to flip
+};
+
+// Applies LinkFaults to the bits one receiver sees.
+class FaultyWire {
+ public:
+  FaultyWire() : FaultyWire(LinkFaults{}) {}
+  explicit FaultyWire(LinkFaults f);
+  // Bit i of `sent` is on the wire from start + i * 1e12 / bit_rate_bps.
+  Bits receive(const Bits& sent, Picos start, std::uint64_t bit_rate_bps);
+  std::uint64_t bits_seen() const { return seen_; }
+  std::uint64_t bits_flipped() const { return flipped_; }
+  std::uint64_t bits_dead() const { return dead_; }
+
+ private:
+  std::uint64_t next_random();
+  void draw_gap();
+  LinkFaults f_;
+  std::uint64_t rng_;
+  std::uint64_t gap_ = 0;  // good bits before the next random flip
+  std::uint64_t seen_ = 0, flipped_ = 0, dead_ = 0;
+};
+
+enum class Direction { Down, Up };  // Down: RC -> NC drop; Up: NC -> RC
+
+struct LineStats {
+  std::uint64_t frames = 0, i_frames = 0, s_frames = 0;
+  std::uint64_t info_bytes = 0;  // information-field octets of I-frames
+  std::uint64_t wire_bits = 0;   // flags and inserted zeros included
+  Picos busy_ps = 0;
+  std::uint64_t retransmissions = 0;  // I-frames sent again
+};
+
+struct ReceiveStats {
+  Decoder::Counters decoder;
+  std::uint64_t bits_flipped = 0, bits_dead = 0;
+};
+
+struct SenderStats {
+  std::uint64_t i_frames = 0, retransmissions = 0, timeouts = 0, rej_received = 0;
+  std::uint64_t messages_completed = 0;
+};
+
+struct ReceiverStats {
+  std::uint64_t accepted = 0, out_of_sequence = 0, messages = 0, rr_sent = 0, rej_sent = 0;
+};
+
+using MessageId = std::uint64_t;
+
+struct Delivery {
+  Picos time = 0;           // closing flag of the message's last frame
+  unsigned to_station = 0;  // 0 = RC, k = NC k
+  unsigned from_station = 0;
+  std::uint8_t address = 0;  // link address: NC id, 0xFF or 0
+  MessageId id = 0;
+  Bytes data;
+};
+
+struct MessageStatus {
+  unsigned from_station = 0;
+  std::uint8_t address = 0;
+  Picos submitted = 0;  // when it entered the send queue
+  bool complete = false;
+  Picos completed = 0;  // the last acknowledgement (of every NC, for a broadcast)
+  std::size_t frames = 0;
+  std::vector<Picos> delivered;  // per destination station, in station order
+};
+
+class Network {
+ public:
+  Network(const TimingParams& t, unsigned nc_count);
+  ~Network();
+  Network(const Network&) = delete;
+  Network& operator=(const Network&) = delete;
+
+  unsigned nc_count() const { return nc_count_; }
+  void set_faults(Direction d, unsigned nc, const LinkFaults& f);
+
+  // Queues a message at time `at` (or now, if `at` is already past).
+  // From the RC (station 0): address = NC id or kAddrBroadcast; from NC k: kAddrRc.
+  MessageId send(Picos at, unsigned from_station, std::uint8_t address, Bytes data);
+
+  Picos now() const { return now_; }
+  void run_until(Picos t);
+  // Runs until message `id` is complete; false if `limit` passes first.
+  bool run_until_complete(MessageId id, Picos limit = ~Picos{0});
+  bool run_until_all_complete(Picos limit = ~Picos{0});
+  bool all_complete() const;
+
+  const MessageStatus& status(MessageId id) const;
+  std::vector<Delivery> take_deliveries();
+
+  const LineStats& down_line() const;
+  const LineStats& up_line(unsigned nc) const;
+  ReceiveStats receive_stats(Direction d, unsigned nc) const;
+  const SenderStats& sender_to_nc(unsigned nc) const;
+  const SenderStats& sender_broadcast() const;
+  const SenderStats& sender_to_rc(unsigned nc) const;
+  const ReceiverStats& receiver_at_nc(unsigned nc) const;  // RC -> NC link
+  const ReceiverStats& broadcast_receiver_at_nc(unsigned nc) const;
+  const ReceiverStats& receiver_at_rc(unsigned nc) const;  // NC -> RC link
+  // Every frame put on any line, for tracing: (start time, line, frame); line 0 = down.
+  void set_trace(std::function<void(Picos, unsigned, const Frame&)> fn) { trace_ = std::move(fn); }
+
+ private:
+  struct Segment;
+  struct Sender;
+  struct Receiver;
+  struct Endpoint;
+  struct Line;
+
+  void at(Picos t, std::function<void()> fn);
+  void step();
+  void try_transmit(Line& l);
+  void transmit(Line& l, const Frame& f, Sender* s);
+  void frame_end(Line& l, const Bits& bits, Picos start, Sender* s);
+  void dispatch(Line& l, Endpoint& ep, const Frame& f);
+  void on_info(Receiver& r, const Frame& f, const Control& c);
+  void on_ack(Sender& s, std::size_t peer, std::uint8_t nr, bool rej);
+  void schedule_ack(Receiver& r, Supervisory kind);
+  bool sendable(const Sender& s) const;
+  void start_timer(Sender& s, Picos from);
+
+  TimingParams t_;
+  unsigned nc_count_;
+  Picos now_ = 0;
+  std::uint64_t ev_seq_ = 0;
+  struct Event {
+    Picos t;
+    std::uint64_t seq;
+    std::function<void()> fn;
+    bool operator>(const Event& o) const { return t != o.t ? t > o.t : seq > o.seq; }
+  };
+  std::priority_queue<Event, std::vector<Event>, std::greater<Event>> events_;
+
+  std::vector<std::unique_ptr<Line>> lines_;           // 0 = down, k = up from NC k
+  std::vector<std::unique_ptr<Sender>> to_nc_, to_rc_;  // index k-1
+  std::unique_ptr<Sender> broadcast_;
+  std::vector<std::unique_ptr<Receiver>> at_nc_, bcast_at_nc_, at_rc_;  // index k-1
+  std::vector<MessageStatus> messages_;
+  std::vector<Delivery> deliveries_;
+  std::function<void(Picos, unsigned, const Frame&)> trace_;
+};
+
+}  // namespace mc1::hdlc

@@ -1,0 +1,49 @@
+// GoogleTest harness for SystemC tests: SystemC reports of severity warning or
+// worse become test failures, each test gets a fresh simulation kernel, and
+// the SystemC banner is kept off stdout (gtest_discover_tests parses it).
+//
+// A test file that uses SystemC includes this header once and writes
+// MC1_SYSTEMC_GTEST_MAIN() at file scope: libsystemc supplies main() and calls
+// sc_main, which runs the tests.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+#include <systemc>
+
+namespace mc1::test {
+
+inline void report_to_gtest(const sc_core::sc_report& r, const sc_core::sc_actions& actions) {
+  if (r.get_severity() >= sc_core::SC_WARNING)
+    ADD_FAILURE() << "SystemC " << (r.get_severity() == sc_core::SC_WARNING ? "warning" : "error")
+                  << " [" << r.get_msg_type() << "] " << r.get_msg() << " at " << r.get_file_name()
+                  << ":" << r.get_line_number();
+  // Do not let the default handler abort or throw: the failure is recorded.
+  sc_core::sc_report_handler::default_handler(
+      r, actions & ~(sc_core::SC_THROW | sc_core::SC_ABORT | sc_core::SC_STOP |
+                     sc_core::SC_INTERRUPT | sc_core::SC_DISPLAY | sc_core::SC_LOG));
+}
+
+// SystemC cannot elaborate twice in one kernel; a test starts a new one.
+inline void fresh_kernel() {
+  sc_core::sc_curr_simcontext = new sc_core::sc_simcontext();
+  sc_core::sc_default_global_context = sc_core::sc_curr_simcontext;
+  sc_core::sc_report_handler::set_handler(report_to_gtest);
+}
+
+class SystemCTest : public ::testing::Test {
+ protected:
+  void SetUp() override { fresh_kernel(); }
+};
+
+}  // namespace mc1::test
+
+#define MC1_SYSTEMC_GTEST_MAIN()                                                     \
+  [[maybe_unused]] static const int mc1_no_systemc_banner =                         \
+      setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);                           \
+  int sc_main(int argc, char** argv) {                                               \
+    ::testing::InitGoogleTest(&argc, argv);                                          \
+    return RUN_ALL_TESTS();                                                          \
+  }

@@ -1,0 +1,268 @@
+// Go-back-N HDLC links RC <-> NCs with fault injection: exact fault-free
+// timing, the window, exactly-once in-order delivery under bit errors and dead
+// windows, and broadcast recovery when one NC receives a frame corrupted.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "hdlc_link.hpp"
+
+using namespace mc1;
+using namespace mc1::hdlc;
+
+namespace {
+constexpr Picos kUs = 1'000'000;
+constexpr Picos kMs = 1'000'000'000;
+
+// Messages of varied length (0..700 bytes, so 1..3 frames) whose contents name them.
+Bytes make_message(std::uint32_t n, std::uint32_t seed) {
+  std::uint32_t x = n * 2654435761u ^ seed;
+  x ^= x >> 13;
+  const std::size_t len = (n % 10 == 9) ? 0 : x % 701;
+  Bytes b(len);
+  for (std::size_t i = 0; i < len; ++i) {
+    x = x * 1664525u + 1013904223u;
+    b[i] = static_cast<std::uint8_t>(i < 4 ? n >> (8 * i) : x >> 24);
+  }
+  return b;
+}
+
+// Deliveries to station `to` from station `from` over link address `addr`,
+// in arrival order.
+std::vector<Bytes> received(const std::vector<Delivery>& all, unsigned to, unsigned from,
+                            std::uint8_t addr) {
+  std::vector<Bytes> out;
+  for (const Delivery& d : all)
+    if (d.to_station == to && d.from_station == from && d.address == addr) out.push_back(d.data);
+  return out;
+}
+
+// Exactly the sent sequence: same count, then the first difference by index.
+::testing::AssertionResult same_sequence(const std::vector<Bytes>& got,
+                                         const std::vector<Bytes>& sent) {
+  if (got.size() != sent.size())
+    return ::testing::AssertionFailure()
+           << got.size() << " messages delivered, " << sent.size() << " sent";
+  for (std::size_t i = 0; i < got.size(); ++i)
+    if (got[i] != sent[i])
+      return ::testing::AssertionFailure() << "message " << i << " differs (" << got[i].size()
+                                           << " bytes, sent " << sent[i].size() << ")";
+  return ::testing::AssertionSuccess();
+}
+}  // namespace
+
+TEST(HdlcFaults, SeededFlipsAreDeterministicAndAtTheRate) {
+  LinkFaults f;
+  f.bit_error_rate = 1e-3;
+  f.seed = 42;
+  FaultyWire a(f), b(f);
+  const Bits zeros(1'000'000, 0);
+  const Bits ra = a.receive(zeros, 0, 4'000'000);
+  EXPECT_EQ(ra, b.receive(zeros, 0, 4'000'000));
+  // 1000 expected; a Poisson count lies within +-5 sigma (158).
+  EXPECT_GT(a.bits_flipped(), 842u);
+  EXPECT_LT(a.bits_flipped(), 1158u);
+  f.seed = 43;
+  FaultyWire c(f);
+  EXPECT_NE(ra, c.receive(zeros, 0, 4'000'000));
+}
+
+TEST(HdlcFaults, DeadWindowMarksAndFlipBitsAreExact) {
+  LinkFaults f;
+  f.dead.push_back({1 * kUs, 2 * kUs});  // bits 4..7 at 4 Mbps (250 ns each)
+  f.flip_bits = {1, 12};
+  FaultyWire w(f);
+  const Bits got = w.receive(Bits(16, 0), 0, 4'000'000);
+  EXPECT_EQ(got, (Bits{0, 1, 0, 0, 1, 1, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0}));
+  EXPECT_EQ(w.bits_dead(), 4u);
+  EXPECT_EQ(w.bits_flipped(), 2u);
+}
+
+TEST(HdlcLink, FaultFreeMessageTimingIsExact) {
+  TimingParams t;  // 4 Mbps, turnaround 10 us
+  Network net(t, 3);
+  const MessageId id = net.send(0, 0, 3, Bytes{'M', 'C', '-', '1'});
+  ASSERT_TRUE(net.run_until_complete(id));
+  // I-frame 03 00 | 01 'M' 'C' '-' '1' | E831: 88 wire bits = 22 us (see
+  // hdlc_frame_test). NC 3 answers 10 us later with RR N(R)=1, address 00:
+  // 00 21 CC 3F, one zero inserted after 3F's five 1s: 49 bits = 12.25 us.
+  const MessageStatus& s = net.status(id);
+  ASSERT_EQ(s.delivered.size(), 1u);
+  EXPECT_EQ(s.delivered[0], 22 * kUs);
+  EXPECT_EQ(s.completed, 22 * kUs + 10 * kUs + 12'250'000);
+  const auto d = net.take_deliveries();
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].to_station, 3u);
+  EXPECT_EQ(d[0].data, (Bytes{'M', 'C', '-', '1'}));
+  EXPECT_EQ(net.down_line().frames, 1u);
+  EXPECT_EQ(net.down_line().wire_bits, 88u);
+  EXPECT_EQ(net.down_line().busy_ps, 22 * kUs);
+  EXPECT_EQ(net.down_line().info_bytes, 5u);
+  EXPECT_EQ(net.up_line(3).wire_bits, 49u);
+  EXPECT_EQ(net.up_line(3).s_frames, 1u);
+  EXPECT_EQ(net.up_line(1).frames, 0u);
+  EXPECT_EQ(net.receiver_at_nc(3).rr_sent, 1u);
+}
+
+TEST(HdlcLink, WindowOfSevenFramesOutstanding) {
+  TimingParams t;
+  t.hdlc_turnaround_ns = 3'000'000;  // acks held back 3 ms
+  t.hdlc_t1_timeout_ns = 20'000'000;
+  Network net(t, 1);
+  std::vector<std::pair<Picos, unsigned>> trace;  // frame starts: (time, line)
+  net.set_trace([&](Picos at, unsigned line, const Frame&) { trace.emplace_back(at, line); });
+  // 12 full frames back to back.
+  const MessageId id = net.send(0, 0, 1, Bytes(12 * (t.hdlc_max_info_bytes - 1), 0x55));
+  ASSERT_TRUE(net.run_until_complete(id));
+  std::size_t before_first_ack = 0;
+  for (const auto& [at, line] : trace) {
+    if (line == 1) break;
+    ++before_first_ack;
+  }
+  EXPECT_EQ(before_first_ack, 7u);
+  EXPECT_EQ(net.sender_to_nc(1).i_frames, 12u);
+  EXPECT_EQ(net.sender_to_nc(1).retransmissions, 0u);
+}
+
+namespace {
+struct Sweep {
+  double ber;
+  std::uint64_t seed;
+};
+
+// Two NCs; RC -> NC and NC -> RC streams at the same time over faulty lines.
+void exactly_once_both_ways(double ber, std::uint64_t seed, const std::vector<DeadWindow>& dead) {
+  TimingParams t;
+  Network net(t, 2);
+  for (unsigned k = 1; k <= 2; ++k) {
+    for (Direction d : {Direction::Down, Direction::Up}) {
+      LinkFaults f;
+      f.bit_error_rate = ber;
+      f.seed = seed * 10 + k * 2 + (d == Direction::Up);
+      if (k == 1) f.dead = dead;
+      net.set_faults(d, k, f);
+    }
+  }
+  constexpr std::uint32_t kMessages = 120;
+  std::map<unsigned, std::vector<Bytes>> down, up;
+  for (std::uint32_t n = 0; n < kMessages; ++n) {
+    const unsigned k = 1 + n % 2;
+    const Picos at = n * 300 * kUs;  // arrivals overlap the transfers
+    down[k].push_back(make_message(n, 1));
+    net.send(at, 0, static_cast<std::uint8_t>(k), down[k].back());
+    up[k].push_back(make_message(n, 2));
+    net.send(at + 7 * kUs, k, kAddrRc, up[k].back());
+  }
+  ASSERT_TRUE(net.run_until_all_complete(10'000 * kMs));
+  const auto all = net.take_deliveries();
+  std::uint64_t fcs = 0, retx = 0;
+  for (unsigned k = 1; k <= 2; ++k) {
+    EXPECT_TRUE(same_sequence(received(all, k, 0, static_cast<std::uint8_t>(k)), down[k]))
+        << "RC -> NC " << k;
+    EXPECT_TRUE(same_sequence(received(all, 0, k, kAddrRc), up[k])) << "NC " << k << " -> RC";
+    fcs += net.receive_stats(Direction::Down, k).decoder.fcs_errors +
+           net.receive_stats(Direction::Up, k).decoder.fcs_errors;
+    retx += net.sender_to_nc(k).retransmissions + net.sender_to_rc(k).retransmissions;
+  }
+  EXPECT_EQ(all.size(), 4u * kMessages / 2);
+  if (ber > 0) {
+    EXPECT_GT(fcs, 0u);
+    EXPECT_GT(retx, 0u);
+  }
+  if (!dead.empty()) {
+    EXPECT_GT(net.receive_stats(Direction::Down, 1).bits_dead, 0u);
+    EXPECT_GT(net.sender_to_nc(1).timeouts + net.sender_to_rc(1).timeouts, 0u);
+    EXPECT_GT(net.sender_to_nc(1).retransmissions, 0u);
+  }
+  // The lines were never busy longer than the simulated time.
+  EXPECT_LE(net.down_line().busy_ps, net.now());
+}
+}  // namespace
+
+TEST(HdlcLink, ExactlyOnceInOrderAtBer1e5) { exactly_once_both_ways(1e-5, 1, {}); }
+TEST(HdlcLink, ExactlyOnceInOrderAtBer1e4) { exactly_once_both_ways(1e-4, 2, {}); }
+TEST(HdlcLink, ExactlyOnceInOrderAcrossDeadWindows) {
+  exactly_once_both_ways(0.0, 3, {{2 * kMs, 9 * kMs}, {20 * kMs, 20 * kMs + 400 * kUs}});
+}
+TEST(HdlcLink, ExactlyOnceAtBer1e4WithDeadWindow) {
+  exactly_once_both_ways(1e-4, 4, {{5 * kMs, 15 * kMs}});
+}
+
+TEST(HdlcBroadcast, OneNcReceivesAFrameCorrupted) {
+  TimingParams t;
+  Network net(t, 4);
+  // A 3-frame broadcast: frame 0 is 8 + 8 + 8 * 256 + 16 + 8 = 2088 bits plus
+  // inserted zeros (the 0x00 payload has none in the data). Flip a bit inside
+  // frame 1 as NC 3 receives it.
+  const std::size_t chunk = t.hdlc_max_info_bytes - 1;
+  const Bytes program(3 * chunk, 0x00);
+  LinkFaults f;
+  f.flip_bits = {2100 + 500};
+  net.set_faults(Direction::Down, 3, f);
+  const MessageId id = net.send(0, 0, kAddrBroadcast, program);
+  ASSERT_TRUE(net.run_until_complete(id));
+  const auto all = net.take_deliveries();
+  for (unsigned k = 1; k <= 4; ++k) {
+    const auto got = received(all, k, 0, kAddrBroadcast);
+    ASSERT_EQ(got.size(), 1u) << "NC " << k;
+    EXPECT_EQ(got[0], program);
+    EXPECT_EQ(net.receive_stats(Direction::Down, k).decoder.fcs_errors, k == 3 ? 1u : 0u);
+    EXPECT_EQ(net.broadcast_receiver_at_nc(k).accepted, 3u);
+  }
+  // NC 3 saw frame 2 out of sequence and sent one REJ; the RC went back to
+  // frame 1 and broadcast frames 1 and 2 again. The other NCs drop the
+  // duplicates; each answers its first out-of-sequence frame with REJ N(R)=3
+  // too (modulo 8 a duplicate looks like a gap), which asks for nothing.
+  for (unsigned k = 1; k <= 4; ++k) EXPECT_EQ(net.broadcast_receiver_at_nc(k).rej_sent, 1u);
+  EXPECT_EQ(net.sender_broadcast().rej_received, 4u);
+  EXPECT_EQ(net.sender_broadcast().retransmissions, 2u);
+  EXPECT_EQ(net.sender_broadcast().i_frames, 5u);
+  EXPECT_EQ(net.sender_broadcast().timeouts, 0u);
+  EXPECT_EQ(net.broadcast_receiver_at_nc(1).out_of_sequence, 2u);
+  // NC 3 got the message last, after the others.
+  const MessageStatus& s = net.status(id);
+  EXPECT_GT(s.delivered[2], s.delivered[0]);
+  EXPECT_EQ(s.delivered[0], s.delivered[1]);
+  EXPECT_EQ(s.delivered[0], s.delivered[3]);
+  EXPECT_GE(s.completed, s.delivered[2]);
+}
+
+TEST(HdlcBroadcast, ExactlyOnceWithErrorsAndOneDeadNc) {
+  TimingParams t;
+  Network net(t, 5);
+  for (unsigned k = 1; k <= 5; ++k) {
+    LinkFaults down, up;
+    down.bit_error_rate = 1e-4;
+    down.seed = 100 + k;
+    up.bit_error_rate = 1e-5;
+    up.seed = 200 + k;
+    if (k == 4) down.dead.push_back({3 * kMs, 30 * kMs});
+    net.set_faults(Direction::Down, k, down);
+    net.set_faults(Direction::Up, k, up);
+  }
+  std::vector<Bytes> sent;
+  for (std::uint32_t n = 0; n < 40; ++n) {
+    sent.push_back(make_message(n, 7));
+    net.send(n * 500 * kUs, 0, kAddrBroadcast, sent.back());
+  }
+  ASSERT_TRUE(net.run_until_all_complete(100'000 * kMs));
+  const auto all = net.take_deliveries();
+  for (unsigned k = 1; k <= 5; ++k)
+    EXPECT_TRUE(same_sequence(received(all, k, 0, kAddrBroadcast), sent)) << "NC " << k;
+  EXPECT_GT(net.sender_broadcast().retransmissions, 0u);
+  EXPECT_GT(net.sender_broadcast().timeouts, 0u);
+  EXPECT_GT(net.receive_stats(Direction::Down, 4).bits_dead, 0u);
+  // One transmission serves every NC: the downstream line carried each frame
+  // once plus retransmissions, not five times.
+  std::size_t frames = 0;
+  for (const Bytes& m : sent) frames += m.empty() ? 1 : (m.size() + 254) / 255;
+  EXPECT_EQ(net.sender_broadcast().i_frames, frames + net.sender_broadcast().retransmissions);
+}
+
+TEST(HdlcLink, RejectsBadAddresses) {
+  TimingParams t;
+  Network net(t, 2);
+  EXPECT_THROW(net.send(0, 0, 3, {}), std::invalid_argument);
+  EXPECT_THROW(net.send(0, 1, 2, {}), std::invalid_argument);
+  EXPECT_THROW(net.send(0, 0, kAddrRc, {}), std::invalid_argument);
+}
