@@ -61,6 +61,16 @@ class ApuEngine {
   // One APU clock; fills `rec` with what happened in that cycle.
   virtual void step(CycleRecord& rec) = 0;
 
+  // Clocks without records until the APU stops running (HALT issued, fault)
+  // or max_cycles cycles have passed; returns the cycles clocked. Engines
+  // override it with their fast path (Iss::run, RtlEngine::run).
+  virtual std::uint64_t run(std::uint64_t max_cycles) {
+    CycleRecord rec;
+    std::uint64_t n = 0;
+    for (; n < max_cycles && state() == RunState::Running; ++n) step(rec);
+    return n;
+  }
+
   virtual RunState state() const = 0;
   virtual Fault fault() const = 0;
   virtual std::uint64_t cycle() const = 0;
