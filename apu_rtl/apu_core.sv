@@ -1,0 +1,571 @@
+// APU core: the horizontally microcoded machine of one MC-1 node computer
+// (paper section 2; docs/apu-isa.md is normative, docs/apu-rtl.md describes
+// this implementation).
+//
+// One 128-bit microword per cycle, or a stall: the word at PC is fetched and
+// decoded combinationally; if no stall condition holds, all its slots issue
+// in this cycle. FP ops enter fp24_mul / fp24_add / fp24_func; their results
+// come back at t + L and are written (and bypassed) in that cycle. LD, MOVAF,
+// LIF, the I slot and DBNZ write at the end of the issue cycle.
+//
+// MPU requests (hand-over, start) act in the cycle in which they are
+// presented: the core forwards them combinationally, so that an MPU call made
+// between two clock cycles behaves exactly as the ISA page says (a SWAPD in
+// the next cycle already sees `data_ready`; start(pc) runs the word at pc in
+// the next cycle).
+//
+// The dbg_* outputs report, before the clock edge, what the cycle commits in
+// the ISA page's terms (Clarification 2): results that become visible in this
+// cycle (FP completions now, LD/MOVAF/LIF and A writes of the previous word)
+// and this cycle's store, CC and FLAGS changes.
+module apu_core
+  import apu_pkg::*;
+(
+    input  logic                    clk,
+    input  logic                    rst_n,
+    // ---- MPU side: the banks the APU does not use, hand-over, start --------
+    input  logic                    mpu2apu_pmem_we,
+    input  logic [PC_W-1:0]         mpu2apu_pmem_addr,
+    input  logic [WORD_W-1:0]       mpu2apu_pmem_wdata,
+    input  logic                    mpu2apu_dmem_we,
+    input  logic [DADDR_W-1:0]      mpu2apu_dmem_addr,
+    input  logic [FP_W-1:0]         mpu2apu_dmem_wdata,
+    output logic [FP_W-1:0]         apu2mpu_dmem_rdata,
+    input  logic                    mpu2apu_hand_over_program,
+    input  logic                    mpu2apu_hand_over_data,
+    input  logic                    mpu2apu_start,
+    input  logic [PC_W-1:0]         mpu2apu_start_pc,
+    input  logic                    mpu2apu_start_new_program,  // start takes the handed-over bank
+    output logic                    apu2mpu_program_ready,
+    output logic                    apu2mpu_data_ready,
+    output logic                    apu2mpu_psel,
+    output logic                    apu2mpu_dsel,
+    output run_e                    apu2mpu_run_state,
+    output fault_e                  apu2mpu_fault,
+    output logic [CC_W-1:0]         apu2mpu_cc,
+    output logic [FLAGS_W-1:0]      apu2mpu_flags,
+    // ---- debug: what this cycle does (read before the clock edge) ----------
+    output logic [PC_W-1:0]         dbg_pc,
+    output logic                    dbg_issue,
+    output stall_e                  dbg_stall_reason,
+    // F register writes visible from this cycle on: completions (mul, add,
+    // func) and the previous word's LD, MOVAF/LIF
+    output logic [4:0]              dbg_fc_en,
+    output logic [4:0][5:0]         dbg_fc_idx,
+    output logic [4:0][23:0]        dbg_fc_val,
+    // A register writes of the previous word: I slot, DBNZ
+    output logic [1:0]              dbg_ac_en,
+    output logic [1:0][3:0]         dbg_ac_idx,
+    output logic [1:0][15:0]        dbg_ac_val,
+    // data-memory write (ST)
+    output logic                    dbg_mc_en,
+    output logic [DADDR_W-1:0]      dbg_mc_addr,
+    output logic [FP_W-1:0]         dbg_mc_val,
+    // CC (each CMP completion) and FLAGS (when it changes): new values
+    output logic                    dbg_cc_en,
+    output logic [CC_W-1:0]         dbg_cc_val,
+    output logic                    dbg_flags_en,
+    output logic [FLAGS_W-1:0]      dbg_flags_val,
+    // sticky: a unit's out_valid/in_ready disagreed with the interlock's mirror
+    output logic                    dbg_unit_mismatch
+);
+
+  // =========================================================================
+  // Architectural state
+  // =========================================================================
+  run_e               run_state_q;
+  fault_e             fault_q;
+  logic [PC_W-1:0]    pc_q;
+  logic               psel_q, dsel_q;
+  logic               program_ready_q, data_ready_q;
+  logic [CC_W-1:0]    cc_q;
+  logic [FLAGS_W-1:0] flags_q;
+  logic               unit_mismatch_q;
+
+  // =========================================================================
+  // MPU requests, forwarded into this cycle
+  // =========================================================================
+  // Order within one cycle, as the MPU's calls between two APU cycles: a
+  // start (which completes a pending program hand-over: the MPU says so with
+  // mpu2apu_start_new_program), then the hand-overs. So "hand over, start,
+  // hand over the next program" before one cycle is expressible.
+  logic          start_req;       // start(pc) while idle
+  logic          running;         // the sequencer works on a word this cycle
+  logic          program_ready;   // after this cycle's MPU requests
+  logic          data_ready;
+  logic          start_swaps;     // start completes a pending program hand-over
+  logic          psel;            // program bank of this cycle
+  logic [PC_W-1:0] pc;            // address of the word of this cycle
+
+  assign start_req     = mpu2apu_start && (run_state_q != RUN_RUNNING);
+  assign running       = (run_state_q == RUN_RUNNING) || start_req;
+  assign start_swaps   = start_req && mpu2apu_start_new_program;
+  assign program_ready = (program_ready_q && !start_swaps) || mpu2apu_hand_over_program;
+  assign data_ready    = data_ready_q || mpu2apu_hand_over_data;
+  assign psel          = psel_q ^ start_swaps;
+  assign pc            = start_req ? mpu2apu_start_pc : pc_q;
+
+  // =========================================================================
+  // Fetch and decode
+  // =========================================================================
+  logic [WORD_W-1:0] fetch_word;
+  microword_t        w;
+
+  apu_pmem #(.WORD_W(WORD_W), .ADDR_W(PC_W)) u_pmem (
+      .clk      (clk),
+      .sel      (psel),
+      .apu_addr (pc),
+      .apu_rdata(fetch_word),
+      .mpu_we   (mpu2apu_pmem_we),
+      .mpu_addr (mpu2apu_pmem_addr),
+      .mpu_wdata(mpu2apu_pmem_wdata)
+  );
+
+  assign w = microword_t'(fetch_word);
+
+  // A reserved slot takes part in no hazard (Clarification 6); FLOAT, FIX,
+  // NEG and ABS read `a` only (Clarification 4).
+  logic add_ok, add_is_cmp, add_reads_b, is_ld, is_st, i_writes_f, i_writes_a, is_bcc;
+  assign add_ok      = w.a_en && (w.a_op != A_RSVD);
+  assign add_is_cmp  = (w.a_op == A_CMP);
+  assign add_reads_b = (w.a_op == A_ADD) || (w.a_op == A_SUB) || (w.a_op == A_CMP);
+  assign is_ld      = (w.d_op == D_LD);
+  assign is_st      = (w.d_op == D_ST);
+  assign i_writes_f = (w.i_op == I_MOVAF) || (w.i_op == I_LIF);
+  assign i_writes_a = ((w.i_op >= I_LI) && (w.i_op <= I_XOR)) || (w.i_op == I_MOVFA);
+  assign is_bcc     = (w.s_op == S_BCC) || (w.s_op == S_BNCC);
+
+  // F operands of the word, one register-file read port each.
+  localparam int RD_MA = 0, RD_MB = 1, RD_AA = 2, RD_AB = 3, RD_FA = 4, RD_ST = 5,
+                 RD_MOVFA = 6, N_RD = 7;
+  // F destinations of the word (for `waw`).
+  localparam int DS_M = 0, DS_A = 1, DS_F = 2, DS_LD = 3, DS_I = 4, N_DS = 5;
+
+  logic [FREG_AW-1:0] src_addr [N_RD];
+  logic               src_en   [N_RD];
+  logic [FREG_AW-1:0] dst_addr [N_DS];
+  logic               dst_en   [N_DS];
+  logic [FP_W-1:0]    fop      [N_RD];
+
+  always_comb begin
+    src_addr[RD_MA]    = w.m_a;          src_en[RD_MA]    = w.m_en;
+    src_addr[RD_MB]    = w.m_b;          src_en[RD_MB]    = w.m_en;
+    src_addr[RD_AA]    = w.a_a;          src_en[RD_AA]    = add_ok;
+    src_addr[RD_AB]    = w.a_b;          src_en[RD_AB]    = add_ok && add_reads_b;
+    src_addr[RD_FA]    = w.f_a;          src_en[RD_FA]    = w.f_en;
+    src_addr[RD_ST]    = w.d_f;          src_en[RD_ST]    = is_st;
+    src_addr[RD_MOVFA] = w.i_imm[5:0];   src_en[RD_MOVFA] = (w.i_op == I_MOVFA);
+    dst_addr[DS_M]     = w.m_d;          dst_en[DS_M]     = w.m_en;
+    dst_addr[DS_A]     = w.a_d;          dst_en[DS_A]     = add_ok && !add_is_cmp;
+    dst_addr[DS_F]     = w.f_d;          dst_en[DS_F]     = w.f_en;
+    dst_addr[DS_LD]    = w.d_f;          dst_en[DS_LD]    = is_ld;
+    dst_addr[DS_I]     = w.i_d;          dst_en[DS_I]     = i_writes_f;
+  end
+
+  // A operands: I s, I t, D base, S r.
+  localparam int AR_S = 0, AR_T = 1, AR_BASE = 2, AR_R = 3, N_AR = 4;
+  logic [AREG_AW-1:0] a_rd_addr [N_AR];
+  logic [INT_W-1:0]   aop       [N_AR];
+  always_comb begin
+    a_rd_addr[AR_S]    = w.i_s;
+    a_rd_addr[AR_T]    = w.i_t;
+    a_rd_addr[AR_BASE] = w.d_base;
+    a_rd_addr[AR_R]    = w.s_r;
+  end
+
+  // =========================================================================
+  // FP24 units and their interlock
+  // =========================================================================
+  logic               issue;
+  logic               mul_out_valid, add_out_valid, fu_out_valid, fu_in_ready;
+  logic [FP_W-1:0]    mul_out_result, add_out_result, fu_out_result;
+  logic [FLAGS_W-1:0] mul_out_flags, add_out_flags, fu_out_flags;
+
+  logic mul_issue, add_issue, fu_issue, fu_trig;
+  assign mul_issue = issue && w.m_en;
+  assign add_issue = issue && w.a_en;
+  assign fu_issue  = issue && w.f_en;
+  assign fu_trig   = (w.f_op == F_SIN) || (w.f_op == F_COS);
+
+  fp24_mul u_mul (
+      .clk       (clk),
+      .rst_n     (rst_n),
+      .in_valid  (mul_issue),
+      .in_a      (fop[RD_MA]),
+      .in_b      (fop[RD_MB]),
+      .out_valid (mul_out_valid),
+      .out_result(mul_out_result),
+      .out_flags (mul_out_flags)
+  );
+
+  fp24_add u_add (
+      .clk       (clk),
+      .rst_n     (rst_n),
+      .in_valid  (add_issue),
+      .in_op     (w.a_op),
+      .in_a      (fop[RD_AA]),
+      .in_b      (fop[RD_AB]),
+      .out_valid (add_out_valid),
+      .out_result(add_out_result),
+      .out_flags (add_out_flags)
+  );
+
+  fp24_func u_func (
+      .clk       (clk),
+      .rst_n     (rst_n),
+      .in_valid  (fu_issue),
+      .in_op     (w.f_op),
+      .in_a      (fop[RD_FA]),
+      .in_b      ('0),
+      .in_ready  (fu_in_ready),
+      .out_valid (fu_out_valid),
+      .out_result(fu_out_result),
+      .out_flags (fu_out_flags)
+  );
+
+  logic               raw_hazard, waw_hazard, cmp_in_flight, pipes_busy, fu_second_cycle;
+  logic               mul_wb_valid, add_wb_valid, add_wb_cmp, fu_wb_valid;
+  logic [FREG_AW-1:0] mul_wb_d, add_wb_d, fu_wb_d;
+
+  apu_interlock #(.ADDR_W(FREG_AW), .N_SRC(N_RD), .N_DST(N_DS)) u_ilk (
+      .clk            (clk),
+      .rst_n          (rst_n),
+      .mul_issue      (mul_issue),
+      .mul_d          (w.m_d),
+      .add_issue      (add_issue),
+      .add_d          (w.a_d),
+      .add_cmp        (add_is_cmp),
+      .fu_issue       (fu_issue),
+      .fu_d           (w.f_d),
+      .fu_trig        (fu_trig),
+      .src_addr       (src_addr),
+      .src_en         (src_en),
+      .dst_addr       (dst_addr),
+      .dst_en         (dst_en),
+      .raw_hazard     (raw_hazard),
+      .waw_hazard     (waw_hazard),
+      .cmp_in_flight  (cmp_in_flight),
+      .pipes_busy     (pipes_busy),
+      .fu_second_cycle(fu_second_cycle),
+      .mul_wb_valid   (mul_wb_valid),
+      .mul_wb_d       (mul_wb_d),
+      .add_wb_valid   (add_wb_valid),
+      .add_wb_d       (add_wb_d),
+      .add_wb_cmp     (add_wb_cmp),
+      .fu_wb_valid    (fu_wb_valid),
+      .fu_wb_d        (fu_wb_d)
+  );
+
+  // =========================================================================
+  // Stall: the first reason of docs/apu-isa.md's list that holds
+  // =========================================================================
+  logic   stall_bank, stall_raw, stall_waw, stall_cc, stall_struct, stall_drain;
+  logic   stall;
+  stall_e stall_reason;
+
+
+  assign stall_bank   = ((w.s_op == S_SWAPD) && !data_ready)
+                     || ((w.s_op == S_SWAPP) && !program_ready);
+  assign stall_raw    = raw_hazard;
+  assign stall_waw    = waw_hazard;
+  assign stall_cc     = is_bcc && cmp_in_flight;
+  assign stall_struct = w.f_en && !fu_in_ready;
+  assign stall_drain  = (w.s_op == S_HALT) && pipes_busy;
+
+  always_comb begin
+    if (!running)             stall_reason = STALL_NONE;
+    else if (stall_bank)      stall_reason = STALL_BANK;
+    else if (stall_raw)       stall_reason = STALL_RAW;
+    else if (stall_waw)       stall_reason = STALL_WAW;
+    else if (stall_cc)        stall_reason = STALL_CC;
+    else if (stall_struct)    stall_reason = STALL_STRUCT;
+    else if (stall_drain)     stall_reason = STALL_DRAIN;
+    else                      stall_reason = STALL_NONE;
+  end
+  assign stall = (stall_reason != STALL_NONE);
+
+  // =========================================================================
+  // Faults: checked when the word would issue (a stalled word faults only once
+  // its stall is over); the faulting word has no effect (Clarification 6)
+  // =========================================================================
+  logic          reserved_op, addr_fault, pc_overflow, call_overflow, call_underflow;
+  logic [PC_W:0] pc_next;         // one bit more: continuing at 1024 is a fault
+  logic [15:0]   mem_addr;
+  logic          cs_empty, cs_full;
+  fault_e        fault_code;
+
+  assign reserved_op = (w.a_en && (w.a_op == A_RSVD)) || (w.d_op == D_RSVD)
+                    || (w.i_op == I_RSVD) || (w.s_op > S_HALT);
+  assign mem_addr    = aop[AR_BASE] + {{8{w.d_disp[7]}}, w.d_disp};
+  assign addr_fault  = (is_ld || is_st) && (mem_addr[15:DADDR_W] != '0);
+  // The word at 1023 may not continue at 1024, nor CALL from there (its
+  // return address would be 1024).
+  assign pc_overflow    = pc_next[PC_W] || ((w.s_op == S_CALL) && (pc == '1));
+  assign call_overflow  = (w.s_op == S_CALL) && cs_full;
+  assign call_underflow = (w.s_op == S_RET) && cs_empty;
+
+  always_comb begin
+    if (!running || stall)   fault_code = FAULT_NONE;
+    else if (reserved_op)    fault_code = FAULT_RESERVED_OP;
+    else if (addr_fault)     fault_code = FAULT_DATA_ADDRESS;
+    else if (pc_overflow)    fault_code = FAULT_PC_OVERFLOW;
+    else if (call_overflow)  fault_code = FAULT_CALL_OVERFLOW;
+    else if (call_underflow) fault_code = FAULT_CALL_UNDERFLOW;
+    else                     fault_code = FAULT_NONE;
+  end
+
+  assign issue = running && !stall && (fault_code == FAULT_NONE);
+
+  // =========================================================================
+  // Register files and data memory
+  // =========================================================================
+  // Completion writes (write-first: the bypass that makes t + L usable).
+  logic               wb_en   [3];
+  logic [FREG_AW-1:0] wb_addr [3];
+  logic [FP_W-1:0]    wb_data [3];
+  // Issue writes: LD, MOVAF/LIF.
+  logic               wi_en   [2];
+  logic [FREG_AW-1:0] wi_addr [2];
+  logic [FP_W-1:0]    wi_data [2];
+  logic [FP_W-1:0]    dmem_rdata;
+
+  always_comb begin
+    wb_en[0] = mul_wb_valid;                 wb_addr[0] = mul_wb_d; wb_data[0] = mul_out_result;
+    wb_en[1] = add_wb_valid && !add_wb_cmp;  wb_addr[1] = add_wb_d; wb_data[1] = add_out_result;
+    wb_en[2] = fu_wb_valid;                  wb_addr[2] = fu_wb_d;  wb_data[2] = fu_out_result;
+    wi_en[0] = issue && is_ld;               wi_addr[0] = w.d_f;    wi_data[0] = dmem_rdata;
+    wi_en[1] = issue && i_writes_f;          wi_addr[1] = w.i_d;
+    wi_data[1] = (w.i_op == I_MOVAF) ? {8'h00, aop[AR_S]} : {w.i_imm, 8'h00};
+  end
+
+  apu_fregs #(.DATA_W(FP_W), .ADDR_W(FREG_AW), .N_RD(N_RD), .N_WB(3), .N_WI(2)) u_fregs (
+      .clk    (clk),
+      .rst_n  (rst_n),
+      .rd_addr(src_addr),
+      .rd_data(fop),
+      .wb_en  (wb_en),
+      .wb_addr(wb_addr),
+      .wb_data(wb_data),
+      .wi_en  (wi_en),
+      .wi_addr(wi_addr),
+      .wi_data(wi_data)
+  );
+
+  apu_dmem #(.DATA_W(FP_W), .ADDR_W(DADDR_W)) u_dmem (
+      .clk      (clk),
+      .sel      (dsel_q),
+      .apu_addr (mem_addr[DADDR_W-1:0]),
+      .apu_rdata(dmem_rdata),
+      .apu_we   (issue && is_st),
+      .apu_wdata(fop[RD_ST]),
+      .mpu_addr (mpu2apu_dmem_addr),
+      .mpu_rdata(apu2mpu_dmem_rdata),
+      .mpu_we   (mpu2apu_dmem_we),
+      .mpu_wdata(mpu2apu_dmem_wdata)
+  );
+
+  // I slot: integer/address ALU.
+  logic [INT_W-1:0] alu_result;
+  always_comb begin
+    unique case (w.i_op)
+      I_LI:    alu_result = w.i_imm;
+      I_ADDI:  alu_result = aop[AR_S] + w.i_imm;
+      I_ADD:   alu_result = aop[AR_S] + aop[AR_T];
+      I_SUB:   alu_result = aop[AR_S] - aop[AR_T];
+      I_MULI:  alu_result = aop[AR_S] * w.i_imm;
+      I_SHL:   alu_result = aop[AR_S] << w.i_imm[3:0];
+      I_SHR:   alu_result = aop[AR_S] >> w.i_imm[3:0];
+      I_SRA:   alu_result = $signed(aop[AR_S]) >>> w.i_imm[3:0];
+      I_ANDI:  alu_result = aop[AR_S] & w.i_imm;
+      I_ORI:   alu_result = aop[AR_S] | w.i_imm;
+      I_XOR:   alu_result = aop[AR_S] ^ aop[AR_T];
+      I_MOVFA: alu_result = fop[RD_MOVFA][INT_W-1:0];
+      default: alu_result = '0;
+    endcase
+  end
+
+  logic [INT_W-1:0] dbnz_value;
+  assign dbnz_value = aop[AR_R] - INT_W'(1);
+
+  logic               awr_en   [2];
+  logic [AREG_AW-1:0] awr_addr [2];
+  logic [INT_W-1:0]   awr_data [2];
+  always_comb begin
+    awr_en[0] = issue && i_writes_a;         awr_addr[0] = w.i_d[AREG_AW-1:0]; awr_data[0] = alu_result;
+    awr_en[1] = issue && (w.s_op == S_DBNZ); awr_addr[1] = w.s_r;              awr_data[1] = dbnz_value;
+  end
+
+  apu_aregs #(.DATA_W(INT_W), .ADDR_W(AREG_AW), .N_RD(N_AR), .N_WR(2)) u_aregs (
+      .clk    (clk),
+      .rst_n  (rst_n),
+      .rd_addr(a_rd_addr),
+      .rd_data(aop),
+      .wr_en  (awr_en),
+      .wr_addr(awr_addr),
+      .wr_data(awr_data)
+  );
+
+  // =========================================================================
+  // Sequencer
+  // =========================================================================
+  logic [CC_W-1:0] cc_now;     // CC as a BCC/BNCC of this cycle sees it
+  logic            cc_update;
+  logic            taken;
+  logic [PC_W-1:0] cs_top;
+
+  assign cc_update = add_wb_valid && add_wb_cmp;
+  assign cc_now    = cc_update ? add_out_result[CC_W-1:0] : cc_q;
+
+  always_comb begin
+    unique case (w.s_op)
+      S_JMP, S_CALL, S_SWAPP: taken = 1'b1;
+      S_BCC:   taken = (cc_now & w.s_r) != '0;
+      S_BNCC:  taken = (cc_now & w.s_r) == '0;
+      S_DBNZ:  taken = dbnz_value != '0;
+      S_BZ:    taken = aop[AR_R] == '0;
+      S_BNZ:   taken = aop[AR_R] != '0;
+      S_BLTZ:  taken = aop[AR_R][INT_W-1];
+      default: taken = 1'b0;
+    endcase
+    if (w.s_op == S_RET && !cs_empty) pc_next = {1'b0, cs_top};
+    else if (taken)                   pc_next = {1'b0, w.s_target};
+    else if (w.s_op == S_HALT)        pc_next = {1'b0, pc};
+    else                              pc_next = {1'b0, pc} + 1'b1;
+  end
+
+  apu_callstack #(.DEPTH(CALL_DEPTH), .ADDR_W(PC_W)) u_callstack (
+      .clk      (clk),
+      .rst_n    (rst_n),
+      .clear    (start_req),
+      .push     (issue && (w.s_op == S_CALL)),
+      .push_addr(pc + 1'b1),  // 1023 cannot CALL (pc_overflow)
+      .pop      (issue && (w.s_op == S_RET)),
+      .top      (cs_top),
+      .empty    (cs_empty),
+      .full     (cs_full)
+  );
+
+  logic fault_now, swapd, swapp;
+  assign fault_now = (fault_code != FAULT_NONE);
+  assign swapd     = issue && (w.s_op == S_SWAPD);
+  assign swapp     = issue && (w.s_op == S_SWAPP);
+
+  // FLAGS: sticky OR of the flags of every op completing this cycle.
+  logic [FLAGS_W-1:0] flags_next;
+  assign flags_next = flags_q
+                    | (mul_wb_valid ? mul_out_flags : '0)
+                    | (add_wb_valid ? add_out_flags : '0)
+                    | (fu_wb_valid  ? fu_out_flags  : '0);
+
+  // The interlock's mirror and the units must agree on every cycle.
+  logic unit_mismatch;
+  assign unit_mismatch = (mul_wb_valid != mul_out_valid) || (add_wb_valid != add_out_valid)
+                      || (fu_wb_valid != fu_out_valid) || (fu_second_cycle == fu_in_ready);
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) begin
+      run_state_q     <= RUN_IDLE;
+      fault_q         <= FAULT_NONE;
+      pc_q            <= '0;
+      psel_q          <= 1'b0;
+      dsel_q          <= 1'b0;
+      program_ready_q <= 1'b0;
+      data_ready_q    <= 1'b0;
+      cc_q            <= '0;
+      flags_q         <= '0;
+      unit_mismatch_q <= 1'b0;
+    end else begin
+      if (running) begin
+        if (fault_now) begin
+          run_state_q <= RUN_FAULTED;
+          fault_q     <= fault_code;
+          pc_q        <= pc;
+        end else begin
+          run_state_q <= (issue && (w.s_op == S_HALT)) ? RUN_HALTED : RUN_RUNNING;
+          if (start_req) fault_q <= FAULT_NONE;
+          pc_q <= issue ? pc_next[PC_W-1:0] : pc;
+        end
+      end
+      psel_q          <= psel ^ swapp;
+      program_ready_q <= program_ready && !swapp;
+      dsel_q          <= dsel_q ^ swapd;
+      data_ready_q    <= data_ready && !swapd;
+      if (cc_update) cc_q <= add_out_result[CC_W-1:0];
+      flags_q         <= flags_next;
+      unit_mismatch_q <= unit_mismatch_q || unit_mismatch;
+    end
+  end
+
+  // =========================================================================
+  // Outputs
+  // =========================================================================
+  assign apu2mpu_program_ready = program_ready;
+  assign apu2mpu_data_ready    = data_ready;
+  assign apu2mpu_psel          = psel;
+  assign apu2mpu_dsel          = dsel_q;
+  // A start presented now already counts: the APU runs from this cycle on.
+  assign apu2mpu_run_state     = start_req ? RUN_RUNNING : run_state_q;
+  assign apu2mpu_fault         = start_req ? FAULT_NONE : fault_q;
+  // CC and FLAGS as the word of this cycle sees them (a completing CMP's
+  // condition, this cycle's flags included): the state "between two steps".
+  assign apu2mpu_cc            = cc_now;
+  assign apu2mpu_flags         = flags_next;
+
+  // =========================================================================
+  // Debug view of the commits (not part of the datapath)
+  // =========================================================================
+  // Issue-time writes become visible in the next cycle, which is where the
+  // ISA page records them: this retire stage holds them for one cycle.
+  logic               rt_fi_en   [2];   // LD, MOVAF/LIF
+  logic [FREG_AW-1:0] rt_fi_idx  [2];
+  logic [FP_W-1:0]    rt_fi_val  [2];
+  logic               rt_a_en    [2];   // I slot, DBNZ
+  logic [AREG_AW-1:0] rt_a_idx   [2];
+  logic [INT_W-1:0]   rt_a_val   [2];
+
+  always_ff @(posedge clk) begin
+    for (int i = 0; i < 2; i++) begin
+      if (!rst_n) begin
+        rt_fi_en[i] <= 1'b0;
+        rt_a_en[i]  <= 1'b0;
+      end else begin
+        rt_fi_en[i] <= wi_en[i];
+        rt_a_en[i]  <= awr_en[i] && (awr_addr[i] != '0);  // A0 drops writes
+      end
+      rt_fi_idx[i] <= wi_addr[i];
+      rt_fi_val[i] <= wi_data[i];
+      rt_a_idx[i]  <= awr_addr[i];
+      rt_a_val[i]  <= awr_data[i];
+    end
+  end
+
+  assign dbg_pc           = pc;
+  assign dbg_issue        = issue;
+  assign dbg_stall_reason = stall_reason;
+
+  always_comb begin
+    for (int i = 0; i < 3; i++) begin
+      dbg_fc_en[i]  = wb_en[i];
+      dbg_fc_idx[i] = wb_addr[i];
+      dbg_fc_val[i] = wb_data[i];
+    end
+    for (int i = 0; i < 2; i++) begin
+      dbg_fc_en[3 + i]  = rt_fi_en[i];
+      dbg_fc_idx[3 + i] = rt_fi_idx[i];
+      dbg_fc_val[3 + i] = rt_fi_val[i];
+      dbg_ac_en[i]  = rt_a_en[i];
+      dbg_ac_idx[i] = rt_a_idx[i];
+      dbg_ac_val[i] = rt_a_val[i];
+    end
+  end
+
+  assign dbg_mc_en         = issue && is_st;
+  assign dbg_mc_addr       = mem_addr[DADDR_W-1:0];
+  assign dbg_mc_val        = fop[RD_ST];
+  assign dbg_cc_en         = cc_update;
+  assign dbg_cc_val        = add_out_result[CC_W-1:0];
+  assign dbg_flags_en      = (flags_next != flags_q);
+  assign dbg_flags_val     = flags_next;
+  assign dbg_unit_mismatch = unit_mismatch_q;
+
+endmodule

@@ -1,0 +1,40 @@
+// APU data memory: two banks of 4096 x 24-bit words (paper section 2). DSEL
+// (`sel`) gives one bank to the D slot (LD reads combinationally, ST writes at
+// the end of its issue cycle); the MPU reads and writes the other.
+module apu_dmem #(
+    parameter int DATA_W = 24,
+    parameter int ADDR_W = 12
+) (
+    input  logic              clk,
+    input  logic              sel,
+    // APU: D slot
+    input  logic [ADDR_W-1:0] apu_addr,
+    output logic [DATA_W-1:0] apu_rdata,
+    input  logic              apu_we,
+    input  logic [DATA_W-1:0] apu_wdata,
+    // MPU: the bank the APU does not use
+    input  logic [ADDR_W-1:0] mpu_addr,
+    output logic [DATA_W-1:0] mpu_rdata,
+    input  logic              mpu_we,
+    input  logic [DATA_W-1:0] mpu_wdata
+);
+  localparam int DEPTH = 1 << ADDR_W;
+
+  logic [DATA_W-1:0] bank0 [DEPTH] /*verilator public_flat_rw*/;
+  logic [DATA_W-1:0] bank1 [DEPTH] /*verilator public_flat_rw*/;
+
+  assign apu_rdata = sel ? bank1[apu_addr] : bank0[apu_addr];
+  assign mpu_rdata = sel ? bank0[mpu_addr] : bank1[mpu_addr];
+
+  always_ff @(posedge clk) begin
+    if (apu_we) begin
+      if (sel) bank1[apu_addr] <= apu_wdata;
+      else     bank0[apu_addr] <= apu_wdata;
+    end
+    if (mpu_we) begin
+      if (sel) bank0[mpu_addr] <= mpu_wdata;
+      else     bank1[mpu_addr] <= mpu_wdata;
+    end
+  end
+
+endmodule

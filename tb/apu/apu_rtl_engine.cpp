@@ -1,0 +1,215 @@
+// RtlEngine: the verilated apu_core behind ApuEngine (docs/apu-rtl.md).
+#include "apu_rtl_engine.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "Vapu_core.h"
+#include "Vapu_core___024root.h"
+#include "verilated.h"
+#include "verilated_fst_c.h"
+
+namespace mc1::apu {
+
+namespace {
+
+constexpr std::uint32_t kMask24 = 0xFFFFFF;
+constexpr int kFCommitPorts = 5;  // mul, add, func completions; LD, MOVAF/LIF of t - 1
+
+// Bits [pos + width - 1 : pos] of a wide Verilator port.
+template <typename Wide>
+std::uint32_t wide_bits(const Wide& w, int pos, int width) {
+  const int word = pos / 32, off = pos % 32;
+  std::uint64_t v = w[word];
+  if (off + width > 32) v |= std::uint64_t{w[word + 1]} << 32;
+  return static_cast<std::uint32_t>(v >> off) & ((std::uint32_t{1} << width) - 1);
+}
+
+}  // namespace
+
+RtlEngine::RtlEngine(const char* fst_path) : ctx_(std::make_unique<VerilatedContext>()) {
+  ctx_->randReset(0);  // the ISA's power-on state: every register and word is 0
+  if (fst_path) ctx_->traceEverOn(true);
+  top_ = std::make_unique<Vapu_core>(ctx_.get());
+  Vapu_core& t = *top_;
+
+  // Synchronous reset: one clock with rst_n low; it is not an APU cycle.
+  t.rst_n = 0;
+  t.clk = 0;
+  t.eval();
+  t.clk = 1;
+  t.eval();
+  t.clk = 0;
+  t.rst_n = 1;
+  t.eval();
+
+  if (fst_path) {
+    fst_ = std::make_unique<VerilatedFstC>();
+    t.trace(fst_.get(), 99);
+    fst_->open(fst_path);
+    fst_->dump(0);
+  }
+}
+
+RtlEngine::~RtlEngine() {
+  if (fst_) fst_->close();
+  top_->final();
+}
+
+// ---- MPU side -----------------------------------------------------------------
+
+void RtlEngine::write_program(std::uint16_t addr, const Encoded& word) {
+  auto& root = *top_->rootp;
+  auto& bank = top_->apu2mpu_psel ? root.apu_core__DOT__u_pmem__DOT__bank0
+                                  : root.apu_core__DOT__u_pmem__DOT__bank1;
+  auto& dst = bank[addr % kProgramWords];
+  dst[0] = static_cast<std::uint32_t>(word.lo);
+  dst[1] = static_cast<std::uint32_t>(word.lo >> 32);
+  dst[2] = static_cast<std::uint32_t>(word.hi);
+  dst[3] = static_cast<std::uint32_t>(word.hi >> 32);
+}
+
+void RtlEngine::write_data(std::uint16_t addr, std::uint32_t value) {
+  auto& root = *top_->rootp;
+  auto& bank = top_->apu2mpu_dsel ? root.apu_core__DOT__u_dmem__DOT__bank0
+                                  : root.apu_core__DOT__u_dmem__DOT__bank1;
+  bank[addr % kDataWords] = value & kMask24;
+}
+
+std::uint32_t RtlEngine::read_data(std::uint16_t addr) const {
+  const auto& root = *top_->rootp;
+  const auto& bank = top_->apu2mpu_dsel ? root.apu_core__DOT__u_dmem__DOT__bank0
+                                        : root.apu_core__DOT__u_dmem__DOT__bank1;
+  return bank[addr % kDataWords];
+}
+
+void RtlEngine::hand_over_program() {
+  top_->mpu2apu_hand_over_program = 1;
+  settle();
+}
+
+void RtlEngine::hand_over_data() {
+  top_->mpu2apu_hand_over_data = 1;
+  settle();
+}
+
+bool RtlEngine::program_ready() const { return top_->apu2mpu_program_ready; }
+bool RtlEngine::data_ready() const { return top_->apu2mpu_data_ready; }
+
+void RtlEngine::start(std::uint16_t pc) {
+  if (state() == RunState::Running) return;  // only an idle APU starts
+  // The start completes a pending program hand-over, one made since the last
+  // cycle included; a hand-over after this call sets the flag anew.
+  top_->mpu2apu_start_new_program = program_ready();
+  top_->mpu2apu_hand_over_program = 0;
+  top_->mpu2apu_start = 1;
+  top_->mpu2apu_start_pc = pc % kProgramWords;
+  settle();
+}
+
+void RtlEngine::settle() {
+  top_->eval();
+  dump_pending_ = fst_ != nullptr;
+}
+
+// ---- clocking -----------------------------------------------------------------
+
+void RtlEngine::clock() {
+  Vapu_core& t = *top_;
+  // Time in ps (Verilator's default precision): 250 ns cycles, 4 MHz.
+  t.clk = 1;
+  t.eval();
+  if (fst_) fst_->dump(cycle_ * 250000 + 125000);
+  // MPU requests last exactly the cycle after the call that made them.
+  t.mpu2apu_hand_over_program = 0;
+  t.mpu2apu_hand_over_data = 0;
+  t.mpu2apu_start = 0;
+  t.mpu2apu_start_new_program = 0;
+  t.clk = 0;
+  t.eval();
+  ++cycle_;
+  if (fst_) fst_->dump(cycle_ * 250000);
+}
+
+void RtlEngine::step(CycleRecord& rec) {
+  // Show forwarded MPU requests in the waveform before the edge that takes them.
+  if (dump_pending_) {
+    fst_->dump(cycle_ * 250000 + 62500);
+    dump_pending_ = false;
+  }
+  const Vapu_core& t = *top_;
+  rec.cycle = cycle_;
+  rec.pc = t.dbg_pc;
+  rec.issued = t.dbg_issue;
+  rec.stall = static_cast<Stall>(t.dbg_stall_reason);
+  rec.psel = t.apu2mpu_psel;
+  rec.dsel = t.apu2mpu_dsel;
+  rec.commits.clear();
+
+  // F: by index (no two ports write one register in a cycle).
+  std::array<Commit, kFCommitPorts> f;
+  int nf = 0;
+  for (int p = 0; p < kFCommitPorts; ++p) {
+    if (!((t.dbg_fc_en >> p) & 1)) continue;
+    const Commit c{Commit::Kind::FReg, static_cast<std::uint16_t>((t.dbg_fc_idx >> (6 * p)) & 63),
+                   wide_bits(t.dbg_fc_val, 24 * p, 24)};
+    int j = nf++;
+    for (; j > 0 && f[j - 1].index > c.index; --j) f[j] = f[j - 1];
+    f[j] = c;
+  }
+  for (int i = 0; i < nf; ++i) rec.commits.push_back(f[i]);
+
+  // A: by index.
+  std::array<Commit, 2> a;
+  int na = 0;
+  for (int p = 0; p < 2; ++p) {
+    if (!((t.dbg_ac_en >> p) & 1)) continue;
+    a[na++] = {Commit::Kind::AReg, static_cast<std::uint16_t>((t.dbg_ac_idx >> (4 * p)) & 15),
+               (t.dbg_ac_val >> (16 * p)) & 0xFFFFu};
+  }
+  if (na == 2 && a[1].index < a[0].index) std::swap(a[0], a[1]);
+  for (int i = 0; i < na; ++i) rec.commits.push_back(a[i]);
+
+  if (t.dbg_mc_en) rec.commits.push_back({Commit::Kind::Mem, t.dbg_mc_addr, t.dbg_mc_val});
+  if (t.dbg_cc_en) rec.commits.push_back({Commit::Kind::Cc, 0, t.dbg_cc_val});
+  if (t.dbg_flags_en) rec.commits.push_back({Commit::Kind::Flags, 0, t.dbg_flags_val});
+
+  clock();
+}
+
+std::uint64_t RtlEngine::run(std::uint64_t max_cycles) {
+  if (dump_pending_) {
+    fst_->dump(cycle_ * 250000 + 62500);
+    dump_pending_ = false;
+  }
+  std::uint64_t n = 0;
+  while (n < max_cycles && state() == RunState::Running) {
+    clock();
+    ++n;
+  }
+  return n;
+}
+
+// ---- observers ----------------------------------------------------------------
+
+RunState RtlEngine::state() const { return static_cast<RunState>(top_->apu2mpu_run_state); }
+Fault RtlEngine::fault() const { return static_cast<Fault>(top_->apu2mpu_fault); }
+std::uint8_t RtlEngine::flags() const { return top_->apu2mpu_flags; }
+std::uint8_t RtlEngine::cc() const { return top_->apu2mpu_cc; }
+bool RtlEngine::unit_mismatch() const { return top_->dbg_unit_mismatch; }
+
+// The register as the next word reads it: a result completing in the coming
+// cycle is written at its end but already bypassed to that word
+// (docs/apu-isa.md, Clarification 2: the state between two steps).
+std::uint32_t RtlEngine::freg(int i) const {
+  const Vapu_core& t = *top_;
+  i &= 63;
+  for (int p = 0; p < 3; ++p) {
+    if (((t.dbg_fc_en >> p) & 1) && static_cast<int>((t.dbg_fc_idx >> (6 * p)) & 63) == i)
+      return wide_bits(t.dbg_fc_val, 24 * p, 24);
+  }
+  return t.rootp->apu_core__DOT__u_fregs__DOT__regs[i];
+}
+std::uint16_t RtlEngine::areg(int i) const { return top_->rootp->apu_core__DOT__u_aregs__DOT__regs[i & 15]; }
+
+}  // namespace mc1::apu

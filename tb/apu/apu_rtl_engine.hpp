@@ -1,0 +1,71 @@
+// The verilated APU core (apu_rtl/apu_core.sv) behind the ApuEngine
+// interface, so that the same programs, tests and lockstep co-simulation run
+// on the RTL as on the ISS (docs/apu-rtl.md).
+//
+// step() clocks one cycle: it reads the core's debug ports (what the cycle
+// issues, stalls on and commits) before the rising edge, then clocks. MPU
+// calls act at once, as on the ISS: hand-over and start are core inputs that
+// the core forwards into the next cycle; bank reads use the MPU read port;
+// bank writes go straight into the memory arrays of the bank the APU does not
+// use (a write there cannot be seen by the APU before a swap, so writing it
+// between two clock edges is exact).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "apu_engine.hpp"
+
+class Vapu_core;
+class VerilatedContext;
+class VerilatedFstC;
+
+namespace mc1::apu {
+
+class RtlEngine final : public ApuEngine {
+ public:
+  // With a path, every cycle goes to an FST waveform (docs/apu-core.gtkw).
+  explicit RtlEngine(const char* fst_path = nullptr);
+  ~RtlEngine() override;
+  RtlEngine(const RtlEngine&) = delete;
+  RtlEngine& operator=(const RtlEngine&) = delete;
+
+  void write_program(std::uint16_t addr, const Encoded& word) override;
+  void write_data(std::uint16_t addr, std::uint32_t value) override;
+  std::uint32_t read_data(std::uint16_t addr) const override;
+  void hand_over_program() override;
+  void hand_over_data() override;
+  bool program_ready() const override;
+  bool data_ready() const override;
+  void start(std::uint16_t pc) override;
+
+  void step(CycleRecord& rec) override;
+
+  RunState state() const override;
+  Fault fault() const override;
+  std::uint64_t cycle() const override { return cycle_; }
+  std::uint32_t freg(int i) const override;
+  std::uint16_t areg(int i) const override;
+  std::uint8_t flags() const override;
+  std::uint8_t cc() const override;
+
+  // Clocks without records until the APU stops running or max_cycles have
+  // passed; returns the cycles clocked (the fast path, as Iss::run).
+  std::uint64_t run(std::uint64_t max_cycles) override;
+
+  // True if a unit's out_valid / in_ready ever disagreed with the core's
+  // interlock mirror of the pipelines (a unit latency other than the doc's).
+  bool unit_mismatch() const;
+
+ private:
+  void clock();        // one rising edge and the falling edge after it
+  void settle();       // re-evaluate after an MPU-side input change
+
+  std::unique_ptr<VerilatedContext> ctx_;
+  std::unique_ptr<Vapu_core> top_;
+  std::unique_ptr<VerilatedFstC> fst_;
+  std::uint64_t cycle_ = 0;
+  bool dump_pending_ = false;  // MPU inputs changed since the last waveform dump
+};
+
+}  // namespace mc1::apu
