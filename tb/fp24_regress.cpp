@@ -1,0 +1,542 @@
+// fp24-regress: the FP24 regression (docs/fp24-verification.md).
+// One-operand ops on every encoding; two-operand ops on a TestFloat-level-2
+// style structured set plus seeded random pairs; three engines compared:
+// verilated RTL == C++ model bit for bit, model == MPFR oracle (correctly
+// rounded ops) or faithful with measured ulp error (SIN/COS).
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "fp24.hpp"
+#include "fp24_oracle.hpp"
+#include "fp24_rtl.hpp"
+#include "fp24_vectors.hpp"
+
+namespace {
+
+using namespace mc1::fp24;
+using namespace mc1::fp24::tb;
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kUsage =
+    "usage: fp24-regress [options]\n"
+    "\n"
+    "Default run: recip sqrt sin cos fix neg abs on all 2^24 encodings, float on\n"
+    "all 2^16 integers, add sub mul cmp on a structured set (exponent table x\n"
+    "significand patterns x signs, all pairs) plus random pairs; RTL vs model\n"
+    "and model vs MPFR oracle. Exit status 0 only if everything matches and\n"
+    "SIN/COS are faithful.\n"
+    "\n"
+    "  --ops LIST      comma-separated ops to run (default: all 12)\n"
+    "  --no-rtl        skip the verilated RTL\n"
+    "  --no-oracle     skip the MPFR oracle\n"
+    "  --random N      random pairs per two-operand op (default 10000000)\n"
+    "  --seed S        random seed (default 1); a run is reproducible from it\n"
+    "  --long          add the long sweep: mul on all 2^32 significand pairs at\n"
+    "                  exponents (63, 63), and random pairs raised to >= 10^9\n"
+    "  --threads N     worker threads (default: all cores)\n"
+    "  --show N        failing vectors listed per op and kind (default 5)\n"
+    "  --text FILE     also write the text report to FILE\n"
+    "  --json FILE     write the report as JSON to FILE\n"
+    "  --help          this text\n";
+
+constexpr std::uint32_t kChunk = 1u << 16;  // vectors per job
+constexpr std::uint64_t kLongRandom = 1000000000;
+
+struct Options {
+  std::vector<Op> ops;
+  bool rtl = true;
+  bool oracle = true;
+  bool long_run = false;
+  std::uint64_t random = 10000000;
+  std::uint64_t seed = 1;
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  unsigned show = 5;
+  std::string text, json;
+};
+
+// ---- command line ----------------------------------------------------------------
+
+[[noreturn]] void usage_error(const std::string& what) {
+  std::fprintf(stderr, "fp24-regress: %s\n%s", what.c_str(), kUsage);
+  std::exit(2);
+}
+
+std::uint64_t parse_count(const std::string& opt, const std::string& text) {
+  std::size_t used = 0;
+  unsigned long long v = 0;
+  try {
+    v = std::stoull(text, &used, 0);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || text[0] == '-') usage_error(opt + ": '" + text + "' is not a count");
+  return v;
+}
+
+std::vector<Op> parse_ops(const std::string& list) {
+  std::vector<Op> ops;
+  std::stringstream s(list);
+  std::string name;
+  while (std::getline(s, name, ',')) {
+    const std::optional<Op> op = op_from_name(name);
+    if (!op) usage_error("--ops: unknown op '" + name + "'");
+    if (std::find(ops.begin(), ops.end(), *op) == ops.end()) ops.push_back(*op);
+  }
+  if (ops.empty()) usage_error("--ops: empty list");
+  return ops;
+}
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  for (int i = 0; i < kOpCount; ++i) o.ops.push_back(static_cast<Op>(i));
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage_error("option " + arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      std::fputs(kUsage, stdout);
+      std::exit(0);
+    } else if (arg == "--ops") o.ops = parse_ops(value());
+    else if (arg == "--no-rtl") o.rtl = false;
+    else if (arg == "--no-oracle") o.oracle = false;
+    else if (arg == "--long") o.long_run = true;
+    else if (arg == "--random") o.random = parse_count(arg, value());
+    else if (arg == "--seed") o.seed = parse_count(arg, value());
+    else if (arg == "--threads") o.threads = unsigned(std::max<std::uint64_t>(1, parse_count(arg, value())));
+    else if (arg == "--show") o.show = unsigned(parse_count(arg, value()));
+    else if (arg == "--text") o.text = value();
+    else if (arg == "--json") o.json = value();
+    else usage_error("unknown argument '" + arg + "'");
+  }
+  if (o.long_run) o.random = std::max(o.random, kLongRandom);
+  return o;
+}
+
+// ---- vectors ---------------------------------------------------------------------
+
+// TestFloat level 2 style operands: exponents at and around the format's
+// edges (zero/DAZ, smallest normals, 1.0, the alignment-shift limits of the
+// adder around 63 +- 17, largest normals, inf/NaN) x significand patterns.
+std::vector<Bits> structured_values() {
+  static const int kExps[] = {0,  1,  2,  3,  44, 45, 46, 47, 61,  62,  63,  64,  65,
+                              66, 79, 80, 81, 82, 94, 95, 124, 125, 126, 127};
+  std::vector<Bits> fracs = {0x0000, 0x0001, 0x0002, 0x0003, 0xFFFF, 0xFFFE, 0xFFFD, 0x8000, 0x7FFF,
+                             0x8001, 0xAAAA, 0x5555, 0xC000, 0x4000, 0x3FFF, 0xBFFF, 0x0F0F, 0xF0F0};
+  for (int k = 0; k < 16; ++k) {
+    fracs.push_back(Bits(1) << k);                     // single bits
+    fracs.push_back((Bits(1) << k) - 1);               // ones below bit k
+    fracs.push_back((0xFFFFu << k) & 0xFFFF);          // ones from bit k up
+    fracs.push_back(~(Bits(1) << k) & 0xFFFF);         // all ones but one
+  }
+  std::sort(fracs.begin(), fracs.end());
+  fracs.erase(std::unique(fracs.begin(), fracs.end()), fracs.end());
+  std::vector<Bits> values;
+  for (Bits sign : {Bits(0), kSignBit})
+    for (int e : kExps)
+      for (Bits f : fracs) values.push_back(sign | Bits(e) << 16 | f);
+  return values;
+}
+
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// Random pair number `index` of op: a pure function of (seed, op, index), so
+// results do not depend on threads or chunking. Half the pairs are uniform
+// encodings; half put b's exponent within +-24 of a's, where the adder's
+// alignment, cancellation and carry paths are.
+void random_pair(std::uint64_t seed, Op op, std::uint64_t index, Bits* a, Bits* b) {
+  const std::uint64_t h = splitmix64(splitmix64(seed * 64 + std::uint64_t(op)) ^ index);
+  *a = Bits(h) & 0xFFFFFF;
+  const Bits r = Bits(h >> 24) & 0xFFFFFF;
+  if ((h >> 63) == 0) {
+    *b = r;
+    return;
+  }
+  const int ea = int((*a >> 16) & 0x7F);
+  const int eb = std::clamp(ea + int((h >> 48) % 49) - 24, 0, 127);
+  *b = (r & (kSignBit | 0xFFFF)) | Bits(eb) << 16;
+}
+
+enum class Source { Exhaustive, Structured, Random, SigSweep };
+
+struct Job {
+  Op op;
+  Source source;
+  std::uint64_t first;
+  std::uint32_t count;
+};
+
+struct VectorSet {
+  std::vector<Bits> structured = structured_values();
+  std::uint64_t seed = 1;
+
+  void fill(const Job& j, Bits* a, Bits* b) const {
+    const std::uint64_t n = structured.size();
+    for (std::uint32_t i = 0; i < j.count; ++i) {
+      const std::uint64_t k = j.first + i;
+      switch (j.source) {
+        case Source::Exhaustive: a[i] = Bits(k); b[i] = 0; break;
+        case Source::Structured: a[i] = structured[k / n]; b[i] = structured[k % n]; break;
+        case Source::Random: random_pair(seed, j.op, k, &a[i], &b[i]); break;
+        case Source::SigSweep: a[i] = 0x3F0000 | Bits(k >> 16); b[i] = 0x3F0000 | Bits(k & 0xFFFF); break;
+      }
+    }
+  }
+};
+
+void add_jobs(std::vector<Job>* jobs, Op op, Source source, std::uint64_t total) {
+  for (std::uint64_t first = 0; first < total; first += kChunk)
+    jobs->push_back({op, source, first, std::uint32_t(std::min<std::uint64_t>(kChunk, total - first))});
+}
+
+std::vector<Job> plan(const Options& o, const VectorSet& set) {
+  std::vector<Job> jobs;
+  for (Op op : o.ops) {
+    if (op == Op::Float) add_jobs(&jobs, op, Source::Exhaustive, 1u << 16);
+    else if (info(op).operands == 1) add_jobs(&jobs, op, Source::Exhaustive, 1u << 24);
+    else {
+      add_jobs(&jobs, op, Source::Structured, std::uint64_t(set.structured.size()) * set.structured.size());
+      add_jobs(&jobs, op, Source::Random, o.random);
+      if (o.long_run && op == Op::Mul) add_jobs(&jobs, op, Source::SigSweep, std::uint64_t(1) << 32);
+    }
+  }
+  return jobs;
+}
+
+// ---- results ---------------------------------------------------------------------
+
+enum class Kind { RtlVsModel, ModelVsOracle, Unfaithful, NotCorrectlyRounded };
+const char* kind_name(Kind k) {
+  static const char* const kNames[] = {"rtl-vs-model", "model-vs-oracle", "unfaithful", "not-correctly-rounded"};
+  return kNames[int(k)];
+}
+
+struct Failure {
+  Kind kind;
+  Issue vector;
+  Result got;       // rtl (rtl-vs-model) or model (the others)
+  Result expected;  // model (rtl-vs-model) or oracle
+  double ulp;       // SIN/COS: model error in ulps; else NaN
+};
+
+struct Stats {
+  std::uint64_t vectors = 0;
+  std::uint64_t rtl_vs_model = 0;
+  std::uint64_t model_vs_oracle = 0;  // correctly rounded ops
+  std::uint64_t not_cr = 0;           // SIN/COS
+  std::uint64_t unfaithful = 0;       // SIN/COS: error >= 1 ulp or flags differ
+  double max_ulp = 0;
+  double cpu_seconds = 0;
+  std::vector<Failure> failures;
+  std::string rtl_error;  // a timing-contract violation, if any
+
+  void merge(const Stats& s, unsigned show) {
+    vectors += s.vectors;
+    rtl_vs_model += s.rtl_vs_model;
+    model_vs_oracle += s.model_vs_oracle;
+    not_cr += s.not_cr;
+    unfaithful += s.unfaithful;
+    max_ulp = std::max(max_ulp, s.max_ulp);
+    cpu_seconds += s.cpu_seconds;
+    for (const Failure& f : s.failures)
+      if (count(f.kind) < show) failures.push_back(f);
+    if (rtl_error.empty()) rtl_error = s.rtl_error;
+  }
+
+  unsigned count(Kind k) const {
+    return unsigned(std::count_if(failures.begin(), failures.end(), [k](const Failure& f) { return f.kind == k; }));
+  }
+
+  bool passed() const { return rtl_vs_model == 0 && model_vs_oracle == 0 && unfaithful == 0 && rtl_error.empty(); }
+};
+
+bool is_trig(Op op) { return op == Op::Sin || op == Op::Cos; }
+
+// ---- the work --------------------------------------------------------------------
+
+// One thread's engines and buffers; it runs whole jobs.
+class Worker {
+ public:
+  Worker(const Options& o, const VectorSet& set) : o_(o), set_(set), a_(kChunk), b_(kChunk), m_(kChunk), r_(kChunk) {}
+
+  Stats run(const Job& j) {
+    const auto start = Clock::now();
+    Stats s;
+    s.vectors = j.count;
+    set_.fill(j, a_.data(), b_.data());
+    for (std::uint32_t i = 0; i < j.count; ++i) m_[i] = execute(j.op, a_[i], b_[i]);
+    if (o_.rtl) check_rtl(j, &s);
+    if (o_.oracle) check_oracle(j, &s);
+    s.cpu_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return s;
+  }
+
+ private:
+  void note(Stats* s, Kind kind, const Job& j, std::uint32_t i, Result got, Result expected, double ulp) {
+    if (s->count(kind) < o_.show) s->failures.push_back({kind, {j.op, a_[i], b_[i]}, got, expected, ulp});
+  }
+
+  void check_rtl(const Job& j, Stats* s) {
+    const int u = int(info(j.op).unit);
+    if (!rtl_[u]) rtl_[u] = std::make_unique<RtlUnit>(info(j.op).unit);
+    try {
+      rtl_[u]->run(j.op, a_.data(), b_.data(), r_.data(), j.count);
+    } catch (const TimingError& e) {
+      // None of this job's RTL results can be trusted: all count as mismatches.
+      s->rtl_error = e.what();
+      s->rtl_vs_model += j.count;
+      rtl_[u].reset();  // its pipeline state is unknown now
+      return;
+    }
+    for (std::uint32_t i = 0; i < j.count; ++i) {
+      if (r_[i] == m_[i]) continue;
+      ++s->rtl_vs_model;
+      note(s, Kind::RtlVsModel, j, i, r_[i], m_[i], NAN);
+    }
+  }
+
+  void check_oracle(const Job& j, Stats* s) {
+    for (std::uint32_t i = 0; i < j.count; ++i) {
+      if (is_trig(j.op)) {
+        check_trig(j, i, s);
+        continue;
+      }
+      const Result want = oracle_.run(j.op, a_[i], b_[i]);
+      if (m_[i] == want) continue;
+      ++s->model_vs_oracle;
+      note(s, Kind::ModelVsOracle, j, i, m_[i], want, NAN);
+    }
+  }
+
+  void check_trig(const Job& j, std::uint32_t i, Stats* s) {
+    const Oracle::Measured m = oracle_.measure(j.op, a_[i], m_[i].value);
+    s->max_ulp = std::max(s->max_ulp, m.ulp_error);
+    if (m_[i] == m.rounded) return;
+    if (m_[i].value != m.rounded.value) {
+      ++s->not_cr;
+      note(s, Kind::NotCorrectlyRounded, j, i, m_[i], m.rounded, m.ulp_error);
+    }
+    if (m.ulp_error >= 1.0 || m_[i].flags != m.rounded.flags) {
+      ++s->unfaithful;
+      note(s, Kind::Unfaithful, j, i, m_[i], m.rounded, m.ulp_error);
+    }
+  }
+
+  const Options& o_;
+  const VectorSet& set_;
+  Oracle oracle_;
+  std::unique_ptr<RtlUnit> rtl_[3];
+  std::vector<Bits> a_, b_;
+  std::vector<Result> m_, r_;
+};
+
+struct Run {
+  std::vector<Stats> per_op = std::vector<Stats>(kOpCount);
+  double wall_seconds = 0;
+};
+
+void show_progress(std::uint64_t done, std::uint64_t total, double seconds) {
+  std::fprintf(stderr, "\rfp24-regress: %5.1f%%  %llu / %llu vectors  %.0f s ", 100.0 * double(done) / double(total),
+               (unsigned long long)done, (unsigned long long)total, seconds);
+  std::fflush(stderr);
+}
+
+Run run_all(const Options& o) {
+  VectorSet set;
+  set.seed = o.seed;
+  const std::vector<Job> jobs = plan(o, set);
+  std::uint64_t total = 0;
+  for (const Job& j : jobs) total += j.count;
+
+  Run run;
+  std::mutex merge;
+  std::atomic<std::size_t> next{0};
+  std::atomic<std::uint64_t> done{0};
+  std::atomic<unsigned> running{o.threads};
+  auto work = [&] {
+    Worker w(o, set);
+    for (std::size_t k; (k = next.fetch_add(1)) < jobs.size();) {
+      const Stats s = w.run(jobs[k]);
+      std::lock_guard<std::mutex> lock(merge);
+      run.per_op[int(jobs[k].op)].merge(s, o.show);
+      done += jobs[k].count;
+    }
+    --running;
+  };
+  const auto start = Clock::now();
+  std::vector<std::thread> threads;
+  for (unsigned t = 0; t < o.threads; ++t) threads.emplace_back(work);
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  while (running > 0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    if (tty) show_progress(done, total, std::chrono::duration<double>(Clock::now() - start).count());
+  }
+  for (std::thread& t : threads) t.join();
+  if (tty) std::fputs("\n", stderr);
+  run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return run;
+}
+
+// ---- reports ---------------------------------------------------------------------
+
+bool passed(const Options& o, const Run& run) {
+  for (Op op : o.ops)
+    if (!run.per_op[int(op)].passed()) return false;
+  return true;
+}
+
+std::string count_or_dash(bool applies, std::uint64_t n) { return applies ? std::to_string(n) : "-"; }
+
+std::string failure_line(const Failure& f) {
+  const char* got = f.kind == Kind::RtlVsModel ? "rtl" : "model";
+  const char* want = f.kind == Kind::RtlVsModel ? "model" : "oracle";
+  std::string line = "  " + std::string(kind_name(f.kind)) + ": " + format_vector(f.vector) + " -> " +
+                     format_result(f.got) + " (" + got + ") / " + format_result(f.expected) + " (" + want + ")";
+  if (!std::isnan(f.ulp)) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, ", %.4f ulp", f.ulp);
+    line += buf;
+  }
+  return line + "\n";
+}
+
+std::string text_report(const Options& o, const Run& run) {
+  std::ostringstream t;
+  char buf[256];
+  t << "fp24-regress: seed " << o.seed << ", " << o.random << " random pairs per two-operand op"
+    << (o.long_run ? ", long sweep" : "") << ", engines model" << (o.rtl ? " rtl" : "") << (o.oracle ? " oracle" : "")
+    << ", " << o.threads << " threads\n";
+  std::snprintf(buf, sizeof buf, "%-6s %12s %12s %15s %10s %11s %9s %9s\n", "op", "vectors", "rtl!=model",
+                "model!=oracle", "not-CR", "unfaithful", "max-ulp", "cpu-s");
+  t << buf;
+  for (Op op : o.ops) {
+    const Stats& s = run.per_op[int(op)];
+    const bool trig = is_trig(op) && o.oracle;
+    char ulp[16] = "-";
+    if (trig) std::snprintf(ulp, sizeof ulp, "%.4f", s.max_ulp);
+    std::snprintf(buf, sizeof buf, "%-6s %12llu %12s %15s %10s %11s %9s %9.1f\n", info(op).name.data(),
+                  (unsigned long long)s.vectors, count_or_dash(o.rtl, s.rtl_vs_model).c_str(),
+                  count_or_dash(o.oracle && !is_trig(op), s.model_vs_oracle).c_str(),
+                  count_or_dash(trig, s.not_cr).c_str(), count_or_dash(trig, s.unfaithful).c_str(), ulp,
+                  s.cpu_seconds);
+    t << buf;
+  }
+  for (Op op : o.ops) {
+    const Stats& s = run.per_op[int(op)];
+    if (!s.rtl_error.empty()) t << info(op).name << ": RTL timing: " << s.rtl_error << "\n";
+    if (s.failures.empty()) continue;
+    t << info(op).name << ": first differing vectors (replay: echo '<vector>' | fp24-run --engine rtl|model|oracle)\n";
+    for (const Failure& f : s.failures) t << failure_line(f);
+  }
+  std::snprintf(buf, sizeof buf, "wall time %.1f s\n", run.wall_seconds);
+  t << buf << (passed(o, run) ? "PASS" : "FAIL") << "\n";
+  return t.str();
+}
+
+std::string json_string(const std::string& s) { return "\"" + s + "\""; }  // our strings need no escapes
+
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return "\"" + out + "\"";
+}
+
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string json_failure(const Failure& f) {
+  return "{\"kind\": " + json_string(kind_name(f.kind)) + ", \"vector\": " + json_string(format_vector(f.vector)) +
+         ", \"got\": " + json_string(format_result(f.got)) + ", \"expected\": " +
+         json_string(format_result(f.expected)) + ", \"ulp_error\": " + json_number(f.ulp) + "}";
+}
+
+std::string json_op(const Options& o, Op op, const Stats& s) {
+  const bool trig = is_trig(op) && o.oracle;
+  auto opt = [](bool applies, std::uint64_t n) { return applies ? std::to_string(n) : std::string("null"); };
+  std::string j = "    {\"op\": " + json_string(std::string(info(op).name)) +
+                  ", \"vectors\": " + std::to_string(s.vectors) +
+                  ", \"rtl_vs_model\": " + opt(o.rtl, s.rtl_vs_model) +
+                  ", \"model_vs_oracle\": " + opt(o.oracle && !is_trig(op), s.model_vs_oracle) +
+                  ", \"not_correctly_rounded\": " + opt(trig, s.not_cr) +
+                  ", \"unfaithful\": " + opt(trig, s.unfaithful) +
+                  ", \"max_ulp_error\": " + (trig ? json_number(s.max_ulp) : "null") +
+                  ", \"cpu_seconds\": " + json_number(s.cpu_seconds) +
+                  ", \"rtl_timing_error\": " + (s.rtl_error.empty() ? "null" : json_escape(s.rtl_error)) +
+                  ", \"passed\": " + (s.passed() ? "true" : "false") + ", \"failures\": [";
+  for (std::size_t i = 0; i < s.failures.size(); ++i) j += (i ? ", " : "") + json_failure(s.failures[i]);
+  return j + "]}";
+}
+
+std::string json_report(const Options& o, const Run& run) {
+  std::string j = "{\n  \"program\": \"fp24-regress\",\n  \"seed\": " + std::to_string(o.seed) +
+                  ",\n  \"random_pairs\": " + std::to_string(o.random) +
+                  ",\n  \"long\": " + (o.long_run ? "true" : "false") +
+                  ",\n  \"engines\": [\"model\"" + (o.rtl ? ", \"rtl\"" : "") + (o.oracle ? ", \"oracle\"" : "") +
+                  "],\n  \"threads\": " + std::to_string(o.threads) +
+                  ",\n  \"wall_seconds\": " + json_number(run.wall_seconds) +
+                  ",\n  \"passed\": " + (passed(o, run) ? "true" : "false") + ",\n  \"ops\": [\n";
+  for (std::size_t i = 0; i < o.ops.size(); ++i)
+    j += json_op(o, o.ops[i], run.per_op[int(o.ops[i])]) + (i + 1 < o.ops.size() ? ",\n" : "\n");
+  return j + "  ]\n}\n";
+}
+
+// Report files are opened before the run, so a bad path fails in a second
+// rather than after minutes of work. An empty path means no file.
+std::unique_ptr<std::ofstream> open_report(const std::string& path) {
+  if (path.empty()) return nullptr;
+  auto f = std::make_unique<std::ofstream>(path);
+  if (!*f) usage_error(path + ": cannot open for writing");
+  return f;
+}
+
+void write_report(std::ofstream* f, const std::string& path, const std::string& text) {
+  if (f == nullptr) return;
+  *f << text;
+  f->close();
+  if (!*f) std::fprintf(stderr, "fp24-regress: %s: write failed\n", path.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse_options(argc, argv);
+  const auto text_file = open_report(o.text);
+  const auto json_file = open_report(o.json);
+  const Run run = run_all(o);
+  const std::string text = text_report(o, run);
+  std::fputs(text.c_str(), stdout);
+  write_report(text_file.get(), o.text, text);
+  write_report(json_file.get(), o.json, json_report(o, run));
+  return passed(o, run) ? 0 : 1;
+}

@@ -1,0 +1,93 @@
+// Vector-line parsing: strict, because a silently mis-read operand would
+// make every engine "agree" on the wrong question.
+#include "fp24_vectors.hpp"
+
+#include <cctype>
+#include <cstdio>
+
+namespace mc1::fp24::tb {
+namespace {
+
+std::vector<std::string_view> split(std::string_view line) {
+  std::vector<std::string_view> tokens;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > start) tokens.push_back(line.substr(start, i - start));
+  }
+  return tokens;
+}
+
+[[noreturn]] void fail(const std::string& source, long line_no, const std::string& what) {
+  throw VectorError(source + ":" + std::to_string(line_no) + ": " + what);
+}
+
+// A hex operand no larger than `max`; more than 8 digits is out of range
+// whatever they are, which also keeps the accumulation from overflowing.
+Bits parse_hex(std::string_view token, Bits max, const char* what, const std::string& source, long line_no) {
+  const std::string quoted = "'" + std::string(token) + "'";
+  std::uint64_t v = 0;
+  for (char c : token) {
+    if (!std::isxdigit(static_cast<unsigned char>(c))) fail(source, line_no, std::string(what) + " " + quoted + " is not hex");
+    const int digit = std::isdigit(static_cast<unsigned char>(c)) ? c - '0' : std::tolower(c) - 'a' + 10;
+    v = v * 16 + std::uint64_t(digit);
+    if (v > max) break;
+  }
+  if (v > max) {
+    char limit[16];
+    std::snprintf(limit, sizeof limit, "%x", max);
+    fail(source, line_no, std::string(what) + " " + quoted + " is out of range (max " + limit + ")");
+  }
+  return Bits(v);
+}
+
+}  // namespace
+
+std::optional<Issue> parse_vector(std::string_view line, const std::string& source, long line_no) {
+  const std::vector<std::string_view> tokens = split(line);
+  if (tokens.empty() || tokens[0][0] == '#') return std::nullopt;
+  const std::optional<Op> op = op_from_name(tokens[0]);
+  if (!op) fail(source, line_no, "unknown op '" + std::string(tokens[0]) + "'");
+  const OpInfo& info = fp24::info(*op);
+  const int operands = int(tokens.size()) - 1;
+  if (operands < info.operands) {
+    fail(source, line_no, std::string(info.name) + " needs " + std::to_string(info.operands) + " operand(s), got " +
+                              std::to_string(operands));
+  }
+  if (operands > info.operands) {
+    fail(source, line_no, "extra operand '" + std::string(tokens[1 + info.operands]) + "' after " +
+                              std::string(info.name) + " (takes " + std::to_string(info.operands) + ")");
+  }
+  const Bits max_a = *op == Op::Float ? 0xFFFF : 0xFFFFFF;
+  Issue v{*op, parse_hex(tokens[1], max_a, "operand", source, line_no), 0};
+  if (info.operands == 2) v.b = parse_hex(tokens[2], 0xFFFFFF, "operand", source, line_no);
+  return v;
+}
+
+std::vector<Issue> read_vectors(std::istream& in, const std::string& source) {
+  std::vector<Issue> vectors;
+  std::string line;
+  for (long line_no = 1; std::getline(in, line); ++line_no) {
+    if (std::optional<Issue> v = parse_vector(line, source, line_no)) vectors.push_back(*v);
+  }
+  return vectors;
+}
+
+std::string format_vector(const Issue& v) {
+  const OpInfo& info = fp24::info(v.op);
+  char buf[48];
+  if (v.op == Op::Float) std::snprintf(buf, sizeof buf, "%s %04x", info.name.data(), v.a);
+  else if (info.operands == 1) std::snprintf(buf, sizeof buf, "%s %06x", info.name.data(), v.a);
+  else std::snprintf(buf, sizeof buf, "%s %06x %06x", info.name.data(), v.a, v.b);
+  return buf;
+}
+
+std::string format_result(const Result& r) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%06x %02x", r.value, unsigned(r.flags));
+  return buf;
+}
+
+}  // namespace mc1::fp24::tb
