@@ -1,0 +1,111 @@
+// The MPU-side API of the APU (issue text: "load program and data into the
+// idle bank, swap, start, wait for done, read results; the same calls drive
+// either engine, and firmware uses nothing else to reach the APU").
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "apu_engine.hpp"
+#include "microword.hpp"
+
+namespace mc1::apu {
+
+class Iss;
+
+// A run that did not end in HALT: a fault, the cycle limit, or misuse.
+class ApuError : public std::runtime_error {
+ public:
+  enum class Kind { Fault, CycleLimit, NotRunning, Usage };
+  ApuError(Kind kind, Fault fault, std::uint64_t cycle, std::uint16_t pc, const std::string& what)
+      : std::runtime_error(what), kind_(kind), fault_(fault), cycle_(cycle), pc_(pc) {}
+  Kind kind() const { return kind_; }
+  Fault fault() const { return fault_; }
+  std::uint64_t cycle() const { return cycle_; }
+  std::uint16_t pc() const { return pc_; }
+
+ private:
+  Kind kind_;
+  Fault fault_;
+  std::uint64_t cycle_;
+  std::uint16_t pc_;
+};
+
+class ApuDriver {
+ public:
+  // Cycles run_until_done() keeps clocking a halted APU so that results of
+  // the HALT word's own ops land (docs/apu-isa.md, Clarification 7).
+  static constexpr int kSettleCycles = 3;
+
+  explicit ApuDriver(ApuEngine& engine);
+
+  // Into the bank the APU does not use (the MPU's).
+  void load_program(const std::vector<Encoded>& words, std::uint16_t base = 0);
+  void load_data(std::uint16_t addr, const std::uint32_t* values, std::size_t n);
+  void load_data(std::uint16_t addr, const std::vector<std::uint32_t>& values) {
+    load_data(addr, values.data(), values.size());
+  }
+  void hand_over_program() { engine_.hand_over_program(); }
+  void hand_over_data() { engine_.hand_over_data(); }
+  bool program_ready() const { return engine_.program_ready(); }
+  bool data_ready() const { return engine_.data_ready(); }
+
+  // Starts the idle APU at pc; throws ApuError(Usage) if it is running.
+  void start(std::uint16_t pc = 0);
+
+  // Clocks until HALT (then kSettleCycles more), returning the cycles from
+  // the call to the cycle after the HALT issued. Throws ApuError on a fault
+  // or when max_cycles pass first, naming cycle, pc and (on a limit) the
+  // stall the APU is stuck in. `mpu`, if set, is called before every cycle
+  // whose number is a multiple of mpu_interval: the firmware's polling loop
+  // (hand over the next block when data_ready() clears, ...).
+  std::uint64_t run_until_done(std::uint64_t max_cycles, const std::function<void()>& mpu = {},
+                               std::uint64_t mpu_interval = 1);
+
+  // Clocks at most `cycles` cycles, stopping early when the APU stops
+  // running; returns the cycles clocked. No exception: look at state().
+  std::uint64_t run(std::uint64_t cycles);
+
+  std::vector<std::uint32_t> read_results(std::uint16_t addr, std::size_t n) const;
+
+  // Called with every cycle's record. Having an observer takes the ISS off
+  // its fast path (records are built every cycle).
+  void set_observer(std::function<void(const CycleRecord&)> observer) { observer_ = std::move(observer); }
+
+  ApuEngine& engine() { return engine_; }
+  RunState state() const { return engine_.state(); }
+  // The word the driver loaded at (bank, addr), as far as it knows (profiles
+  // and error messages disassemble it).
+  const Encoded& program_word(int bank, std::uint16_t addr) const {
+    return shadow_[bank & 1][addr % kProgramWords];
+  }
+  int psel() const { return psel_; }
+  std::uint16_t pc() const { return pc_; }
+  const CycleRecord& last_record() const { return rec_; }
+
+ private:
+  std::uint64_t clock(std::uint64_t cycles);  // stops when not running
+  [[noreturn]] void fail(ApuError::Kind kind, const std::string& why) const;
+
+  ApuEngine& engine_;
+  Iss* iss_;  // the ISS when engine_ is one: its bank and pc without records
+  std::function<void(const CycleRecord&)> observer_;
+  CycleRecord rec_;
+  int psel_ = 0;  // the APU's program bank as seen by the driver
+  std::uint16_t pc_ = 0;
+  bool pc_known_ = true;          // pc_ and last_stall_ describe the last cycle clocked
+  std::uint64_t probe_cycle_ = 0;  // engine cycle before an error probe step, or 0
+  Stall last_stall_ = Stall::None;
+  std::array<std::vector<Encoded>, 2> shadow_;
+};
+
+// A data file as the tools read it (docs/apu-tools.md): hex words, whitespace-separated, `#` comments, `@hex` moves
+// the load address. Returns (address, value) pairs in file order.
+std::vector<std::pair<std::uint16_t, std::uint32_t>> read_data_file(const std::string& path);
+
+}  // namespace mc1::apu

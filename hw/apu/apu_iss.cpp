@@ -1,0 +1,422 @@
+// The APU instruction-set simulator (docs/apu-isa.md, "Timing" and
+// "Clarifications"). Per-cycle work is a few mask tests and, on issue, the
+// FP24 model calls; nothing allocates once a CycleRecord has its capacity.
+#include "apu_iss.hpp"
+
+#include "fp24.hpp"
+
+namespace mc1::apu {
+
+const char* stall_name(Stall s) {
+  switch (s) {
+    case Stall::None: return "none";
+    case Stall::Bank: return "bank";
+    case Stall::Raw: return "raw";
+    case Stall::Waw: return "waw";
+    case Stall::Cc: return "cc";
+    case Stall::Struct: return "struct";
+    case Stall::Drain: return "drain";
+  }
+  return "?";
+}
+
+const char* fault_name(Fault f) {
+  switch (f) {
+    case Fault::None: return "none";
+    case Fault::ReservedOp: return "reserved-op";
+    case Fault::DataAddress: return "data-address";
+    case Fault::PcOverflow: return "pc-overflow";
+    case Fault::CallOverflow: return "call-overflow";
+    case Fault::CallUnderflow: return "call-underflow";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr std::uint64_t bit(unsigned r) { return std::uint64_t{1} << (r & 63); }
+constexpr std::uint32_t kMask24 = 0xFFFFFF;
+constexpr int kNoCommit = -1;
+
+#define MC1_HOT inline __attribute__((always_inline))
+
+bool two_operand(AddOp op) { return op == AddOp::Add || op == AddOp::Sub || op == AddOp::Cmp; }
+
+}  // namespace
+
+DecodedWord DecodedWord::from(const Encoded& e) {
+  DecodedWord d;
+  d.w = MicroWord::decode(e);
+  const MicroWord& w = d.w;
+  if (w.m.en) {
+    d.src |= bit(w.m.a) | bit(w.m.b);
+    d.dst |= bit(w.m.d);
+  }
+  if (w.a.en) {
+    if (static_cast<unsigned>(w.a.op) > static_cast<unsigned>(AddOp::Abs)) {
+      d.kind |= kReserved;
+    } else {
+      d.src |= bit(w.a.a) | (two_operand(w.a.op) ? bit(w.a.b) : 0);
+      if (w.a.op != AddOp::Cmp) d.dst |= bit(w.a.d);
+    }
+  }
+  if (w.f.en) {
+    d.src |= bit(w.f.a);
+    d.dst |= bit(w.f.d);
+    d.kind |= kFuncOp;
+    if (w.f.op == FuncOp::Sin || w.f.op == FuncOp::Cos) d.kind |= kSinCos;
+  }
+  switch (w.d.op) {
+    case MemOp::Ld: d.dst |= bit(w.d.f); break;
+    case MemOp::St: d.src |= bit(w.d.f); break;
+    case MemOp::None: break;
+    default: d.kind |= kReserved; break;
+  }
+  switch (w.i.op) {
+    case IntOp::Movaf:
+    case IntOp::Lif: d.dst |= bit(w.i.d); break;
+    case IntOp::Movfa: d.src |= bit(w.i.imm); break;
+    case IntOp::Reserved: d.kind |= kReserved; break;
+    default: break;
+  }
+  switch (w.s.op) {
+    case SeqOp::Swapd:
+    case SeqOp::Swapp: d.kind |= kSwap; break;
+    case SeqOp::Bcc:
+    case SeqOp::Bncc: d.kind |= kCcBranch; break;
+    case SeqOp::Halt: d.kind |= kHalt; break;
+    case SeqOp::Reserved13:
+    case SeqOp::Reserved14:
+    case SeqOp::Reserved15: d.kind |= kReserved; break;
+    default: break;
+  }
+  return d;
+}
+
+void Iss::reset() {
+  f_.fill(0);
+  a_.fill(0);
+  cc_ = flags_ = 0;
+  pc_ = 0;
+  stack_.fill(0);
+  sp_ = 0;
+  psel_ = dsel_ = 0;
+  program_ready_ = data_ready_ = false;
+  state_ = RunState::Idle;
+  fault_ = Fault::None;
+  cycle_ = 0;
+  const DecodedWord zero = DecodedWord::from(Encoded{});
+  for (int b = 0; b < 2; ++b) {
+    program_[b].fill(Encoded{});
+    decoded_[b].fill(zero);
+    data_[b].fill(0);
+  }
+  ring_.fill(Bucket{});
+  fp_done_ = cmp_done_ = 0;
+  func_busy_ = ~std::uint64_t{0};
+  counters_ = Counters{};
+}
+
+void Iss::write_program(std::uint16_t addr, const Encoded& word) {
+  const int bank = psel_ ^ 1;
+  addr %= kProgramWords;
+  program_[bank][addr] = word;
+  decoded_[bank][addr] = DecodedWord::from(word);
+}
+
+void Iss::write_data(std::uint16_t addr, std::uint32_t value) {
+  data_[dsel_ ^ 1][addr % kDataWords] = value & kMask24;
+}
+
+std::uint32_t Iss::read_data(std::uint16_t addr) const { return data_[dsel_ ^ 1][addr % kDataWords]; }
+
+void Iss::start(std::uint16_t pc) {
+  if (state_ == RunState::Running) return;  // only an idle APU starts (Clarification 8)
+  if (program_ready_) {
+    psel_ ^= 1;
+    program_ready_ = false;
+  }
+  sp_ = 0;
+  fault_ = Fault::None;
+  pc_ = pc % kProgramWords;
+  state_ = RunState::Running;
+}
+
+bool Iss::pipelines_empty() const {
+  // The bucket of the coming cycle is already in the state.
+  for (int i = 1; i < kRing; ++i) {
+    const Bucket& b = ring_[(cycle_ + i) % kRing];
+    if (b.nf | b.na | b.cc_valid) return false;
+  }
+  return true;
+}
+
+MC1_HOT void Iss::push_f(int latency, std::uint8_t index, std::uint32_t value) {
+  Bucket& b = ring_[(cycle_ + latency) % kRing];
+  b.f[b.nf++] = {index, value};
+  b.fmask |= bit(index);
+}
+
+MC1_HOT void Iss::push_a(std::uint8_t index, std::uint16_t value) {
+  if (index == 0) return;  // A0 reads 0; writes to it are dropped
+  Bucket& b = ring_[(cycle_ + 1) % kRing];
+  b.a[b.na++] = {index, value};
+}
+
+MC1_HOT void Iss::push_flags(int latency, std::uint8_t flags) { ring_[(cycle_ + latency) % kRing].flags |= flags; }
+
+// End of a cycle: the writes that become visible in the next cycle enter the
+// state now, so that between two steps the state is the one the next word
+// reads (as in the RTL, where they are written at the clock edge). The next
+// step records them.
+MC1_HOT void Iss::apply_next() {
+  Bucket& b = ring_[cycle_ % kRing];
+  if (b.nf | b.na | b.cc_valid | b.flags) {
+    for (int i = 0; i < b.nf; ++i) f_[b.f[i].index] = b.f[i].value;
+    for (int i = 0; i < b.na; ++i) a_[b.a[i].index] = b.a[i].value;
+    if (b.cc_valid) cc_ = b.cc;
+    const std::uint8_t new_flags = flags_ | b.flags;
+    b.flags_commit = new_flags != flags_;
+    b.flags = new_flags;
+    flags_ = new_flags;
+    b.fmask = 0;
+  }
+}
+
+// Start of a cycle: records (kRecord) and retires the writes applied at the
+// end of the last one. CC and FLAGS come back through cc/flags (recorded
+// after any store of this cycle).
+template <bool kRecord>
+MC1_HOT void Iss::take_due(CycleRecord* rec, int& cc, int& flags) {
+  Bucket& b = ring_[cycle_ % kRing];
+  if (b.nf | b.na | b.cc_valid) {
+    if constexpr (kRecord) {
+      // Commits in the interface's order: FReg by index, then AReg by index.
+      auto& out = rec->commits;
+      const std::size_t f0 = out.size();
+      for (int i = 0; i < b.nf; ++i) {
+        const Commit c{Commit::Kind::FReg, b.f[i].index, b.f[i].value};
+        std::size_t j = out.size();
+        out.push_back(c);
+        for (; j > f0 && out[j - 1].index > c.index; --j) out[j] = out[j - 1];
+        out[j] = c;
+      }
+      if (b.na == 2 && b.a[1].index < b.a[0].index) std::swap(b.a[0], b.a[1]);
+      for (int i = 0; i < b.na; ++i) out.push_back({Commit::Kind::AReg, b.a[i].index, b.a[i].value});
+      if (b.cc_valid) cc = b.cc;
+      if (b.flags_commit) flags = b.flags;
+    }
+    b.nf = b.na = 0;
+    b.cc_valid = b.flags_commit = false;
+    b.flags = 0;
+  }
+}
+
+MC1_HOT Stall Iss::stall_reason(const DecodedWord& dw) const {
+  const std::uint8_t k = dw.kind;
+  if (k & DecodedWord::kSwap) {
+    const bool ready = dw.w.s.op == SeqOp::Swapd ? data_ready_ : program_ready_;
+    if (!ready) return Stall::Bank;
+  }
+  // This cycle's bucket is applied and its mask cleared: every mask left
+  // belongs to a write that becomes visible after this cycle.
+  const std::uint64_t in_flight = ring_[0].fmask | ring_[1].fmask | ring_[2].fmask | ring_[3].fmask;
+  if (dw.src & in_flight) return Stall::Raw;
+  if (dw.dst & in_flight) return Stall::Waw;
+  if ((k & DecodedWord::kCcBranch) && cmp_done_ > cycle_) return Stall::Cc;
+  if ((k & DecodedWord::kFuncOp) && func_busy_ == cycle_) return Stall::Struct;
+  if ((k & DecodedWord::kHalt) && fp_done_ > cycle_) return Stall::Drain;
+  return Stall::None;
+}
+
+MC1_HOT std::uint32_t Iss::next_pc(const DecodedWord& dw) const {
+  const SeqSlot& s = dw.w.s;
+  const std::uint32_t fall = pc_ + 1u;
+  const std::uint16_t ar = a_[s.r & 15];
+  switch (s.op) {
+    case SeqOp::Jmp: return s.target;
+    case SeqOp::Bcc: return (cc_ & s.r) ? s.target : fall;
+    case SeqOp::Bncc: return (cc_ & s.r) ? fall : s.target;
+    case SeqOp::Dbnz: return static_cast<std::uint16_t>(ar - 1) != 0 ? s.target : fall;
+    case SeqOp::Bz: return ar == 0 ? s.target : fall;
+    case SeqOp::Bnz: return ar != 0 ? s.target : fall;
+    case SeqOp::Bltz: return (ar & 0x8000) ? s.target : fall;
+    case SeqOp::Call: return s.target;
+    case SeqOp::Ret: return sp_ > 0 ? stack_[sp_ - 1] : fall;
+    case SeqOp::Swapp: return s.target;
+    case SeqOp::Halt: return pc_;
+    default: return fall;
+  }
+}
+
+MC1_HOT Fault Iss::check_fault(const DecodedWord& dw, std::uint32_t next) const {
+  if (dw.kind & DecodedWord::kReserved) return Fault::ReservedOp;
+  const MemSlot& d = dw.w.d;
+  if (d.op != MemOp::None) {
+    const std::uint16_t addr = static_cast<std::uint16_t>(a_[d.base] + d.disp);
+    if (addr >= kDataWords) return Fault::DataAddress;
+  }
+  const SeqOp op = dw.w.s.op;
+  if (next >= kProgramWords || (op == SeqOp::Call && pc_ + 1u >= kProgramWords)) return Fault::PcOverflow;
+  if (op == SeqOp::Call && sp_ == kCallDepth) return Fault::CallOverflow;
+  if (op == SeqOp::Ret && sp_ == 0) return Fault::CallUnderflow;
+  return Fault::None;
+}
+
+template <bool kRecord>
+MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec) {
+  namespace fp = mc1::fp24;
+  const MicroWord& w = dw.w;
+  // Every read below sees the state before this word's writes: FP results
+  // and register writes go to future buckets; only the store is immediate.
+  if (w.m.en) {
+    const fp::Result r = fp::mul(f_[w.m.a], f_[w.m.b]);
+    push_f(2, w.m.d, r.value);
+    push_flags(2, r.flags);
+    ++counters_.unit_ops[0];
+  }
+  if (w.a.en) {
+    const std::uint32_t x = f_[w.a.a], y = f_[w.a.b];
+    fp::Result r{};
+    switch (w.a.op) {
+      case AddOp::Add: r = fp::add(x, y); break;
+      case AddOp::Sub: r = fp::sub(x, y); break;
+      case AddOp::Cmp: r = fp::cmp(x, y); break;
+      case AddOp::Float: r = fp::from_int(static_cast<std::uint16_t>(x)); break;
+      case AddOp::Fix: r = fp::to_int(x); r.value &= 0xFFFF; break;
+      case AddOp::Neg: r = fp::neg(x); break;
+      default: r = fp::abs(x); break;
+    }
+    if (w.a.op == AddOp::Cmp) {
+      Bucket& b = ring_[(cycle_ + 2) % kRing];
+      b.cc_valid = true;
+      b.cc = static_cast<std::uint8_t>(r.value);
+      cmp_done_ = cycle_ + 2;
+    } else {
+      push_f(2, w.a.d, r.value);
+    }
+    push_flags(2, r.flags);
+    ++counters_.unit_ops[1];
+  }
+  if (w.f.en) {
+    const std::uint32_t x = f_[w.f.a];
+    fp::Result r{};
+    int latency = 2;
+    switch (w.f.op) {
+      case FuncOp::Recip: r = fp::recip(x); break;
+      case FuncOp::Sqrt: r = fp::sqrt(x); break;
+      case FuncOp::Sin: r = fp::sin(x); latency = 3; break;
+      case FuncOp::Cos: r = fp::cos(x); latency = 3; break;
+    }
+    if (latency == 3) func_busy_ = cycle_ + 1;
+    push_f(latency, w.f.d, r.value);
+    push_flags(latency, r.flags);
+    if (cycle_ + latency > fp_done_) fp_done_ = cycle_ + latency;
+    ++counters_.unit_ops[2];
+  }
+  if ((w.m.en || w.a.en) && cycle_ + 2 > fp_done_) fp_done_ = cycle_ + 2;
+
+  if (w.d.op != MemOp::None) {
+    const std::uint16_t addr = static_cast<std::uint16_t>(a_[w.d.base] + w.d.disp);
+    if (w.d.op == MemOp::Ld) {
+      push_f(1, w.d.f, data_[dsel_][addr]);
+    } else {
+      data_[dsel_][addr] = f_[w.d.f];
+      if constexpr (kRecord) rec->commits.push_back({Commit::Kind::Mem, addr, f_[w.d.f]});
+    }
+  }
+
+  const IntSlot& i = w.i;
+  const std::uint8_t ad = i.d & 15;
+  const std::uint16_t s = a_[i.s], t = a_[i.t], imm = i.imm;
+  switch (i.op) {
+    case IntOp::None: break;
+    case IntOp::Li: push_a(ad, imm); break;
+    case IntOp::Addi: push_a(ad, static_cast<std::uint16_t>(s + imm)); break;
+    case IntOp::Add: push_a(ad, static_cast<std::uint16_t>(s + t)); break;
+    case IntOp::Sub: push_a(ad, static_cast<std::uint16_t>(s - t)); break;
+    case IntOp::Muli: push_a(ad, static_cast<std::uint16_t>(std::uint32_t{s} * imm)); break;
+    case IntOp::Shl: push_a(ad, static_cast<std::uint16_t>(s << (imm & 15))); break;
+    case IntOp::Shr: push_a(ad, static_cast<std::uint16_t>(s >> (imm & 15))); break;
+    case IntOp::Sra:
+      push_a(ad, static_cast<std::uint16_t>(static_cast<std::int16_t>(s) >> (imm & 15)));
+      break;
+    case IntOp::Andi: push_a(ad, s & imm); break;
+    case IntOp::Ori: push_a(ad, s | imm); break;
+    case IntOp::Xor: push_a(ad, s ^ t); break;
+    case IntOp::Movaf: push_f(1, i.d, s); break;
+    case IntOp::Movfa: push_a(ad, static_cast<std::uint16_t>(f_[i.imm & 63])); break;
+    case IntOp::Lif: push_f(1, i.d, (std::uint32_t{imm} << 8) & kMask24); break;
+    case IntOp::Reserved: break;
+  }
+
+  switch (w.s.op) {
+    case SeqOp::Dbnz: push_a(w.s.r, static_cast<std::uint16_t>(a_[w.s.r] - 1)); break;
+    case SeqOp::Call: stack_[sp_++] = static_cast<std::uint16_t>(pc_ + 1); break;
+    case SeqOp::Ret: --sp_; break;
+    case SeqOp::Swapd:
+      dsel_ ^= 1;
+      data_ready_ = false;
+      break;
+    case SeqOp::Swapp:
+      psel_ ^= 1;
+      program_ready_ = false;
+      break;
+    case SeqOp::Halt: state_ = RunState::Halted; break;
+    default: break;
+  }
+  pc_ = static_cast<std::uint16_t>(next);
+  ++counters_.issued;
+}
+
+template <bool kRecord>
+void Iss::clock(CycleRecord* rec) {
+  int cc = kNoCommit, flags = kNoCommit;
+  if constexpr (kRecord) {
+    rec->cycle = cycle_;
+    rec->pc = pc_;
+    rec->issued = false;
+    rec->stall = Stall::None;
+    rec->psel = static_cast<std::uint8_t>(psel_);
+    rec->dsel = static_cast<std::uint8_t>(dsel_);
+    rec->commits.clear();
+  }
+  take_due<kRecord>(rec, cc, flags);
+  if (state_ == RunState::Running) {
+    const DecodedWord& dw = decoded_[psel_][pc_];
+    const Stall s = stall_reason(dw);
+    if (s != Stall::None) {
+      ++counters_.stalls[static_cast<int>(s)];
+      if constexpr (kRecord) rec->stall = s;
+    } else {
+      const std::uint32_t next = next_pc(dw);
+      const Fault f = check_fault(dw, next);
+      if (f != Fault::None) {
+        state_ = RunState::Faulted;
+        fault_ = f;
+      } else {
+        issue<kRecord>(dw, next, rec);
+        if constexpr (kRecord) rec->issued = true;
+      }
+    }
+  }
+  if constexpr (kRecord) {
+    if (cc != kNoCommit) rec->commits.push_back({Commit::Kind::Cc, 0, static_cast<std::uint32_t>(cc)});
+    if (flags != kNoCommit) rec->commits.push_back({Commit::Kind::Flags, 0, static_cast<std::uint32_t>(flags)});
+  }
+  ++cycle_;
+  apply_next();
+}
+
+void Iss::step(CycleRecord& rec) { clock<true>(&rec); }
+
+std::uint64_t Iss::run(std::uint64_t max_cycles) {
+  std::uint64_t n = 0;
+  while (n < max_cycles && state_ == RunState::Running) {
+    clock<false>(nullptr);
+    ++n;
+  }
+  return n;
+}
+
+}  // namespace mc1::apu

@@ -1,0 +1,133 @@
+// The APU cycle profile (apu_profile.hpp).
+#include "apu_profile.hpp"
+
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+#include <vector>
+
+#if __has_include("disasm.hpp")
+#include "disasm.hpp"
+#define MC1_APU_HAVE_DISASM 1
+#endif
+
+namespace mc1::apu {
+namespace {
+
+std::uint8_t unit_mask(const Encoded& e) {
+  const MicroWord w = MicroWord::decode(e);
+  return static_cast<std::uint8_t>((w.m.en ? 1 : 0) | (w.a.en ? 2 : 0) | (w.f.en ? 4 : 0));
+}
+
+std::string word_text(const Encoded& e) {
+#ifdef MC1_APU_HAVE_DISASM
+  return disassemble(e);
+#else
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%016llx_%016llx", static_cast<unsigned long long>(e.hi),
+                static_cast<unsigned long long>(e.lo));
+  return buf;
+#endif
+}
+
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* fmt, ...) {
+  char buf[512];
+  va_list ap;
+  va_start(ap, fmt);
+  std::vsnprintf(buf, sizeof buf, fmt, ap);
+  va_end(ap);
+  return buf;
+}
+
+double percent(std::uint64_t part, std::uint64_t whole) { return whole ? 100.0 * part / whole : 0.0; }
+
+}  // namespace
+
+const char* unit_name(int unit) {
+  static const char* const kNames[kFpUnits] = {"multiplier", "adder", "function"};
+  return unit >= 0 && unit < kFpUnits ? kNames[unit] : "?";
+}
+
+std::uint64_t Profile::PcStats::stalled() const {
+  std::uint64_t n = 0;
+  for (int s = 1; s < kStallKinds; ++s) n += stalls[s];
+  return n;
+}
+
+void Profile::add(const CycleRecord& r) {
+  if (!r.issued && r.stall == Stall::None) return;  // idle, halted, or a faulting word
+  ++cycles_;
+  const int bank = r.psel & 1;
+  const int pc = r.pc % kProgramWords;
+  PcStats& p = pcs_[bank][pc];
+  if (!r.issued) {
+    ++stalls_[static_cast<int>(r.stall)];
+    ++p.stalls[static_cast<int>(r.stall)];
+    return;
+  }
+  ++issued_;
+  ++p.issued;
+  const Encoded e = word_at_ ? word_at_(bank, static_cast<std::uint16_t>(pc)) : Encoded{};
+  if (e != seen_[bank][pc]) {
+    seen_[bank][pc] = e;
+    units_[bank][pc] = unit_mask(e);
+  }
+  const std::uint8_t m = units_[bank][pc];
+  for (int u = 0; u < kFpUnits; ++u) unit_ops_[u] += (m >> u) & 1;
+}
+
+double Profile::utilization(int unit) const {
+  return cycles_ ? static_cast<double>(unit_ops_[unit]) / static_cast<double>(cycles_) : 0.0;
+}
+
+double Profile::mflops() const {
+  const std::uint64_t ops = unit_ops_[0] + unit_ops_[1] + unit_ops_[2];
+  return cycles_ ? static_cast<double>(ops) / static_cast<double>(cycles_) * kApuClockHz / 1e6 : 0.0;
+}
+
+std::string Profile::report(int top_n) const {
+  std::string s;
+  s += format("APU profile: %llu cycles (%.3f ms at 4 MHz), %llu words issued (%.1f%%)\n",
+              static_cast<unsigned long long>(cycles_), cycles_ / kApuClockHz * 1e3,
+              static_cast<unsigned long long>(issued_), percent(issued_, cycles_));
+  s += "unit          ops        util    MFLOPS\n";
+  std::uint64_t ops = 0;
+  for (int u = 0; u < kFpUnits; ++u) {
+    ops += unit_ops_[u];
+    s += format("%-12s %-10llu %5.1f%%  %6.2f\n", unit_name(u), static_cast<unsigned long long>(unit_ops_[u]),
+                100.0 * utilization(u), utilization(u) * kApuClockHz / 1e6);
+  }
+  s += format("%-12s %-10llu %5.1f%%  %6.2f of %.0f peak\n", "all", static_cast<unsigned long long>(ops),
+              cycles_ ? 100.0 * ops / (3.0 * cycles_) : 0.0, mflops(), kFpUnits * kApuClockHz / 1e6);
+  std::uint64_t stalled = 0;
+  for (int k = 1; k < kStallKinds; ++k) stalled += stalls_[k];
+  s += format("stall         cycles     share\n");
+  for (int k = 1; k < kStallKinds; ++k)
+    s += format("%-12s %-10llu %5.1f%%\n", stall_name(static_cast<Stall>(k)),
+                static_cast<unsigned long long>(stalls_[k]), percent(stalls_[k], cycles_));
+  s += format("%-12s %-10llu %5.1f%%\n", "all", static_cast<unsigned long long>(stalled), percent(stalled, cycles_));
+
+  struct Hot { int bank, pc; std::uint64_t n; };
+  std::vector<Hot> hot;
+  for (int b = 0; b < 2; ++b)
+    for (int pc = 0; pc < kProgramWords; ++pc)
+      if (const std::uint64_t n = pcs_[b][pc].stalled()) hot.push_back({b, pc, n});
+  std::stable_sort(hot.begin(), hot.end(), [](const Hot& x, const Hot& y) { return x.n > y.n; });
+  if (static_cast<int>(hot.size()) > top_n) hot.resize(static_cast<std::size_t>(top_n));
+  if (!hot.empty()) {
+    s += "top stalling words\n";
+    s += "bank pc     stalled  share   issued   bank    raw    waw     cc struct  drain  word\n";
+    for (const Hot& h : hot) {
+      const PcStats& p = pcs_[h.bank][h.pc];
+      s += format("%-4d 0x%03x %-8llu %5.1f%% %-8llu", h.bank, h.pc, static_cast<unsigned long long>(h.n),
+                  percent(h.n, stalled), static_cast<unsigned long long>(p.issued));
+      for (int k = 1; k < kStallKinds; ++k) s += format(" %6llu", static_cast<unsigned long long>(p.stalls[k]));
+      const Encoded e = word_at_ ? word_at_(h.bank, static_cast<std::uint16_t>(h.pc)) : Encoded{};
+      s += "  " + word_text(e) + "\n";
+    }
+  }
+  return s;
+}
+
+}  // namespace mc1::apu

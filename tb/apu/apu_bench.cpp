@@ -1,0 +1,220 @@
+// apu-bench: the paper's step 1 kernel (firmware/kernels/xform4.apu, a 4x4
+// transform of a vertex stream, double buffered) on the ISS and the RTL core:
+// APU cycles, unit utilization, host cycles per second and the ISS/RTL speed
+// ratio (docs/apu-tools.md). The results of one block are checked against
+// FP24 model arithmetic first, on every engine.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "apu_driver.hpp"
+#include "apu_lockstep.hpp"
+#include "apu_profile.hpp"
+#include "apu_random.hpp"
+#include "apu_tools.hpp"
+#include "fp24.hpp"
+
+#ifndef MC1_SOURCE_DIR
+#define MC1_SOURCE_DIR "."
+#endif
+
+namespace {
+
+using namespace mc1::apu;
+namespace fp = mc1::fp24;
+
+constexpr const char* kUsage =
+    "usage: apu-bench [--kernel PATH] [--engines iss,rtl] [--iss-cycles N] [--rtl-cycles N] [--check]\n"
+    "Runs the xform4 vertex-transform stream (blocks of 1000 vertices) on each engine through the\n"
+    "MPU driver, the MPU polling every 64 cycles. Prints APU cycles, cycles per vertex, unit\n"
+    "utilization and host speed; --check exits 1 if the ISS is below 20 M cycles/s or the RTL\n"
+    "below 2 M cycles/s (or a result is wrong, always).\n";
+
+constexpr int kVertices = 1000;  // per block (the kernel allows up to 1015)
+constexpr int kCount = 0, kMatrix = 16, kVerts = 32;
+constexpr double kIssTarget = 20e6, kRtlTarget = 2e6;
+
+[[noreturn]] void usage_error(const std::string& msg) {
+  std::cerr << "apu-bench: " << msg << "\n" << kUsage;
+  std::exit(2);
+}
+
+// FP24 values of moderate size: sign, exponent 60..66, random fraction.
+std::uint32_t moderate(Rng& rng) {
+  return (rng.below(2) << 23) | static_cast<std::uint32_t>(rng.range(60, 66)) << 16 | rng.below(0x10000);
+}
+
+struct Block {
+  std::vector<std::uint32_t> words;  // [0, 32 + 4n)
+};
+
+Block make_block(Rng& rng, int n) {
+  Block b;
+  b.words.assign(kVerts + 4 * n, 0);
+  b.words[kCount] = static_cast<std::uint32_t>(n);
+  for (int i = 0; i < 16; ++i) b.words[kMatrix + i] = moderate(rng);
+  for (int i = 0; i < 4 * n; ++i) b.words[kVerts + i] = moderate(rng);
+  return b;
+}
+
+// What the kernel computes (its header): ((m0 x + m1 y) + (m2 z + m3 w)).
+std::vector<std::uint32_t> reference(const Block& b) {
+  const int n = static_cast<int>(b.words[kCount]);
+  std::vector<std::uint32_t> out(4 * n);
+  const std::uint32_t* m = &b.words[kMatrix];
+  for (int i = 0; i < n; ++i) {
+    const std::uint32_t* v = &b.words[kVerts + 4 * i];
+    for (int r = 0; r < 4; ++r) {
+      auto p = [&](int c) { return fp::mul(m[4 * r + c], v[c]).value; };
+      out[4 * i + r] = fp::add(fp::add(p(0), p(1)).value, fp::add(p(2), p(3)).value).value;
+    }
+  }
+  return out;
+}
+
+struct Stream {
+  std::vector<Block> blocks;  // the last has count 0
+  std::size_t next = 0;
+};
+
+// Runs a stream to its HALT; returns APU cycles. The MPU hands the next
+// block over whenever the APU has taken the last, polling every 64 cycles.
+std::uint64_t run_stream(ApuDriver& drv, const std::vector<Encoded>& kernel, Stream& s) {
+  drv.load_program(kernel);
+  drv.hand_over_program();
+  auto give = [&] {
+    const Block& b = s.blocks[s.next++];
+    drv.load_data(0, b.words);
+    drv.hand_over_data();
+  };
+  give();
+  drv.start(0);
+  const auto mpu = [&] {
+    if (s.next < s.blocks.size() && !drv.data_ready()) give();
+  };
+  return drv.run_until_done(~0ull >> 1, mpu, 64);
+}
+
+Stream make_stream(std::uint64_t seed, int blocks) {
+  Rng rng(seed);
+  Stream s;
+  for (int i = 0; i < blocks; ++i) s.blocks.push_back(make_block(rng, kVertices));
+  s.blocks.push_back(make_block(rng, 0));
+  return s;
+}
+
+struct Result {
+  std::string engine;
+  std::uint64_t cycles = 0;
+  double seconds = 0, util[kFpUnits] = {}, mflops = 0;
+  std::uint64_t vertices = 0;
+  std::uint64_t stalls[kStallKinds] = {};
+  bool correct = false;
+};
+
+Result bench(const std::string& name, const std::vector<Encoded>& kernel, std::uint64_t cycles_wanted) {
+  Result r;
+  r.engine = name;
+  // 1. Correctness and profile: two blocks, every cycle recorded.
+  {
+    auto engine = tools::make_engine(name);
+    ApuDriver drv(*engine);
+    Profile prof([&drv](int bank, std::uint16_t pc) { return drv.program_word(bank, pc); });
+    drv.set_observer([&](const CycleRecord& rec) { prof.add(rec); });
+    Stream s = make_stream(7, 2);
+    run_stream(drv, kernel, s);
+    // After the end block the MPU holds the last real block, in place.
+    const Block& last = s.blocks[1];
+    r.correct = drv.read_results(kVerts, 4 * kVertices) == reference(last);
+    for (int u = 0; u < kFpUnits; ++u) r.util[u] = prof.utilization(u);
+    r.mflops = prof.mflops();
+    for (int k = 0; k < kStallKinds; ++k) r.stalls[k] = prof.stalls(static_cast<Stall>(k));
+  }
+  // 2. Speed: the fast path, no records.
+  const int blocks = static_cast<int>(std::max<std::uint64_t>(1, cycles_wanted / (16 * kVertices + 64)));
+  Stream s = make_stream(11, blocks);
+  auto engine = tools::make_engine(name);
+  ApuDriver drv(*engine);
+  const auto t0 = std::chrono::steady_clock::now();
+  r.cycles = run_stream(drv, kernel, s);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.vertices = static_cast<std::uint64_t>(blocks) * kVertices;
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string kernel_path = std::string(MC1_SOURCE_DIR) + "/firmware/kernels/xform4.apu";
+  std::vector<std::string> engines = {"iss"};
+  if (tools::rtl_available()) engines.push_back("rtl");
+  std::uint64_t iss_cycles = 40'000'000, rtl_cycles = 4'000'000;
+  bool check = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage_error(a + " wants a value");
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      std::cout << kUsage;
+      return 0;
+    } else if (a == "--kernel") {
+      kernel_path = value();
+    } else if (a == "--engines") {
+      engines.clear();
+      std::stringstream ss(value());
+      for (std::string e; std::getline(ss, e, ',');) engines.push_back(e);
+    } else if (a == "--iss-cycles" || a == "--rtl-cycles") {
+      char* end = nullptr;
+      const std::string v = value();
+      const unsigned long long n = std::strtoull(v.c_str(), &end, 0);
+      if (v.empty() || *end) usage_error(a + " wants a number, not '" + v + "'");
+      (a == "--iss-cycles" ? iss_cycles : rtl_cycles) = n;
+    } else if (a == "--check") {
+      check = true;
+    } else {
+      usage_error("unknown argument " + a);
+    }
+  }
+  try {
+    const std::vector<Encoded> kernel = tools::load_program_file(kernel_path);
+    std::vector<Result> results;
+    for (const auto& e : engines) results.push_back(bench(e, kernel, e == "rtl" ? rtl_cycles : iss_cycles));
+
+    std::printf("apu-bench: %s, blocks of %d vertices, MPU polling every 64 cycles\n", kernel_path.c_str(),
+                kVertices);
+    std::printf("engine  result  APU cycles  vertices  cyc/vertex  mul%%   add%%   func%%  MFLOPS  host s   cycles/s\n");
+    bool ok = true;
+    for (const Result& r : results) {
+      const double rate = r.cycles / r.seconds;
+      std::printf("%-6s  %-6s  %-10llu  %-8llu  %-10.2f  %5.1f  %5.1f  %5.1f  %6.2f  %-7.3f  %.3g\n", r.engine.c_str(),
+                  r.correct ? "ok" : "WRONG", static_cast<unsigned long long>(r.cycles),
+                  static_cast<unsigned long long>(r.vertices), double(r.cycles) / r.vertices, 100 * r.util[0],
+                  100 * r.util[1], 100 * r.util[2], r.mflops, r.seconds, rate);
+      const double target = r.engine == "rtl" ? kRtlTarget : kIssTarget;
+      if (!r.correct) ok = false;
+      if (rate < target) {
+        std::printf("  %s below its target of %.0f M cycles/s\n", r.engine.c_str(), target / 1e6);
+        if (check) ok = false;
+      }
+      std::printf("  stall cycles (2-block profile):");
+      for (int k = 1; k < kStallKinds; ++k)
+        std::printf(" %s %llu", stall_name(static_cast<Stall>(k)), static_cast<unsigned long long>(r.stalls[k]));
+      std::printf("\n");
+    }
+    if (results.size() == 2)
+      std::printf("speed ratio %s/%s: %.1f\n", results[0].engine.c_str(), results[1].engine.c_str(),
+                  (results[0].cycles / results[0].seconds) / (results[1].cycles / results[1].seconds));
+    return ok ? 0 : 1;
+  } catch (const std::exception& ex) {
+    std::cerr << "apu-bench: " << ex.what() << "\n";
+    return 2;
+  }
+}

@@ -1,0 +1,231 @@
+// apu-cosim: two APU engines in lockstep (default ISS vs RTL), stopping at
+// the first cycle they disagree on (docs/apu-tools.md).
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "apu_driver.hpp"
+#include "apu_lockstep.hpp"
+#include "apu_random.hpp"
+#include "apu_tools.hpp"
+
+namespace {
+
+using namespace mc1::apu;
+
+constexpr const char* kUsage =
+    "usage: apu-cosim PROGRAM.bin|PROGRAM.apu [--data FILE]... [--max-cycles N] [--engines A,B] [--trace F.fst]\n"
+    "       apu-cosim --random N [--seed S] [--first I] [--keep-going] [--max-cycles N] [--engines A,B]\n"
+    "Runs two APU engines (iss, rtl; default iss,rtl) cycle by cycle and stops at the first\n"
+    "difference in pc, issue, stall reason, bank select, commit, run state or fault, printing\n"
+    "cycle, pc, the disassembled word and both values. Several --data files form a stream:\n"
+    "the next is handed over when the APU has taken the last. --random checks N generated programs\n"
+    "(with their MPU hand-over schedule) from seed S, cases I..I+N-1; --keep-going reports\n"
+    "every failing case instead of stopping at the first. Exit 0: all agree;\n"
+    "1: divergence; 2: usage or input error.\n";
+
+struct Options {
+  std::string program, trace;
+  std::vector<std::string> data;
+  std::string engine_a = "iss", engine_b = "rtl";
+  std::uint64_t max_cycles = 0;  // 0: default
+  long random = -1;
+  std::uint64_t seed = 1, first = 0;
+  bool keep_going = false;
+};
+
+[[noreturn]] void usage_error(const std::string& msg) {
+  std::cerr << "apu-cosim: " << msg << "\n" << kUsage;
+  std::exit(2);
+}
+
+std::uint64_t number(const std::string& opt, const char* text) {
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(text, &end, 0);
+  if (!*text || *end) usage_error(opt + " wants a number, not '" + text + "'");
+  return v;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) usage_error(a + " wants a value");
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      std::cout << kUsage;
+      std::exit(0);
+    } else if (a == "--data") {
+      o.data.push_back(value());
+    } else if (a == "--trace") {
+      o.trace = value();
+    } else if (a == "--max-cycles") {
+      o.max_cycles = number(a, value());
+    } else if (a == "--random") {
+      o.random = static_cast<long>(number(a, value()));
+    } else if (a == "--seed") {
+      o.seed = number(a, value());
+    } else if (a == "--first") {
+      o.first = number(a, value());
+    } else if (a == "--keep-going") {
+      o.keep_going = true;
+    } else if (a == "--engines") {
+      const std::string e = value();
+      const auto comma = e.find(',');
+      if (comma == std::string::npos) usage_error("--engines wants A,B (e.g. iss,rtl)");
+      o.engine_a = e.substr(0, comma);
+      o.engine_b = e.substr(comma + 1);
+    } else if (!a.empty() && a[0] == '-') {
+      usage_error("unknown option " + a);
+    } else if (o.program.empty()) {
+      o.program = a;
+    } else {
+      usage_error("more than one program: " + o.program + ", " + a);
+    }
+  }
+  if (o.random < 0 && o.program.empty()) usage_error("no program and no --random");
+  if (o.random >= 0 && !o.program.empty()) usage_error("a program or --random, not both");
+  return o;
+}
+
+struct Engines {
+  std::unique_ptr<ApuEngine> a, b;
+  ApuEngine* both[2];
+  Engines(const Options& o, const char* trace)
+      : a(tools::make_engine(o.engine_a, o.engine_a == "rtl" ? trace : nullptr)),
+        b(tools::make_engine(o.engine_b, o.engine_b == "rtl" ? trace : nullptr)),
+        both{a.get(), b.get()} {}
+};
+
+// Clocks both until both stop (plus the settle cycles of the HALT word's
+// own results), the MPU acting before every cycle. Returns false on a
+// divergence, after printing it.
+bool lockstep_run(const Options& o, Lockstep& ls, std::uint64_t max_cycles,
+                  const std::function<void()>& mpu, std::uint64_t& cycles, std::uint64_t stalls[kStallKinds]) {
+  int settle = ApuDriver::kSettleCycles;
+  for (cycles = 0; cycles < max_cycles; ++cycles) {
+    if (!ls.running() && settle-- == 0) break;
+    if (mpu) mpu();
+    if (auto d = ls.step()) {
+      std::cout << "apu-cosim: " << d->report(o.engine_a, o.engine_b);
+      return false;
+    }
+    ++stalls[static_cast<int>(ls.record_a().stall)];
+  }
+  if (ls.running()) {
+    std::cout << "apu-cosim: both engines still running after " << max_cycles << " cycles (pc "
+              << hex_text(ls.record_a().pc, 3) << ", stall " << stall_name(ls.record_a().stall)
+              << "); no divergence so far\n";
+    return false;
+  }
+  if (auto d = ls.compare_state()) {
+    std::cout << "apu-cosim: final state differs\n" << d->report(o.engine_a, o.engine_b);
+    return false;
+  }
+  return true;
+}
+
+int run_program(const Options& o) {
+  const std::vector<Encoded> words = tools::load_program_file(o.program);
+  std::vector<std::vector<std::pair<std::uint16_t, std::uint32_t>>> blocks;
+  for (const auto& f : o.data) blocks.push_back(read_data_file(f));
+  Engines e(o, o.trace.empty() ? nullptr : o.trace.c_str());
+  std::size_t next = 0;
+  auto hand_over_next = [&] {
+    for (ApuEngine* eng : e.both) {
+      for (const auto& [addr, v] : blocks[next]) eng->write_data(addr, v);
+      eng->hand_over_data();
+    }
+    ++next;
+  };
+  for (ApuEngine* eng : e.both) {
+    for (std::size_t i = 0; i < words.size(); ++i) eng->write_program(static_cast<std::uint16_t>(i), words[i]);
+    eng->hand_over_program();
+  }
+  if (!blocks.empty()) hand_over_next();
+  for (ApuEngine* eng : e.both) eng->start(0);
+  Lockstep ls(*e.a, *e.b);
+  std::uint64_t cycles = 0, stalls[kStallKinds] = {};
+  const auto mpu = [&] {
+    if (next < blocks.size() && !e.a->data_ready()) hand_over_next();
+  };
+  const bool ok = lockstep_run(o, ls, o.max_cycles ? o.max_cycles : 10'000'000, mpu, cycles, stalls);
+  if (!ok) return 1;
+  std::cout << "apu-cosim: " << o.engine_a << " and " << o.engine_b << " agree on " << cycles << " cycles; "
+            << run_state_name(e.a->state());
+  if (e.a->state() == RunState::Faulted) std::cout << " (" << fault_name(e.a->fault()) << ")";
+  std::cout << "\n";
+  return 0;
+}
+
+int run_random(const Options& o) {
+  std::uint64_t total_cycles = 0, stalls[kStallKinds] = {}, halted = 0, faulted = 0, handovers = 0, failed = 0;
+  for (long n = 0; n < o.random; ++n) {
+    const std::uint64_t index = o.first + static_cast<std::uint64_t>(n);
+    const RandomCase c = make_random_case(case_seed(o.seed, index));
+    Engines e(o, nullptr);
+    RandomMpu mpu(c);
+    mpu.boot(e.both, 2);
+    Lockstep ls(*e.a, *e.b);
+    std::uint64_t cycles = 0;
+    const bool ok = lockstep_run(o, ls, o.max_cycles ? o.max_cycles : c.max_cycles,
+                                 [&] { mpu.before_cycle(e.both, 2); }, cycles, stalls);
+    const auto rerun = [&] {
+      std::cout << "  case " << index << " of seed " << o.seed << ": " << c.describe() << "\n"
+                << "  rerun: apu-cosim --random 1 --seed " << o.seed << " --first " << index << " --engines "
+                << o.engine_a << "," << o.engine_b << "\n";
+    };
+    if (!ok) {
+      rerun();
+      if (!o.keep_going) return 1;
+      ++failed;
+      continue;
+    }
+    // Both agree; they must also have done what the generator planned.
+    const bool as_planned = c.planned_fault == Fault::None
+                                ? e.a->state() == RunState::Halted
+                                : e.a->state() == RunState::Faulted && e.a->fault() == c.planned_fault;
+    if (!as_planned) {
+      std::cout << "apu-cosim: both engines end " << run_state_name(e.a->state()) << " ("
+                << fault_name(e.a->fault()) << ") at cycle " << e.a->cycle() << ", pc "
+                << hex_text(ls.record_a().pc, 3) << ", but the program was made to end in "
+                << (c.planned_fault == Fault::None ? "halt" : fault_name(c.planned_fault)) << "\n";
+      rerun();
+      if (!o.keep_going) return 1;
+      ++failed;
+      continue;
+    }
+    total_cycles += cycles;
+    (e.a->state() == RunState::Halted ? halted : faulted) += 1;
+    handovers += mpu.data_handovers() + mpu.program_handovers();
+    if ((n + 1) % 100 == 0 || n + 1 == o.random)
+      std::cerr << "apu-cosim: " << (n + 1) << "/" << o.random << " cases, " << total_cycles << " cycles\n";
+  }
+  if (failed) {
+    std::cout << "apu-cosim: " << failed << " of " << o.random << " random programs failed\n";
+    return 1;
+  }
+  std::cout << "apu-cosim: " << o.random << " random programs (seed " << o.seed << "), " << o.engine_a << " and "
+            << o.engine_b << " agree on " << total_cycles << " cycles; " << halted << " halted, " << faulted
+            << " faulted as planned; " << handovers << " MPU hand-overs\n  stall cycles:";
+  for (int s = 1; s < kStallKinds; ++s) std::cout << " " << stall_name(static_cast<Stall>(s)) << " " << stalls[s];
+  std::cout << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  try {
+    return o.random >= 0 ? run_random(o) : run_program(o);
+  } catch (const std::exception& ex) {
+    std::cerr << "apu-cosim: " << ex.what() << "\n";
+    return 2;
+  }
+}

@@ -1,0 +1,237 @@
+// The lockstep checker catches a corrupted engine at the exact cycle, and the
+// random program generator makes valid, terminating, varied test cases.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <memory>
+#include <set>
+
+#include "../tb/apu/apu_lockstep.hpp"
+#include "apu_driver.hpp"
+#include "apu_random.hpp"
+#include "disasm.hpp"
+#if __has_include("apu_rtl_engine.hpp")
+#include "apu_rtl_engine.hpp"
+#define MC1_TEST_HAVE_RTL 1
+#endif
+
+namespace mc1::apu {
+namespace {
+
+// An ISS whose records are falsified in one cycle, one way.
+class CorruptEngine final : public ApuEngine {
+ public:
+  enum class Mode { FlipCommitBit, DropCommit, ChangeStall, ShiftPc };
+  CorruptEngine(std::uint64_t at, Mode mode) : at_(at), mode_(mode) {}
+
+  void write_program(std::uint16_t a, const Encoded& w) override { iss_->write_program(a, w); }
+  void write_data(std::uint16_t a, std::uint32_t v) override { iss_->write_data(a, v); }
+  std::uint32_t read_data(std::uint16_t a) const override { return iss_->read_data(a); }
+  void hand_over_program() override { iss_->hand_over_program(); }
+  void hand_over_data() override { iss_->hand_over_data(); }
+  bool program_ready() const override { return iss_->program_ready(); }
+  bool data_ready() const override { return iss_->data_ready(); }
+  void start(std::uint16_t pc) override { iss_->start(pc); }
+  RunState state() const override { return iss_->state(); }
+  Fault fault() const override { return iss_->fault(); }
+  std::uint64_t cycle() const override { return iss_->cycle(); }
+  std::uint32_t freg(int i) const override { return iss_->freg(i); }
+  std::uint16_t areg(int i) const override { return iss_->areg(i); }
+  std::uint8_t flags() const override { return iss_->flags(); }
+  std::uint8_t cc() const override { return iss_->cc(); }
+
+  void step(CycleRecord& rec) override {
+    iss_->step(rec);
+    if (rec.cycle != at_) return;
+    switch (mode_) {
+      case Mode::FlipCommitBit: rec.commits.back().value ^= 0x100; break;
+      case Mode::DropCommit: rec.commits.pop_back(); break;
+      case Mode::ChangeStall: rec.stall = rec.stall == Stall::Raw ? Stall::Waw : Stall::Raw; break;
+      case Mode::ShiftPc: rec.pc ^= 1; break;
+    }
+  }
+
+ private:
+  std::unique_ptr<Iss> iss_ = std::make_unique<Iss>();
+  std::uint64_t at_;
+  Mode mode_;
+};
+
+// Runs a random case on a and b in lockstep; the first divergence, if any.
+std::optional<Divergence> lockstep_case(const RandomCase& c, ApuEngine& a, ApuEngine& b, std::uint64_t* cycles = nullptr) {
+  ApuEngine* both[2] = {&a, &b};
+  RandomMpu mpu(c);
+  mpu.boot(both, 2);
+  Lockstep ls(a, b);
+  std::uint64_t n = 0;
+  int settle = ApuDriver::kSettleCycles;  // the HALT word's own results land
+  for (; n < c.max_cycles && (ls.running() || settle-- > 0); ++n) {
+    mpu.before_cycle(both, 2);
+    if (auto d = ls.step()) return d;
+  }
+  if (cycles) *cycles = n;
+  return ls.compare_state();
+}
+
+// The cycles of a clean run of case c in which something is committed / stalls.
+struct Trace {
+  std::vector<std::uint64_t> commit_cycles, stall_cycles;
+};
+Trace trace_case(const RandomCase& c) {
+  Trace t;
+  auto iss = std::make_unique<Iss>();
+  ApuEngine* one[1] = {iss.get()};
+  RandomMpu mpu(c);
+  mpu.boot(one, 1);
+  CycleRecord r;
+  while (iss->state() == RunState::Running) {
+    mpu.before_cycle(one, 1);
+    iss->step(r);
+    if (!r.commits.empty()) t.commit_cycles.push_back(r.cycle);
+    if (r.stall != Stall::None) t.stall_cycles.push_back(r.cycle);
+  }
+  return t;
+}
+
+RandomCase busy_case() {
+  // The first case of seed 1 with enough commits and stalls to pick from.
+  for (std::uint64_t i = 0;; ++i) {
+    RandomCase c = make_random_case(case_seed(1, i));
+    const Trace t = trace_case(c);
+    if (t.commit_cycles.size() > 40 && t.stall_cycles.size() > 10) return c;
+  }
+}
+
+TEST(ApuCosim, TwoIssAgree) {
+  for (std::uint64_t i = 0; i < 50; ++i) {
+    const RandomCase c = make_random_case(case_seed(3, i));
+    auto a = std::make_unique<Iss>(), b = std::make_unique<Iss>();
+    std::uint64_t cycles = 0;
+    const auto d = lockstep_case(c, *a, *b, &cycles);
+    EXPECT_FALSE(d) << d->report("a", "b");
+    EXPECT_GT(cycles, 10u);
+  }
+}
+
+TEST(ApuCosim, FlippedCommitIsCaughtAtItsCycle) {
+  const RandomCase c = busy_case();
+  const Trace t = trace_case(c);
+  for (std::size_t k : {std::size_t{0}, t.commit_cycles.size() / 2, t.commit_cycles.size() - 1}) {
+    const std::uint64_t at = t.commit_cycles[k];
+    auto good = std::make_unique<Iss>();
+    CorruptEngine bad(at, CorruptEngine::Mode::FlipCommitBit);
+    const auto d = lockstep_case(c, *good, bad);
+    ASSERT_TRUE(d) << "corruption at cycle " << at << " not caught";
+    EXPECT_EQ(d->cycle, at);
+    EXPECT_EQ(d->field.rfind("commit ", 0), 0u) << d->field;
+    EXPECT_NE(d->a, d->b);
+    EXPECT_FALSE(d->word.empty());
+    const std::string report = d->report("iss", "bad");
+    EXPECT_NE(report.find("divergence at cycle " + std::to_string(at) + ", pc "), std::string::npos) << report;
+  }
+}
+
+TEST(ApuCosim, DroppedCommitIsCaught) {
+  const RandomCase c = busy_case();
+  const std::uint64_t at = trace_case(c).commit_cycles[5];
+  auto good = std::make_unique<Iss>();
+  CorruptEngine bad(at, CorruptEngine::Mode::DropCommit);
+  const auto d = lockstep_case(c, *good, bad);
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->cycle, at);
+  EXPECT_EQ(d->b, "(none)");
+}
+
+TEST(ApuCosim, WrongStallReasonAndPcAreCaught) {
+  const RandomCase c = busy_case();
+  const std::uint64_t at = trace_case(c).stall_cycles[3];
+  {
+    auto good = std::make_unique<Iss>();
+    CorruptEngine bad(at, CorruptEngine::Mode::ChangeStall);
+    const auto d = lockstep_case(c, *good, bad);
+    ASSERT_TRUE(d);
+    EXPECT_EQ(d->cycle, at);
+    EXPECT_EQ(d->field, "stall");
+  }
+  {
+    auto good = std::make_unique<Iss>();
+    CorruptEngine bad(17, CorruptEngine::Mode::ShiftPc);
+    const auto d = lockstep_case(c, *good, bad);
+    ASSERT_TRUE(d);
+    EXPECT_EQ(d->cycle, 17u);
+    EXPECT_EQ(d->field, "pc");
+  }
+}
+
+TEST(ApuRandom, SameSeedSameCase) {
+  const RandomCase a = make_random_case(42), b = make_random_case(42), c = make_random_case(43);
+  EXPECT_EQ(a.images, b.images);
+  EXPECT_EQ(a.data_blocks, b.data_blocks);
+  EXPECT_NE(a.images, c.images);
+}
+
+TEST(ApuRandom, ProgramsAreValidVariedAndEndAsPlanned) {
+  std::set<int> m_seen, a_ops, f_ops, d_ops, i_ops, s_ops;
+  std::array<std::uint64_t, kStallKinds> stalls{};
+  std::set<Fault> faults;
+  int multi_image = 0;
+  for (std::uint64_t i = 0; i < 300; ++i) {
+    const RandomCase c = make_random_case(case_seed(9, i));
+    multi_image += c.images.size() > 1;
+    // A case planned to end in a reserved op has one word with it; the
+    // other cases must use only the ISA's ops, in the assembler's form.
+    for (std::size_t img = 0; img < c.images.size() && c.planned_fault != Fault::ReservedOp; ++img) {
+      const auto& words = c.images[img];
+      for (std::size_t at = c.entry[img]; at < words.size(); ++at) {
+        const MicroWord w = MicroWord::decode(words[at]);
+        if (w.m.en) m_seen.insert(0);
+        if (w.a.en) a_ops.insert(static_cast<int>(w.a.op));
+        if (w.f.en) f_ops.insert(static_cast<int>(w.f.op));
+        d_ops.insert(static_cast<int>(w.d.op));
+        i_ops.insert(static_cast<int>(w.i.op));
+        s_ops.insert(static_cast<int>(w.s.op));
+        EXPECT_EQ(noncanonical_reason(w), "") << c.describe() << " word " << at << ": " << disassemble(w);
+      }
+    }
+    auto iss = std::make_unique<Iss>();
+    ApuEngine* one[1] = {iss.get()};
+    RandomMpu mpu(c);
+    mpu.boot(one, 1);
+    CycleRecord r;
+    std::uint64_t n = 0;
+    for (; n < c.max_cycles && iss->state() == RunState::Running; ++n) {
+      mpu.before_cycle(one, 1);
+      iss->step(r);
+      ++stalls[static_cast<int>(r.stall)];
+    }
+    if (c.planned_fault == Fault::None) {
+      EXPECT_EQ(iss->state(), RunState::Halted) << c.describe();
+    } else {
+      EXPECT_EQ(iss->fault(), c.planned_fault) << c.describe();
+      faults.insert(c.planned_fault);
+    }
+  }
+  EXPECT_EQ(a_ops.size(), 7u);
+  EXPECT_EQ(f_ops.size(), 4u);
+  EXPECT_EQ(d_ops.size(), 3u);
+  EXPECT_EQ(i_ops.size(), 15u);  // none and the 14 ops
+  EXPECT_EQ(s_ops, (std::set<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}));
+  for (int k = 1; k < kStallKinds; ++k) EXPECT_GT(stalls[k], 0u) << stall_name(static_cast<Stall>(k));
+  EXPECT_GE(faults.size(), 4u);
+  EXPECT_GT(multi_image, 30);
+}
+
+#ifdef MC1_TEST_HAVE_RTL
+TEST(ApuCosim, IssAndRtlAgreeOnRandomPrograms) {
+  for (std::uint64_t i = 0; i < 30; ++i) {
+    const RandomCase c = make_random_case(case_seed(5, i));
+    auto iss = std::make_unique<Iss>();
+    RtlEngine rtl(nullptr);
+    const auto d = lockstep_case(c, *iss, rtl);
+    EXPECT_FALSE(d) << c.describe() << "\n" << d->report("iss", "rtl");
+  }
+}
+#endif
+
+}  // namespace
+}  // namespace mc1::apu
