@@ -8,24 +8,10 @@
 #include <sstream>
 
 #include "apu_iss.hpp"
-#if __has_include("disasm.hpp")
 #include "disasm.hpp"
-#define MC1_APU_HAVE_DISASM 1
-#endif
 
 namespace mc1::apu {
 namespace {
-
-std::string word_text(const Encoded& e) {
-#ifdef MC1_APU_HAVE_DISASM
-  return disassemble(e);
-#else
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%016llx_%016llx", static_cast<unsigned long long>(e.hi),
-                static_cast<unsigned long long>(e.lo));
-  return buf;
-#endif
-}
 
 std::string hex(unsigned v, int digits) {
   char buf[16];
@@ -169,7 +155,7 @@ void ApuDriver::fail(ApuError::Kind kind, const std::string& why) const {
     cycle = cycle > 0 ? cycle - 1 : 0;  // the last cycle of the run
     f = engine_.fault();
     what += " at cycle " + std::to_string(cycle) + ", pc " + hex(pc_, 3) + " (bank " + std::to_string(psel_) +
-            "): " + word_text(shadow_[psel_][pc_]);
+            "): " + disassemble(shadow_[psel_][pc_]);
     if (kind == ApuError::Kind::CycleLimit && last_stall_ == Stall::Bank)
       what += "  [waiting for the MPU's hand_over_data()/hand_over_program()]";
   }

@@ -6,10 +6,7 @@
 #include <cstdio>
 #include <vector>
 
-#if __has_include("disasm.hpp")
 #include "disasm.hpp"
-#define MC1_APU_HAVE_DISASM 1
-#endif
 
 namespace mc1::apu {
 namespace {
@@ -17,17 +14,6 @@ namespace {
 std::uint8_t unit_mask(const Encoded& e) {
   const MicroWord w = MicroWord::decode(e);
   return static_cast<std::uint8_t>((w.m.en ? 1 : 0) | (w.a.en ? 2 : 0) | (w.f.en ? 4 : 0));
-}
-
-std::string word_text(const Encoded& e) {
-#ifdef MC1_APU_HAVE_DISASM
-  return disassemble(e);
-#else
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%016llx_%016llx", static_cast<unsigned long long>(e.hi),
-                static_cast<unsigned long long>(e.lo));
-  return buf;
-#endif
 }
 
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
@@ -124,7 +110,7 @@ std::string Profile::report(int top_n) const {
                   percent(h.n, stalled), static_cast<unsigned long long>(p.issued));
       for (int k = 1; k < kStallKinds; ++k) s += format(" %6llu", static_cast<unsigned long long>(p.stalls[k]));
       const Encoded e = word_at_ ? word_at_(h.bank, static_cast<std::uint16_t>(h.pc)) : Encoded{};
-      s += "  " + word_text(e) + "\n";
+      s += "  " + disassemble(e) + "\n";
     }
   }
   return s;
