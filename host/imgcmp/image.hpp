@@ -1,0 +1,45 @@
+// RGB8 images, their PNG files, and the comparisons used to check a rendered
+// frame against the reference renderer (PSNR, difference image).
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mc1::imgcmp {
+
+// Rows top first, pixels left to right, 3 bytes (R, G, B) each.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0) {}
+  std::uint8_t* at(int x, int y) { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
+  const std::uint8_t* at(int x, int y) const {
+    return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+  }
+};
+
+class ImageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// 8-bit RGB, non-interlaced; one IDAT written; any filter types read.
+void write_png(const std::string& path, const Image& img);
+Image read_png(const std::string& path);
+std::vector<std::uint8_t> encode_png(const Image& img);
+Image decode_png(const std::vector<std::uint8_t>& bytes, const std::string& name);
+
+// Mean squared error over all 3 * width * height samples.
+double mse(const Image& a, const Image& b);
+// 10 log10(255^2 / MSE) in dB; +infinity for identical images.
+double psnr(const Image& a, const Image& b);
+int max_abs_diff(const Image& a, const Image& b);
+// Per sample min(255, scale * |a - b|).
+Image difference(const Image& a, const Image& b, int scale);
+
+}  // namespace mc1::imgcmp

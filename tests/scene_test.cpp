@@ -1,0 +1,259 @@
+// The scene loader (docs/scene-format.md): the standard scenes with their
+// exact primitive counts, every kind of bad input refused with its JSON path
+// and line, and the Bezier/B-spline tessellation.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "scene.hpp"
+
+using namespace mc1::scene;
+
+namespace {
+
+std::string scenes_dir() {
+  std::string f = __FILE__;
+  return f.substr(0, f.rfind('/')) + "/../scenes";
+}
+
+// A valid scene whose "objects" array is `objects`; the camera, light and
+// material take lines 2-6, so objects start on line 8.
+std::string scene_text(const std::string& objects, const std::string& camera_extra = "",
+                       const std::string& material_extra = "") {
+  return "{\n"
+         "\"camera\": {\"eye\": [0, 0, 5], \"look_at\": [0, 0, 0], \"fov\": 60, \"width\": 8, \"height\": 8" +
+         camera_extra +
+         "},\n"
+         "\"lights\": [{\"position\": [0, 5, 5]}],\n"
+         "\"materials\": [\n"
+         "  {\"name\": \"m\", \"colour\": [1, 0.5, 0.25], \"kd\": 0.5" +
+         material_extra +
+         "}\n"
+         "],\n"
+         "\"objects\": [\n" +
+         objects + "\n]}\n";
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_scene(text, "t.json", scenes_dir());
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+const std::string kSphere =
+    "{\"kind\": \"solid\", \"material\": \"m\", \"primitives\": [{\"type\": \"sphere\", \"centre\": [0, 0, 0], "
+    "\"radius\": 1}]}";
+
+std::string object_with(const std::string& primitive) {
+  return "{\"kind\": \"surface\", \"material\": \"m\", \"primitives\": [\n" + primitive + "\n]}";
+}
+
+}  // namespace
+
+TEST(SceneStandard, Whitted) {
+  Scene s = load_scene(scenes_dir() + "/whitted.json");
+  EXPECT_EQ(s.primitive_count(), 6u);
+  EXPECT_EQ(s.count(PrimitiveKind::quad), 4u);
+  EXPECT_EQ(s.count(PrimitiveKind::ellipsoid), 2u);
+  EXPECT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.render.max_depth, 5);
+  EXPECT_TRUE(s.materials[0].textured);
+  EXPECT_EQ(s.camera.width, 320);
+}
+
+// 32 patches at level 6: 24 regular patches give 36 cells each; the 8 lid and
+// bottom patches with a collapsed edge give 6 triangles and 30 quads each.
+TEST(SceneStandard, TeapotTessellation) {
+  Scene s = load_scene(scenes_dir() + "/teapot.json");
+  EXPECT_EQ(s.count(PrimitiveKind::pseudo_quad), 24u * 36 + 8 * 30);
+  EXPECT_EQ(s.count(PrimitiveKind::pseudo_triangle), 8u * 6);
+  EXPECT_EQ(s.count(PrimitiveKind::quad), 1u);
+  EXPECT_EQ(s.primitive_count(), 1153u);
+  // Turned y up: it stands on y = 0 and is 3.15 tall.
+  const Object& pot = s.objects[1];
+  EXPECT_NEAR(pot.box_min.y, 0.0, 1e-12);
+  EXPECT_NEAR(pot.box_max.y, 3.15, 1e-12);
+  for (const auto& p : pot.primitives)
+    for (int k = 0; k < p.vertex_count; ++k) EXPECT_NEAR(glm::length(p.vertex_normals[k]), 1.0, 1e-12);
+}
+
+TEST(SceneStandard, Room) {
+  Scene s = load_scene(scenes_dir() + "/room.json");
+  EXPECT_EQ(s.primitive_count(), 18u);
+  EXPECT_EQ(s.count(PrimitiveKind::quad), 10u);
+  EXPECT_EQ(s.count(PrimitiveKind::triangle), 4u);
+  EXPECT_EQ(s.count(PrimitiveKind::quadric), 3u);
+  EXPECT_EQ(s.count(PrimitiveKind::ellipsoid), 1u);
+}
+
+TEST(SceneStandard, Smooth) {
+  Scene s = load_scene(scenes_dir() + "/smooth.json");
+  // Periodic 8x6 B-spline net: 48 spans at level 3; octahedron split twice.
+  EXPECT_EQ(s.count(PrimitiveKind::pseudo_quad), 48u * 9);
+  EXPECT_EQ(s.count(PrimitiveKind::pseudo_triangle), 128u);
+  EXPECT_EQ(s.primitive_count(), 561u);
+}
+
+TEST(SceneStandard, Tiny) {
+  Scene s = load_scene(scenes_dir() + "/tiny.json");
+  EXPECT_EQ(s.primitive_count(), 3u);
+  EXPECT_EQ(s.camera.width, 32);
+  EXPECT_EQ(s.camera.height, 32);
+  const Primitive& ball = s.objects[1].primitives[0];
+  EXPECT_EQ(ball.kind, PrimitiveKind::ellipsoid);
+  EXPECT_DOUBLE_EQ(ball.A[0][0], 2.0);  // sphere radius 0.5 -> A = I / 0.5
+  EXPECT_EQ(ball.box_min, glm::dvec3(-0.5));
+  const Primitive& floor = s.objects[0].primitives[0];
+  EXPECT_EQ(floor.normal, glm::dvec3(0, 1, 0));
+}
+
+TEST(SceneLoader, DefaultsAndEllipsoidBox) {
+  Scene s = parse_scene(scene_text(object_with(
+                            "{\"type\": \"ellipsoid\", \"A\": [[2, 0, 0], [0, 1, 0], [0, 0, 0.5]], \"centre\": [1, 2, 3]}")),
+                        "t.json", "");
+  EXPECT_EQ(s.render.max_depth, 5);
+  EXPECT_EQ(s.render.background, glm::dvec3(0.0));
+  EXPECT_EQ(s.camera.up, glm::dvec3(0, 1, 0));
+  EXPECT_EQ(s.lights[0].intensity, glm::dvec3(1.0));
+  EXPECT_EQ(s.materials[0].ko, 0.0);
+  EXPECT_EQ(s.materials[0].index, 1.0);
+  const Primitive& e = s.objects[0].primitives[0];
+  EXPECT_DOUBLE_EQ(e.A[0][0], 2.0);   // row 0, column 0
+  EXPECT_DOUBLE_EQ(e.A[2][2], 0.5);
+  EXPECT_EQ(e.box_min, glm::dvec3(0.5, 1, 1));
+  EXPECT_EQ(e.box_max, glm::dvec3(1.5, 3, 5));
+}
+
+TEST(SceneErrors, MatrixShapeNamesPathAndLine) {
+  std::string text = scene_text(kSphere + ",\n" +
+                                object_with("{\"type\": \"ellipsoid\", \"A\": [[1, 0], [0, 1]], \"centre\": [0, 0, 0]}"));
+  EXPECT_EQ(error_of(text), "t.json:10: objects[1].primitives[0].A: expected 3x3 matrix");
+}
+
+TEST(SceneErrors, UnknownKey) {
+  EXPECT_EQ(error_of(scene_text(kSphere, "", ", \"colr\": [1, 1, 1]")), "t.json:5: materials[0].colr: unknown key");
+  EXPECT_EQ(error_of(scene_text(kSphere, ", \"zoom\": 2")), "t.json:2: camera.zoom: unknown key");
+}
+
+TEST(SceneErrors, MissingKeyWrongTypeRange) {
+  std::string no_fov = "{\n\"camera\": {\"eye\": [0, 0, 5], \"look_at\": [0, 0, 0], \"width\": 8, \"height\": 8},\n"
+                       "\"lights\": [], \"materials\": [], \"objects\": []}";
+  EXPECT_EQ(error_of(no_fov), "t.json:2: camera: missing key \"fov\"");
+  std::string text = scene_text(kSphere);
+  std::string bad_fov = text;
+  bad_fov.replace(bad_fov.find("\"fov\": 60"), 9, "\"fov\": \"wide\"");
+  EXPECT_EQ(error_of(bad_fov), "t.json:2: camera.fov: expected a number");
+  std::string negative_ks = scene_text(kSphere, "", ", \"ks\": -1");
+  EXPECT_EQ(error_of(negative_ks), "t.json:5: materials[0].ks: must not be negative");
+  std::string width = text;
+  width.replace(width.find("\"width\": 8"), 10, "\"width\": 8.5");
+  EXPECT_EQ(error_of(width), "t.json:2: camera.width: expected an integer in 1..8192");
+}
+
+TEST(SceneErrors, JsonSyntaxHasLineAndColumn) {
+  EXPECT_EQ(error_of("{\n  \"camera\": {\"eye\": [0, 0 5]}\n}"), "t.json:2:27: JSON syntax: expected ',' or ']'");
+  EXPECT_EQ(error_of("{\"a\": 1, \"a\": 2}"), "t.json:1:10: JSON syntax: duplicate key \"a\"");
+  EXPECT_EQ(error_of("{\"a\": tru}"), "t.json:1:7: JSON syntax: unexpected character 't'");
+}
+
+TEST(SceneErrors, UnknownMaterialAndType) {
+  std::string text = scene_text("{\"kind\": \"solid\", \"material\": \"steel\", \"primitives\": []}");
+  EXPECT_EQ(error_of(text), "t.json:8: objects[0].material: unknown material \"steel\"");
+  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"torus\"}"))),
+            "t.json:9: objects[0].primitives[0].type: unknown primitive type \"torus\"");
+  EXPECT_EQ(error_of(scene_text("{\"kind\": \"hollow\", \"material\": \"m\", \"primitives\": []}")),
+            "t.json:8: objects[0].kind: expected \"solid\" or \"surface\"");
+}
+
+TEST(SceneErrors, DegenerateGeometry) {
+  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"triangle\", \"vertices\": [[0, 0, 0], [1, 1, 1], [2, 2, 2]]}"))),
+            "t.json:9: objects[0].primitives[0].vertices: degenerate polygon (zero area)");
+  EXPECT_EQ(error_of(scene_text(object_with(
+                "{\"type\": \"ellipsoid\", \"A\": [[1, 0, 0], [0, 1, 0], [1, 1, 0]], \"centre\": [0, 0, 0]}"))),
+            "t.json:9: objects[0].primitives[0].A: singular matrix A");
+  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"pseudo_triangle\", \"vertices\": [[0, 0, 0], [1, 0, 0], "
+                                            "[0, 1, 0]],\n\"normals\": [[0, 0, 1], [0, 0, 0], [0, 0, 1]]}"))),
+            "t.json:10: objects[0].primitives[0].normals[1]: zero-length normal");
+  EXPECT_EQ(error_of(scene_text(object_with(
+                "{\"type\": \"quad\", \"vertices\": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0.5]]}"))),
+            "t.json:9: objects[0].primitives[0].vertices: quad is not planar");
+  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 0}"))),
+            "t.json:9: objects[0].primitives[0].radius: must be positive");
+  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"quadric\", \"coefficients\": [1, 1, 1, 0, 0, 0, 0, 0, 0, "
+                                            "-1], \"box\": {\"min\": [-1, 1, -1], \"max\": [1, 1, 1]}}"))),
+            "t.json:9: objects[0].primitives[0].box: min must be below max on every axis");
+}
+
+TEST(SceneErrors, MeshFile) {
+  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"bezier_mesh\", \"file\": \"no-such.txt\"}"))),
+            "t.json:9: objects[0].primitives[0].file: cannot open \"" + scenes_dir() + "/no-such.txt\"");
+}
+
+TEST(SceneTessellation, PlanarBezierIsExact) {
+  // Control points on a uniform grid: P(u, v) = (u, v, 0), normal +z.
+  BicubicNet net;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) net[4 * r + c] = glm::dvec3(c / 3.0, r / 3.0, 0.0);
+  std::vector<Primitive> out;
+  tessellate_patch(net, Basis::bezier, 2, out);
+  ASSERT_EQ(out.size(), 4u);
+  EXPECT_EQ(out[0].kind, PrimitiveKind::pseudo_quad);
+  EXPECT_NEAR(glm::length(out[3].vertices[2] - glm::dvec3(1, 1, 0)), 0.0, 1e-15);
+  EXPECT_NEAR(glm::length(out[1].vertices[0] - glm::dvec3(0.5, 0, 0)), 0.0, 1e-15);
+  for (const auto& p : out) {
+    EXPECT_NEAR(glm::length(p.normal - glm::dvec3(0, 0, 1)), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(p.vertex_normals[0] - glm::dvec3(0, 0, 1)), 0.0, 1e-12);
+  }
+}
+
+TEST(SceneTessellation, CollapsedEdgeGivesTriangles) {
+  // A cone-like patch: row 0 collapses to the apex (0, 0, 1).
+  BicubicNet net;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) {
+      double rad = r / 3.0, a = c * 0.5;
+      net[4 * r + c] = glm::dvec3(rad * std::cos(a), rad * std::sin(a), 1.0 - rad);
+    }
+  std::vector<Primitive> out;
+  tessellate_patch(net, Basis::bezier, 4, out);
+  ASSERT_EQ(out.size(), 16u);
+  int triangles = 0;
+  for (const auto& p : out) triangles += p.kind == PrimitiveKind::pseudo_triangle;
+  EXPECT_EQ(triangles, 4);
+  // The apex normal is the limit: finite, unit.
+  EXPECT_NEAR(glm::length(out[0].vertex_normals[0]), 1.0, 1e-12);
+}
+
+TEST(SceneTessellation, UniformBsplineOfFlatNet) {
+  // A uniform B-spline of control points on a plane lies in that plane;
+  // a 5x4 net has 2x1 spans.
+  std::string row = "[[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0], [4, 0, 0]]";
+  std::string net = "[";
+  for (int r = 0; r < 4; ++r) {
+    std::string shifted = row;
+    for (std::size_t p = 0; (p = shifted.find(", 0, 0]", p)) != std::string::npos; p += 7)
+      shifted.replace(p, 7, ", " + std::to_string(r) + ", 0]");
+    net += (r ? ", " : "") + shifted;
+  }
+  net += "]";
+  Scene s = parse_scene(scene_text(object_with("{\"type\": \"bspline_patch\", \"level\": 2, \"net\": " + net + "}")),
+                        "t.json", "");
+  ASSERT_EQ(s.primitive_count(), 8u);
+  const Primitive& first = s.objects[0].primitives[0];
+  // B-spline span 0 starts at (P0 + 4 P1 + P2) / 6 in each direction: (1, 1, 0).
+  EXPECT_NEAR(glm::length(first.vertices[0] - glm::dvec3(1, 1, 0)), 0.0, 1e-12);
+  EXPECT_NEAR(glm::length(first.vertex_normals[0] - glm::dvec3(0, 0, 1)), 0.0, 1e-12);
+}
+
+TEST(SceneChecker, MappingOnWorldXZ) {
+  Checker c;
+  c.colours = {glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1)};
+  c.scale = 2.0;
+  EXPECT_EQ(checker_colour(c, {0.5, 7, 0.5}), glm::dvec3(1, 0, 0));   // cell (0, 0)
+  EXPECT_EQ(checker_colour(c, {2.5, 7, 0.5}), glm::dvec3(0, 0, 1));   // cell (1, 0)
+  EXPECT_EQ(checker_colour(c, {-0.5, 0, 0.5}), glm::dvec3(0, 0, 1));  // cell (-1, 0)
+  EXPECT_EQ(checker_colour(c, {-0.5, 0, -0.5}), glm::dvec3(1, 0, 0)); // cell (-1, -1)
+}
