@@ -1,0 +1,284 @@
+// mc1: the MC-1 machine model from the command line (docs/platform.md).
+//   mc1 diag   the machine's self-test frame, checked against the FP24 model
+//   mc1 bench  host time and simulated time of the diagnostic frame
+//   mc1 params the timing table in effect
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <systemc>
+#include <vector>
+
+#include "apuasm.hpp"
+#include "diag.hpp"
+#include "mc1_cli.hpp"
+#include "mc1_system.hpp"
+#include "png_writer.hpp"
+
+namespace {
+
+using namespace mc1;
+using cli::CliError;
+
+[[maybe_unused]] const int no_banner = setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
+
+const char* kUsage =
+    "usage: mc1 <command> [options]\n"
+    "\n"
+    "The MC-1 multicomputer (RC + N node computers over HDLC, image bus, frame memory)\n"
+    "as a loosely-timed SystemC/TLM-2.0 model.\n"
+    "\n"
+    "commands:\n"
+    "  diag     run the self-test frame and check it bit for bit against the FP24 model\n"
+    "  bench    host seconds and simulated time of the self-test frame at 16 and 256 NCs\n"
+    "  params   print the timing table (after --params/--param)\n"
+    "  help     this text; `mc1 <command> --help` for a command's options\n";
+
+const char* kDiagUsage =
+    "usage: mc1 diag [options]\n"
+    "\n"
+    "The machine's self-test frame: the RC broadcasts the diag APU kernel over HDLC,\n"
+    "hands out blocks of the screen dynamically, each NC computes its blocks on its APU\n"
+    "and sends the pixels over the image bus to the frame memory. The frame is compared\n"
+    "with the host's FP24-model computation; the exit status is 0 only if they are equal.\n"
+    "\n"
+    "options:\n"
+    "  --nodes N            node computers, 1..4096 (default 4)\n"
+    "  --engine iss|rtl     APU engine: C++ ISS or verilated RTL core (default iss)\n"
+    "  --size WxH           frame size (default 256x256)\n"
+    "  --block B|WxH        block size (default 16; rows of at most 1024 pixels)\n"
+    "  --ber X              HDLC bit error rate on every line end, both directions (default 0)\n"
+    "  --seed S             seed of the bit-error streams (default 1)\n"
+    "  --dead-link NC@T0-T1 NC's link dead in both directions from T0 to T1 (e.g. 3@1ms-4ms;\n"
+    "                       units ps ns us ms s, bare numbers are ms); repeatable\n"
+    "  --params FILE        timing table file (docs/timing.md); repeatable, in order\n"
+    "  --param key=value    one timing figure; repeatable, in order\n"
+    "  --kernel FILE        APU image to broadcast instead of the built-in diag.bin\n"
+    "  --out FILE.png       write the frame memory as PNG\n"
+    "  --stats FILE.json    write statistics (docs/platform.md \"Statistics\")\n"
+    "  --gantt FILE.svg     write the activity chart of every NC and the RC's dispatches\n"
+    "  --vcd FILE.vcd       trace platform signals (HDLC line busy, image-bus grant/owner)\n"
+    "  --quiet              print nothing but errors\n";
+
+const char* kBenchUsage =
+    "usage: mc1 bench [options]\n"
+    "\n"
+    "Runs the self-test frame on the ISS engine for each node count and prints host\n"
+    "seconds, simulated time, APU cycles and the share of host time spent in the APU\n"
+    "engine (the rest is SystemC, HDLC, bus and firmware model).\n"
+    "\n"
+    "options:\n"
+    "  --nodes LIST         node counts (default 16,256)\n"
+    "  --engine iss|rtl     APU engine (default iss)\n"
+    "  --size WxH           frame size (default 256x256)\n"
+    "  --block B|WxH        block size (default 16)\n"
+    "  --params FILE, --param key=value   timing table, as for diag\n"
+    "  --json FILE          also write the figures as JSON\n";
+
+const char* kParamsUsage =
+    "usage: mc1 params [--params FILE] [--param key=value]...\n"
+    "\n"
+    "Prints the timing table in effect, in the --params file format (docs/timing.md).\n";
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  out << text;
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+bool wants_help(const std::vector<std::string>& args) {
+  for (const std::string& a : args)
+    if (a == "--help" || a == "-h") return true;
+  return false;
+}
+
+// Timing table first (it consumes --param/--params), then the rest.
+std::vector<std::string> take_params(TimingParams& t, const std::vector<std::string>& args) {
+  try {
+    return apply_param_args(t, args);
+  } catch (const ParamError& e) {
+    throw CliError(e.what());
+  }
+}
+
+EngineKind parse_engine(const std::string& s) {
+  if (s == "iss") return EngineKind::Iss;
+  if (s == "rtl") {
+    if (!rtl_engine_available()) throw CliError("--engine rtl: this build has no verilated APU core");
+    return EngineKind::Rtl;
+  }
+  throw CliError("--engine: bad value '" + s + "' (expected iss or rtl)");
+}
+
+void frame_options(const cli::Args& a, SystemConfig& cfg) {
+  if (a.has("engine")) cfg.engine = parse_engine(a.get("engine"));
+  if (a.has("size")) std::tie(cfg.width, cfg.height) = cli::parse_size("--size", a.get("size"), false);
+  if (a.has("block")) std::tie(cfg.block_w, cfg.block_h) = cli::parse_size("--block", a.get("block"), true);
+  if (cfg.block_w > diag::kMaxRunPixels)
+    throw CliError("--block: rows of " + std::to_string(cfg.block_w) + " pixels (at most " +
+                   std::to_string(diag::kMaxRunPixels) + ")");
+}
+
+struct Check {
+  std::uint64_t mismatches = 0;
+  unsigned first_x = 0, first_y = 0;
+};
+
+Check compare(const FrameReport& r) {
+  const std::vector<std::uint8_t> want = diag::expected_image(r.width, r.height);
+  Check c;
+  for (std::size_t i = 0; i < want.size(); i += 3)
+    if (want[i] != r.rgb[i] || want[i + 1] != r.rgb[i + 1] || want[i + 2] != r.rgb[i + 2]) {
+      if (c.mismatches++ == 0) {
+        c.first_x = static_cast<unsigned>((i / 3) % r.width);
+        c.first_y = static_cast<unsigned>((i / 3) / r.width);
+      }
+    }
+  return c;
+}
+
+double apu_share(const FrameReport& r) {
+  double apu = 0;
+  for (const NcReport& n : r.ncs) apu += n.apu_host_seconds;
+  return r.host_seconds > 0 ? apu / r.host_seconds : 0;
+}
+
+std::uint64_t apu_cycles(const FrameReport& r) {
+  std::uint64_t c = 0;
+  for (const NcReport& n : r.ncs) c += n.apu_cycles;
+  return c;
+}
+
+int cmd_diag(const std::vector<std::string>& argv) {
+  if (wants_help(argv)) {
+    std::cout << kDiagUsage;
+    return 0;
+  }
+  SystemConfig cfg;
+  const cli::Args a(take_params(cfg.timing, argv),
+                    {"nodes", "engine", "size", "block", "ber", "seed", "dead-link", "kernel", "out", "stats",
+                     "gantt", "vcd"},
+                    {"quiet"});
+  if (a.has("nodes")) cfg.nodes = cli::parse_unsigned("--nodes", a.get("nodes"), 1, 4096);
+  frame_options(a, cfg);
+  if (a.has("ber")) cfg.ber = cli::parse_double("--ber", a.get("ber"), 0.0, 0.01);
+  if (a.has("seed")) cfg.seed = cli::parse_unsigned("--seed", a.get("seed"), 0, 0xFFFFFFFFu);
+  for (const std::string& d : a.all("dead-link")) {
+    cfg.dead_links.push_back(cli::parse_dead_link(d));
+    if (cfg.dead_links.back().nc > cfg.nodes)
+      throw CliError("--dead-link " + d + ": the machine has NC 1.." + std::to_string(cfg.nodes));
+  }
+  const bool quiet = a.has("quiet");
+  const std::vector<apu::Encoded> program =
+      a.has("kernel") ? apuasm::load_image(a.get("kernel")) : diag::kernel();
+
+  const FrameReport r = run_frame(cfg, program, diag::nc_main, a.get("vcd"));
+  const Check c = compare(r);
+
+  if (a.has("out")) write_file(a.get("out"), encode_png_rgb8(r.width, r.height, r.rgb.data()));
+  if (a.has("stats")) write_text(a.get("stats"), stats_json(r));
+  if (a.has("gantt")) write_text(a.get("gantt"), gantt_svg(r));
+  if (!quiet) {
+    std::printf("mc1 diag: %u NCs (%s engine), %ux%u pixels, %u blocks of %ux%u\n", r.nodes, r.engine.c_str(),
+                r.width, r.height, r.blocks, r.block_w, r.block_h);
+    std::printf("  simulated %.6f ms, host %.3f s (APU engine %.0f%%), %llu APU cycles\n", r.frame_time * 1e-9,
+                r.host_seconds, 100 * apu_share(r), static_cast<unsigned long long>(apu_cycles(r)));
+    std::printf("  HDLC: %llu retransmissions, %llu timeouts, %llu FCS errors; image bus %.1f%% busy\n",
+                static_cast<unsigned long long>([&] {
+                  std::uint64_t n = 0;
+                  for (const auto& l : r.hdlc.down) n += l.retransmissions;
+                  for (const auto& l : r.hdlc.up) n += l.retransmissions;
+                  return n;
+                }()),
+                static_cast<unsigned long long>(r.hdlc.timeouts), static_cast<unsigned long long>(r.hdlc.fcs_errors),
+                r.frame_time ? 100.0 * r.bus.busy / r.frame_time : 0.0);
+    if (c.mismatches == 0)
+      std::printf("  frame OK: equal bit for bit to the FP24 model\n");
+  }
+  if (c.mismatches) {
+    std::fprintf(stderr, "mc1 diag: frame differs from the FP24 model in %llu pixels (first at x=%u y=%u)\n",
+                 static_cast<unsigned long long>(c.mismatches), c.first_x, c.first_y);
+    return 1;
+  }
+  return 0;
+}
+
+int cmd_bench(const std::vector<std::string>& argv) {
+  if (wants_help(argv)) {
+    std::cout << kBenchUsage;
+    return 0;
+  }
+  SystemConfig base;
+  const cli::Args a(take_params(base.timing, argv), {"nodes", "engine", "size", "block", "json"}, {});
+  frame_options(a, base);
+  const std::vector<unsigned> nodes = cli::parse_list("--nodes", a.get("nodes", "16,256"), 1, 4096);
+  std::ostringstream json;
+  json << "{\"engine\": \"" << engine_name(base.engine) << "\", \"width\": " << base.width
+       << ", \"height\": " << base.height << ", \"block_width\": " << base.block_w
+       << ", \"block_height\": " << base.block_h << ", \"runs\": [";
+  std::printf("%6s %12s %10s %14s %12s %12s %6s\n", "NCs", "simulated", "host", "APU cycles", "cycles/s",
+              "APU engine", "frame");
+  bool all_ok = true;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (i) fresh_systemc_kernel();
+    SystemConfig cfg = base;
+    cfg.nodes = nodes[i];
+    const FrameReport r = run_diag(cfg);
+    const bool ok = compare(r).mismatches == 0;
+    all_ok = all_ok && ok;
+    const std::uint64_t cycles = apu_cycles(r);
+    std::printf("%6u %9.3f ms %8.3f s %14llu %12.3g %11.0f%% %6s\n", cfg.nodes, r.frame_time * 1e-9, r.host_seconds,
+                static_cast<unsigned long long>(cycles), cycles / r.host_seconds, 100 * apu_share(r),
+                ok ? "OK" : "WRONG");
+    json << (i ? ", " : "") << "{\"nodes\": " << cfg.nodes << ", \"simulated_time_s\": " << r.frame_time * 1e-12
+         << ", \"host_seconds\": " << r.host_seconds << ", \"apu_cycles\": " << cycles
+         << ", \"apu_engine_share\": " << apu_share(r) << ", \"frame_ok\": " << (ok ? "true" : "false") << "}";
+    std::fflush(stdout);
+  }
+  json << "]}\n";
+  if (a.has("json")) write_text(a.get("json"), json.str());
+  return all_ok ? 0 : 1;
+}
+
+int cmd_params(const std::vector<std::string>& argv) {
+  if (wants_help(argv)) {
+    std::cout << kParamsUsage;
+    return 0;
+  }
+  TimingParams t;
+  const std::vector<std::string> rest = take_params(t, argv);
+  if (!rest.empty()) throw CliError("unexpected argument '" + rest.front() + "'");
+  std::cout << t.to_text();
+  return 0;
+}
+
+}  // namespace
+
+int sc_main(int argc, char** argv) {
+  // SystemC's notes (trace timescale, ...) would mix with the report.
+  sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
+    std::cout << kUsage;
+    return args.empty() ? 2 : 0;
+  }
+  const std::string cmd = args[0];
+  args.erase(args.begin());
+  try {
+    if (cmd == "diag") return cmd_diag(args);
+    if (cmd == "bench") return cmd_bench(args);
+    if (cmd == "params") return cmd_params(args);
+    std::fprintf(stderr, "mc1: unknown command '%s'\n%s", cmd.c_str(), kUsage);
+    return 2;
+  } catch (const CliError& e) {
+    std::fprintf(stderr, "mc1 %s: %s\n", cmd.c_str(), e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mc1 %s: %s\n", cmd.c_str(), e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,75 @@
+// What one frame on the machine produced: the image, statistics of every unit
+// and the activity timeline; written as the statistics JSON and the Gantt
+// SVG (docs/platform.md gives both formats).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "node_computer.hpp"
+#include "root_computer.hpp"
+#include "timing_params.hpp"
+
+namespace mc1 {
+
+struct NcReport {
+  unsigned id = 0;
+  Picos busy = 0, wait_rc = 0, wait_bus = 0, idle = 0;  // sum = frame time
+  Picos apu_busy = 0;                                   // APU started, not halted
+  std::uint64_t apu_cycles = 0, blocks = 0, pixels = 0, runs = 0;
+  Picos mpu_busy = 0;
+  Picos finished_at = 0;
+  double apu_host_seconds = 0;  // host time inside the APU engine
+  bool apu_counted = false;     // the ISS counted issues and stalls
+  std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
+  std::vector<nc::Span> spans;
+  std::vector<nc::ApuSpan> apu;
+};
+
+struct LineReport {
+  std::string name;  // "down0", "up17"
+  std::uint64_t frames = 0, i_frames = 0, s_frames = 0, info_bytes = 0, wire_bits = 0, retransmissions = 0;
+  Picos busy = 0;
+};
+
+struct HdlcReport {
+  unsigned ports = 0;
+  std::vector<LineReport> down, up;  // per RC port; per NC
+  std::uint64_t fcs_errors = 0, aborts = 0, bits_flipped = 0, bits_dead = 0;
+  std::uint64_t timeouts = 0, rej_received = 0;
+};
+
+struct BusReport {
+  std::uint64_t runs = 0, bytes = 0, pixels = 0;
+  Picos busy = 0, waiting = 0;
+};
+
+struct DeadLinkReport {
+  unsigned nc = 0;
+  Picos begin = 0, end = 0;
+};
+
+struct FrameReport {
+  std::string engine;
+  unsigned nodes = 0, width = 0, height = 0, block_w = 0, block_h = 0, blocks = 0;
+  double ber = 0;
+  std::vector<DeadLinkReport> dead_links;
+  Picos frame_time = 0;
+  Picos apu_cycle_ps = 0;  // from the timing table
+  double host_seconds = 0;
+  std::vector<NcReport> ncs;
+  HdlcReport hdlc;
+  BusReport bus;
+  rc::RcStats rc;
+  std::vector<rc::Dispatch> dispatches;
+  std::vector<rc::Completion> completions;
+  std::uint64_t fm_pixels_written = 0;
+  std::vector<std::uint8_t> rgb;  // the frame memory, rows top first
+  std::vector<std::uint8_t> png;
+};
+
+std::string stats_json(const FrameReport& r);
+std::string gantt_svg(const FrameReport& r);
+
+}  // namespace mc1

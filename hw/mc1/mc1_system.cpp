@@ -1,0 +1,227 @@
+#include "mc1_system.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <tlm_utils/tlm_quantumkeeper.h>
+
+#include "apu_iss.hpp"
+#include "diag.hpp"
+#include "png_writer.hpp"
+#include "rc_protocol.hpp"
+#include "sc_time_conv.hpp"
+#ifdef MC1_HAVE_RTL_ENGINE
+#include "apu_rtl_engine.hpp"
+#endif
+
+namespace mc1 {
+
+const char* engine_name(EngineKind e) { return e == EngineKind::Rtl ? "rtl" : "iss"; }
+
+bool rtl_engine_available() {
+#ifdef MC1_HAVE_RTL_ENGINE
+  return true;
+#else
+  return false;
+#endif
+}
+
+std::unique_ptr<apu::ApuEngine> make_engine(EngineKind e) {
+  if (e == EngineKind::Iss) return std::make_unique<apu::Iss>();
+#ifdef MC1_HAVE_RTL_ENGINE
+  return std::make_unique<apu::RtlEngine>();
+#else
+  throw std::runtime_error("--engine rtl: this build has no verilated APU core (apu_rtl_engine)");
+#endif
+}
+
+Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg,
+                     std::vector<apu::Encoded> program, nc::Firmware firmware)
+    : sc_module(name), cfg_(cfg) {
+  if (cfg.nodes < 1) throw std::invalid_argument("the machine needs at least one NC");
+  tlm_utils::tlm_quantumkeeper::set_global_quantum(to_sc_time(cfg.timing.tlm_quantum_ns * 1000));
+  const TimingParams& t = cfg.timing;
+
+  std::vector<rc::Block> blocks = rc::split_screen(cfg.width, cfg.height, cfg.block_w, cfg.block_h);
+  rc_ = std::make_unique<RootComputer>(
+      "rc", t, cfg.nodes, std::move(program),
+      rc::SetupMsg{static_cast<std::uint16_t>(cfg.width), static_cast<std::uint16_t>(cfg.height)},
+      std::move(blocks));
+  hdlc_ = std::make_unique<HdlcChannel>("hdlc", t, cfg.nodes);
+  bus_ = std::make_unique<ImageBus>("image_bus", t);
+  bus_->keep_grant_log(false);
+  monitor_ = std::make_unique<ImageBusMonitor>("image_bus_monitor", t);
+  dc_ = std::make_unique<DataCollector>("dc", t, cfg.width, cfg.height);
+  fm_ = std::make_unique<FrameMemory>("fm", t, cfg.width, cfg.height);
+
+  rc_->rc2nc_hdlc.bind(hdlc_->rc2nc_hdlc);
+  hdlc_->hdlc2rc.bind(rc_->hdlc2rc);
+  for (unsigned k = 1; k <= cfg.nodes; ++k) {
+    ncs_.push_back(std::make_unique<nc::NodeComputer>(("nc" + std::to_string(k)).c_str(), t, k,
+                                                      make_engine(cfg.engine), firmware));
+    nc::NodeComputer& n = *ncs_.back();
+    n.nc2rc_hdlc.bind(hdlc_->nc2rc_hdlc);
+    hdlc_->hdlc2nc.bind(n.hdlc2nc);
+    n.nc2bus_pixels.bind(bus_->nc2bus_pixels);
+  }
+  bus_->bus2dc.bind(monitor_->bus2dc);
+  monitor_->mon2dc.bind(dc_->bus2dc);
+  dc_->dc2fm.bind(fm_->dc2fm);
+
+  for (const DeadLink& d : cfg.dead_links)
+    if (d.nc < 1 || d.nc > cfg.nodes)
+      throw std::invalid_argument("dead link of NC " + std::to_string(d.nc) + ": the machine has NC 1.." +
+                                  std::to_string(cfg.nodes));
+  for (unsigned k = 1; k <= cfg.nodes; ++k) {
+    hdlc::LinkFaults f;
+    f.bit_error_rate = cfg.ber;
+    for (const DeadLink& d : cfg.dead_links)
+      if (d.nc == k) f.dead.push_back(hdlc::DeadWindow{d.begin, d.end});
+    if (f.bit_error_rate == 0 && f.dead.empty()) continue;
+    f.seed = cfg.seed + 2 * k;
+    hdlc_->set_faults(hdlc::Direction::Down, k, f);
+    f.seed = cfg.seed + 2 * k + 1;
+    hdlc_->set_faults(hdlc::Direction::Up, k, f);
+  }
+}
+
+void Mc1System::trace(sc_core::sc_trace_file* tf) {
+  hdlc_->trace(tf);
+  monitor_->trace(tf);
+}
+
+namespace {
+
+LineReport line_report(std::string name, const hdlc::LineStats& s) {
+  LineReport l;
+  l.name = std::move(name);
+  l.frames = s.frames;
+  l.i_frames = s.i_frames;
+  l.s_frames = s.s_frames;
+  l.info_bytes = s.info_bytes;
+  l.wire_bits = s.wire_bits;
+  l.retransmissions = s.retransmissions;
+  l.busy = s.busy_ps;
+  return l;
+}
+
+void add_receive(HdlcReport& h, const hdlc::ReceiveStats& r) {
+  h.fcs_errors += r.decoder.fcs_errors;
+  h.aborts += r.decoder.aborts;
+  h.bits_flipped += r.bits_flipped;
+  h.bits_dead += r.bits_dead;
+}
+
+void add_sender(HdlcReport& h, const hdlc::SenderStats& s) {
+  h.timeouts += s.timeouts;
+  h.rej_received += s.rej_received;
+}
+
+}  // namespace
+
+FrameReport Mc1System::report(double host_seconds) {
+  FrameReport r;
+  r.engine = engine_name(cfg_.engine);
+  r.nodes = cfg_.nodes;
+  r.width = cfg_.width;
+  r.height = cfg_.height;
+  r.block_w = cfg_.block_w;
+  r.block_h = cfg_.block_h;
+  r.blocks = static_cast<unsigned>(rc_->schedule().size());
+  r.ber = cfg_.ber;
+  for (const DeadLink& d : cfg_.dead_links) r.dead_links.push_back({d.nc, d.begin, d.end});
+  r.host_seconds = host_seconds;
+
+  // The frame ends when the RC has every block back and every NC is told.
+  Picos end = rc_->stats().last_completion;
+  for (const auto& n : ncs_) end = std::max(end, n->stats().finished_at);
+  r.frame_time = end;
+  r.apu_cycle_ps = cfg_.timing.apu_cycle_ps();
+
+  for (const auto& n : ncs_) {
+    n->close(end);
+    const nc::NcStats& s = n->stats();
+    NcReport x;
+    x.id = n->id();
+    x.busy = s.time[static_cast<int>(nc::Activity::Busy)];
+    x.wait_rc = s.time[static_cast<int>(nc::Activity::WaitRc)];
+    x.wait_bus = s.time[static_cast<int>(nc::Activity::WaitBus)];
+    x.idle = s.time[static_cast<int>(nc::Activity::Idle)];
+    x.apu_busy = s.apu_running;
+    x.apu_cycles = s.apu_cycles;
+    x.blocks = s.blocks;
+    x.pixels = s.pixels;
+    x.runs = s.runs;
+    x.mpu_busy = s.mpu_busy;
+    x.finished_at = s.finished_at;
+    x.apu_host_seconds = s.apu_host_seconds;
+    x.apu_counted = s.apu_counted;
+    x.apu_issued = s.apu_issued;
+    x.apu_bank_stalls = s.apu_bank_stalls;
+    x.spans = n->spans();
+    x.apu = n->apu_spans();
+    r.ncs.push_back(std::move(x));
+  }
+
+  HdlcReport& h = r.hdlc;
+  h.ports = hdlc_->ports();
+  for (unsigned p = 0; p < h.ports; ++p) {
+    const hdlc::Network& net = hdlc_->network(p);
+    h.down.push_back(line_report("down" + std::to_string(p), net.down_line()));
+    add_sender(h, net.sender_broadcast());
+  }
+  for (unsigned k = 1; k <= cfg_.nodes; ++k) {
+    const hdlc::Network& net = hdlc_->network(hdlc_->port_of(k));
+    const unsigned a = hdlc_->address_of(k);
+    h.up.push_back(line_report("up" + std::to_string(k), net.up_line(a)));
+    add_receive(h, net.receive_stats(hdlc::Direction::Down, a));
+    add_receive(h, net.receive_stats(hdlc::Direction::Up, a));
+    add_sender(h, net.sender_to_nc(a));
+    add_sender(h, net.sender_to_rc(a));
+  }
+
+  const ImageBus::Stats& b = bus_->stats();
+  r.bus.runs = b.runs;
+  r.bus.bytes = b.bytes;
+  r.bus.pixels = b.pixels;
+  r.bus.busy = to_picos(b.busy);
+  r.bus.waiting = to_picos(b.waiting);
+
+  r.rc = rc_->stats();
+  r.dispatches = rc_->dispatches();
+  r.completions = rc_->completions();
+  r.fm_pixels_written = fm_->pixels_written();
+  r.rgb = fm_->rgb();
+  return r;
+}
+
+FrameReport run_frame(const SystemConfig& cfg, const std::vector<apu::Encoded>& program,
+                      const nc::Firmware& firmware, const std::string& vcd_path) {
+  auto sys = std::make_unique<Mc1System>("mc1", cfg, program, firmware);
+  sc_core::sc_trace_file* tf = nullptr;
+  if (!vcd_path.empty()) {
+    std::string base = vcd_path;  // SystemC appends ".vcd"
+    if (base.size() > 4 && base.compare(base.size() - 4, 4, ".vcd") == 0) base.resize(base.size() - 4);
+    tf = sc_core::sc_create_vcd_trace_file(base.c_str());
+    tf->set_time_unit(1, sc_core::SC_NS);
+    sys->trace(tf);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  sc_core::sc_start();
+  const double host = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (tf) sc_core::sc_close_vcd_trace_file(tf);
+  if (!sys->rc().done())
+    throw std::runtime_error("the simulation stopped before every NC was finished (see the SystemC report above)");
+  return sys->report(host);
+}
+
+FrameReport run_diag(const SystemConfig& cfg, const std::string& vcd_path) {
+  return run_frame(cfg, diag::kernel(), diag::nc_main, vcd_path);
+}
+
+void fresh_systemc_kernel() {
+  sc_core::sc_curr_simcontext = new sc_core::sc_simcontext();
+  sc_core::sc_default_global_context = sc_core::sc_curr_simcontext;
+}
+
+}  // namespace mc1

@@ -1,0 +1,85 @@
+// The MC-1 machine (s2, fig. 1): the RC, N NCs, the HDLC lines between them,
+// the image bus, the data collector and the frame memory, wired as TLM-2.0
+// (docs/platform.md). run_frame() elaborates one machine in the current
+// SystemC kernel, runs it until every NC is finished and returns a
+// FrameReport: the frame, per-unit statistics and the activity timeline.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <systemc>
+#include <vector>
+
+#include "data_collector.hpp"
+#include "frame_memory.hpp"
+#include "hdlc_channel.hpp"
+#include "image_bus.hpp"
+#include "image_bus_monitor.hpp"
+#include "mc1_report.hpp"
+#include "node_computer.hpp"
+#include "root_computer.hpp"
+#include "timing_params.hpp"
+
+namespace mc1 {
+
+enum class EngineKind { Iss, Rtl };
+const char* engine_name(EngineKind e);
+bool rtl_engine_available();  // the verilated core was built
+std::unique_ptr<apu::ApuEngine> make_engine(EngineKind e);
+
+struct DeadLink {
+  unsigned nc = 0;  // both directions of this NC's link are dead in [begin, end)
+  Picos begin = 0, end = 0;
+};
+
+struct SystemConfig {
+  unsigned nodes = 4;
+  EngineKind engine = EngineKind::Iss;
+  unsigned width = 256, height = 256;
+  unsigned block_w = 16, block_h = 16;
+  double ber = 0.0;        // every receiving end of every line, both directions
+  std::uint64_t seed = 1;  // fault streams: seed + 2k (down to NC k), seed + 2k + 1 (up)
+  std::vector<DeadLink> dead_links;
+  TimingParams timing;
+};
+
+class Mc1System : public sc_core::sc_module {
+ public:
+  Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, std::vector<apu::Encoded> program,
+            nc::Firmware firmware);
+
+  const SystemConfig& config() const { return cfg_; }
+  RootComputer& rc() { return *rc_; }
+  nc::NodeComputer& nc(unsigned k) { return *ncs_.at(k - 1); }  // 1..N
+  HdlcChannel& hdlc() { return *hdlc_; }
+  ImageBus& bus() { return *bus_; }
+  FrameMemory& fm() { return *fm_; }
+  void trace(sc_core::sc_trace_file* tf);
+
+  // After sc_start(): closes every NC's timeline at the frame's end.
+  FrameReport report(double host_seconds);
+
+ private:
+  SystemConfig cfg_;
+  std::unique_ptr<RootComputer> rc_;
+  std::unique_ptr<HdlcChannel> hdlc_;
+  std::vector<std::unique_ptr<nc::NodeComputer>> ncs_;
+  std::unique_ptr<ImageBus> bus_;
+  std::unique_ptr<ImageBusMonitor> monitor_;
+  std::unique_ptr<DataCollector> dc_;
+  std::unique_ptr<FrameMemory> fm_;
+};
+
+// Elaborates a machine in the current kernel, runs it (with a VCD of the
+// platform signals if vcd_path is not empty) and reports.
+FrameReport run_frame(const SystemConfig& cfg, const std::vector<apu::Encoded>& program,
+                      const nc::Firmware& firmware, const std::string& vcd_path = "");
+
+// The machine's self-test frame: diag.apu on every NC (firmware/diag).
+FrameReport run_diag(const SystemConfig& cfg, const std::string& vcd_path = "");
+
+// SystemC elaborates once per kernel: a fresh one for the next run_frame().
+void fresh_systemc_kernel();
+
+}  // namespace mc1

@@ -1,0 +1,58 @@
+// What the MPU firmware of a node computer sees of its hardware (s2): the
+// HDLC link to the RC, its processor time, the APU (through ApuDriver, the
+// only way to it), and the image bus. NodeComputer implements it; the
+// firmware (firmware/diag/...) is a function of an NcPort&.
+//
+// Time: every call that takes simulated time advances the NC's local time;
+// the APU runs in parallel with the MPU (s2: dual banks let them overlap), so
+// while the MPU works or waits the APU is clocked for the same span.
+// ApuDriver calls themselves take no time: firmware charges its copies and
+// commands with copy_words() / apu_commands().
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "apu_driver.hpp"
+#include "pixel_run.hpp"
+#include "timing_params.hpp"
+
+namespace mc1::nc {
+
+class NcPort {
+ public:
+  virtual ~NcPort() = default;
+  virtual unsigned id() const = 0;  // 1..N
+  virtual const TimingParams& timing() const = 0;
+
+  // MPU work of `cycles` MPU clock cycles (the APU runs meanwhile).
+  virtual void mpu_work(std::uint64_t cycles) = 0;
+  void copy_words(std::uint64_t n) { mpu_work(n * timing().mpu_cycles_per_word_copy); }
+  void apu_commands(std::uint64_t n) { mpu_work(n * timing().mpu_cycles_per_apu_command); }
+
+  // The HDLC link: posted send (the controller sends while the MPU goes on);
+  // receive blocks until a message from the RC is there.
+  virtual void send_to_rc(const std::vector<std::uint8_t>& msg) = 0;
+  virtual std::vector<std::uint8_t> receive_from_rc() = 0;
+
+  // The APU. apu_wait_swap: until the APU has taken the handed-over data bank
+  // (data_ready() clears; the MPU's bank then holds the previous block's
+  // results), then the swap interrupt. apu_wait_halt: until HALT. Both throw
+  // on an APU fault.
+  virtual apu::ApuDriver& apu() = 0;
+  virtual void apu_wait_swap() = 0;
+  virtual void apu_wait_halt() = 0;
+
+  // The image bus: returns when the DC has taken the run.
+  virtual void send_pixels(const PixelRun& run) = 0;
+
+  // For the activity chart: the block being worked on, and the end of work.
+  virtual void block_begin(std::uint32_t block) = 0;
+  virtual void block_end() = 0;
+  virtual void finished() = 0;
+};
+
+using Firmware = std::function<void(NcPort&)>;
+
+}  // namespace mc1::nc

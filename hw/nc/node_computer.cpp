@@ -1,0 +1,295 @@
+#include "node_computer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include "apu_iss.hpp"
+#include "sc_time_conv.hpp"
+
+namespace mc1::nc {
+namespace {
+
+// Host time of a stretch of APU clocking (the benchmark's split between the
+// APU's work and SystemC's).
+class HostTimer {
+ public:
+  explicit HostTimer(double& sink) : sink_(sink), t0_(std::chrono::steady_clock::now()) {}
+  ~HostTimer() {
+    sink_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+  }
+
+ private:
+  double& sink_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace
+
+const char* activity_name(Activity a) {
+  switch (a) {
+    case Activity::WaitRc: return "wait_rc";
+    case Activity::Busy: return "busy";
+    case Activity::WaitBus: return "wait_bus";
+    case Activity::Idle: return "idle";
+  }
+  return "?";
+}
+
+NodeComputer::NodeComputer(sc_core::sc_module_name name, const TimingParams& t, unsigned id,
+                           std::unique_ptr<apu::ApuEngine> engine, Firmware firmware)
+    : sc_module(name),
+      nc2rc_hdlc("nc2rc_hdlc"),
+      hdlc2nc("hdlc2nc"),
+      nc2bus_pixels("nc2bus_pixels"),
+      t_(t),
+      id_(id),
+      engine_(std::move(engine)),
+      driver_(*engine_),
+      firmware_(std::move(firmware)),
+      cycle_ps_(t.apu_cycle_ps()) {
+  hdlc2nc.register_b_transport(this, &NodeComputer::b_transport);
+  SC_HAS_PROCESS(NodeComputer);
+  SC_THREAD(run);
+}
+
+NodeComputer::~NodeComputer() = default;
+
+Picos NodeComputer::now() const {
+  return to_picos(sc_core::sc_time_stamp()) + to_picos(qk_.get_local_time());
+}
+
+void NodeComputer::mark(Activity a, Picos at) {
+  at = std::max(at, since_);
+  if (at > since_) {
+    if (!spans_.empty() && spans_.back().what == current_ && spans_.back().block == span_block_ &&
+        spans_.back().end == since_)
+      spans_.back().end = at;  // same activity, same block: one span
+    else
+      spans_.push_back(Span{since_, at, current_, span_block_});
+    since_ = at;
+  }
+  current_ = a;
+  span_block_ = block_;
+}
+
+void NodeComputer::apu_stopped(Picos at) {
+  if (!apu_open_) return;
+  apu_spans_.push_back(ApuSpan{apu_begin_, at});
+  stats_.apu_running += at - apu_begin_;
+  apu_open_ = false;
+}
+
+void NodeComputer::check_fault() const {
+  if (engine_->state() == apu::RunState::Faulted)
+    throw std::runtime_error("NC " + std::to_string(id_) + ": APU fault " +
+                             apu::fault_name(engine_->fault()) + " at cycle " +
+                             std::to_string(engine_->cycle()));
+}
+
+void NodeComputer::catch_up() {
+  const Picos t = now();
+  if (engine_->state() != apu::RunState::Running) {
+    apu_stopped(apu_time_);
+    apu_time_ = t;
+    return;
+  }
+  if (!apu_open_) {
+    apu_open_ = true;
+    apu_begin_ = apu_time_;
+  }
+  if (t <= apu_time_) return;
+  const std::uint64_t k = (t - apu_time_) / cycle_ps_;
+  if (k == 0) return;
+  std::uint64_t n = 0;
+  {
+    HostTimer timer(stats_.apu_host_seconds);
+    n = driver_.run(k);
+  }
+  stats_.apu_cycles += n;
+  apu_time_ += n * cycle_ps_;
+  if (n < k) {  // stopped inside the span
+    check_fault();
+    // Let results of the HALT word's own ops land (docs/apu-isa.md, Clarification 7).
+    apu::CycleRecord settle;
+    for (int i = 0; i < apu::ApuDriver::kSettleCycles; ++i) engine_->step(settle);
+    apu_stopped(apu_time_);
+    apu_time_ = t;
+  }
+}
+
+void NodeComputer::advance(Picos ps) {
+  qk_.inc(to_sc_time(ps));
+  catch_up();
+  if (qk_.need_sync()) qk_.sync();
+}
+
+void NodeComputer::mpu_work(std::uint64_t cycles) {
+  mark(Activity::Busy, now());
+  const Picos ps = t_.mpu_cycles_ps(cycles);
+  stats_.mpu_busy += ps;
+  advance(ps);
+}
+
+void NodeComputer::send_to_rc(const std::vector<std::uint8_t>& msg) {
+  // Copy into the controller's buffer and start it; the controller sends
+  // while the MPU goes on (a posted write on the HDLC channel).
+  mpu_work((msg.size() + 1) / 2 * t_.mpu_cycles_per_word_copy);
+  std::vector<std::uint8_t> data = msg;
+  tlm::tlm_generic_payload p;
+  p.set_command(tlm::TLM_WRITE_COMMAND);
+  p.set_address(0);
+  p.set_data_ptr(data.data());
+  p.set_data_length(static_cast<unsigned>(data.size()));
+  p.set_streaming_width(static_cast<unsigned>(data.size()));
+  p.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  sc_core::sc_time delay = qk_.get_local_time();
+  nc2rc_hdlc->b_transport(p, delay);
+  if (!p.is_response_ok())
+    throw std::runtime_error("NC " + std::to_string(id_) + ": HDLC refused a message: " +
+                             p.get_response_string());
+  qk_.set(delay);
+  ++stats_.messages_sent;
+}
+
+std::vector<std::uint8_t> NodeComputer::receive_from_rc() {
+  if (inbox_.empty()) qk_.sync();  // everything due up to our local time has arrived
+  if (inbox_.empty()) mark(Activity::WaitRc, now());
+  HdlcMailbox::Message m = inbox_.take();
+  catch_up();  // the APU ran while the MPU waited
+  ++stats_.messages_received;
+  // Receive interrupt, then copy the message out of the controller's buffer.
+  mpu_work(t_.mpu_cycles_per_interrupt + (m.data.size() + 1) / 2 * t_.mpu_cycles_per_word_copy);
+  return std::move(m.data);
+}
+
+void NodeComputer::b_transport(tlm::tlm_generic_payload& p, sc_core::sc_time& delay) {
+  if (p.get_command() != tlm::TLM_WRITE_COMMAND) {
+    p.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
+    return;
+  }
+  inbox_.put({to_picos(sc_core::sc_time_stamp() + delay), 0,
+              std::vector<std::uint8_t>(p.get_data_ptr(), p.get_data_ptr() + p.get_data_length())});
+  p.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+void NodeComputer::apu_wait_swap() {
+  mark(Activity::Busy, now());
+  catch_up();
+  if (driver_.data_ready() && engine_->state() != apu::RunState::Running)
+    throw std::runtime_error("NC " + std::to_string(id_) +
+                             ": waiting for the APU to take a data bank, but the APU is not running");
+  std::uint64_t n = 0;
+  {
+    // Cycle by cycle: the swap interrupt comes in the cycle the APU takes the bank.
+    HostTimer timer(stats_.apu_host_seconds);
+    while (driver_.data_ready() && engine_->state() == apu::RunState::Running) n += driver_.run(1);
+  }
+  stats_.apu_cycles += n;
+  apu_time_ += n * cycle_ps_;
+  check_fault();
+  if (driver_.data_ready())
+    throw std::runtime_error("NC " + std::to_string(id_) + ": the APU stopped without taking the data bank");
+  if (engine_->state() != apu::RunState::Running) apu_stopped(apu_time_);
+  const Picos t = now();
+  if (apu_time_ > t) advance(apu_time_ - t);
+  mpu_work(t_.mpu_cycles_per_interrupt);
+}
+
+void NodeComputer::apu_wait_halt() {
+  mark(Activity::Busy, now());
+  catch_up();
+  if (engine_->state() != apu::RunState::Running) return;
+  // Generous: the longest legal stream is bounded by the program, not by this.
+  std::uint64_t n = 0;
+  {
+    HostTimer timer(stats_.apu_host_seconds);
+    try {
+      n = driver_.run_until_done(std::uint64_t{1} << 40);
+    } catch (const apu::ApuError& e) {
+      throw std::runtime_error("NC " + std::to_string(id_) + ": " + e.what());
+    }
+  }
+  stats_.apu_cycles += n;
+  apu_time_ += n * cycle_ps_;
+  apu_stopped(apu_time_);
+  const Picos t = now();
+  if (apu_time_ > t) advance(apu_time_ - t);
+  apu_time_ = std::max(apu_time_, now());
+  mpu_work(t_.mpu_cycles_per_interrupt);
+}
+
+void NodeComputer::send_pixels(const PixelRun& run) {
+  pixel_bytes_ = encode_run(run);
+  const Picos requested = now();
+  mark(Activity::WaitBus, requested);
+  pixels_.set_command(tlm::TLM_WRITE_COMMAND);
+  pixels_.set_address(0);
+  pixels_.set_data_ptr(pixel_bytes_.data());
+  pixels_.set_data_length(static_cast<unsigned>(pixel_bytes_.size()));
+  pixels_.set_streaming_width(static_cast<unsigned>(pixel_bytes_.size()));
+  pixels_.set_byte_enable_ptr(nullptr);
+  pixels_.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  pixel_ext_ = NcIdExtension{};
+  pixel_ext_.nc = id_;
+  pixels_.set_extension(&pixel_ext_);
+  sc_core::sc_time delay = qk_.get_local_time();
+  nc2bus_pixels->b_transport(pixels_, delay);  // synchronises: the bus arbitrates in real time
+  pixels_.clear_extension(&pixel_ext_);
+  qk_.set(delay);
+  if (!pixels_.is_response_ok())
+    throw std::runtime_error("NC " + std::to_string(id_) + ": image bus refused the run at (" +
+                             std::to_string(run.x) + ", " + std::to_string(run.y) + "): " +
+                             pixels_.get_response_string());
+  // Waiting until the grant, busy while the run is on the bus.
+  mark(Activity::Busy, pixel_ext_.granted_known ? pixel_ext_.granted : now());
+  catch_up();
+  ++stats_.runs;
+  stats_.pixels += run.pixels.size();
+}
+
+void NodeComputer::block_begin(std::uint32_t block) {
+  block_ = block;
+  mark(Activity::Busy, now());
+}
+
+void NodeComputer::block_end() {
+  block_ = 0xFFFFFFFF;
+  ++stats_.blocks;
+  mark(current_, now());
+}
+
+void NodeComputer::finished() {
+  if (finished_) return;
+  catch_up();
+  qk_.sync();
+  block_ = 0xFFFFFFFF;
+  mark(Activity::Idle, now());
+  stats_.finished_at = now();
+  finished_ = true;
+}
+
+void NodeComputer::close(Picos frame_end) {
+  catch_up();
+  apu_stopped(std::min(apu_time_, frame_end));
+  mark(current_, frame_end);
+  if (const auto* iss = dynamic_cast<const apu::Iss*>(engine_.get())) {
+    stats_.apu_counted = true;
+    stats_.apu_issued = iss->counters().issued;
+    stats_.apu_bank_stalls = iss->counters().stalls[static_cast<int>(apu::Stall::Bank)];
+  }
+  for (Picos& p : stats_.time) p = 0;
+  for (const Span& s : spans_) stats_.time[static_cast<int>(s.what)] += s.end - s.begin;
+}
+
+void NodeComputer::run() {
+  try {
+    firmware_(*this);
+    finished();
+  } catch (const std::exception& e) {
+    SC_REPORT_ERROR(name(), e.what());
+  }
+}
+
+}  // namespace mc1::nc

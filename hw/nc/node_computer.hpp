@@ -1,0 +1,135 @@
+// A node computer (s2): a 16-bit MPU running firmware and an APU with
+// dual-bank program and data memories, an HDLC link to the RC and a port on
+// the image bus.
+//
+// Loosely timed with temporal decoupling (tlm_quantumkeeper): MPU work is
+// annotated from the timing table; the APU engine (ISS or verilated RTL,
+// chosen at run time) is clocked in bulk: k cycles of APU work annotate
+// k x apu_cycle_ps, with no SystemC event per cycle. The MPU and the APU
+// share one timeline: whenever the MPU's time advances (work, waiting for
+// a message or the bus), the APU is clocked for the same span.
+//
+// Activity (for statistics and the Gantt chart) partitions the NC's time:
+// WaitRc (waiting for a message from the RC: download, the next block),
+// Busy (MPU or APU working on a block, pixels on the bus), WaitBus (waiting
+// for an image-bus grant), Idle (after Finish).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/simple_target_socket.h>
+#include <tlm_utils/tlm_quantumkeeper.h>
+#include <vector>
+
+#include "apu_driver.hpp"
+#include "apu_engine.hpp"
+#include "hdlc_mailbox.hpp"
+#include "nc_extension.hpp"
+#include "nc_port.hpp"
+#include "timing_params.hpp"
+
+namespace mc1::nc {
+
+enum class Activity : std::uint8_t { WaitRc, Busy, WaitBus, Idle };
+constexpr int kActivityKinds = 4;
+const char* activity_name(Activity a);
+
+struct Span {
+  Picos begin = 0, end = 0;
+  Activity what = Activity::WaitRc;
+  std::uint32_t block = 0xFFFFFFFF;  // the block being worked on, if any
+};
+
+struct ApuSpan {
+  Picos begin = 0, end = 0;  // start() to HALT
+};
+
+struct NcStats {
+  Picos time[kActivityKinds] = {};  // by Activity, after close()
+  Picos apu_running = 0;            // APU started and not yet halted
+  std::uint64_t apu_cycles = 0;     // cycles clocked while running
+  std::uint64_t blocks = 0, pixels = 0, runs = 0;
+  std::uint64_t messages_sent = 0, messages_received = 0;
+  Picos finished_at = 0;
+  Picos mpu_busy = 0;               // MPU work annotated (copies, commands, interrupts)
+  double apu_host_seconds = 0;      // host time spent clocking the APU engine
+  // Only when the engine is the ISS (it counts them): words issued, and
+  // cycles stalled on `bank` (the APU waiting for the MPU's hand-over).
+  bool apu_counted = false;
+  std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
+};
+
+class NodeComputer : public sc_core::sc_module, public NcPort {
+ public:
+  tlm_utils::simple_initiator_socket<NodeComputer> nc2rc_hdlc;
+  tlm_utils::simple_target_socket<NodeComputer> hdlc2nc;
+  tlm_utils::simple_initiator_socket<NodeComputer> nc2bus_pixels;
+
+  NodeComputer(sc_core::sc_module_name name, const TimingParams& t, unsigned id,
+               std::unique_ptr<apu::ApuEngine> engine, Firmware firmware);
+  ~NodeComputer() override;
+
+  // After the simulation: the last span runs to `frame_end` (>= finished_at).
+  void close(Picos frame_end);  // also reads the ISS's counters
+  const std::vector<Span>& spans() const { return spans_; }
+  const std::vector<ApuSpan>& apu_spans() const { return apu_spans_; }
+  const NcStats& stats() const { return stats_; }
+  bool is_finished() const { return finished_; }
+  apu::ApuEngine& engine() { return *engine_; }
+
+  // NcPort.
+  unsigned id() const override { return id_; }
+  const TimingParams& timing() const override { return t_; }
+  void mpu_work(std::uint64_t cycles) override;
+  void send_to_rc(const std::vector<std::uint8_t>& msg) override;
+  std::vector<std::uint8_t> receive_from_rc() override;
+  apu::ApuDriver& apu() override { return driver_; }
+  void apu_wait_swap() override;
+  void apu_wait_halt() override;
+  void send_pixels(const PixelRun& run) override;
+  void block_begin(std::uint32_t block) override;
+  void block_end() override;
+  void finished() override;
+
+ private:
+  void run();
+  void b_transport(tlm::tlm_generic_payload& p, sc_core::sc_time& delay);
+  Picos now() const;
+  void advance(Picos ps);              // local time + APU catch-up
+  void catch_up();                     // clock the APU up to now()
+  void apu_stopped(Picos at);
+  void check_fault() const;
+  void mark(Activity a, Picos at);     // from `at` on, the NC does `a`
+
+  TimingParams t_;
+  unsigned id_;
+  std::unique_ptr<apu::ApuEngine> engine_;
+  apu::ApuDriver driver_;
+  Firmware firmware_;
+  HdlcMailbox inbox_;
+  tlm_utils::tlm_quantumkeeper qk_;
+  Picos cycle_ps_;
+
+  Picos apu_time_ = 0;      // the APU is clocked up to here
+  bool apu_open_ = false;   // an ApuSpan is open
+  Picos apu_begin_ = 0;
+
+  Activity current_ = Activity::WaitRc;
+  Picos since_ = 0;
+  std::uint32_t block_ = 0xFFFFFFFF;       // the block being worked on
+  std::uint32_t span_block_ = 0xFFFFFFFF;  // the block of the open span
+  std::vector<Span> spans_;
+  std::vector<ApuSpan> apu_spans_;
+  NcStats stats_;
+  bool finished_ = false;
+
+  tlm::tlm_generic_payload pixels_;
+  std::vector<std::uint8_t> pixel_bytes_;
+  NcIdExtension pixel_ext_;
+};
+
+}  // namespace mc1::nc

@@ -1,0 +1,42 @@
+// Where a station's HDLC controller leaves received messages until its
+// processor takes them. The line delivers from another process (b_transport
+// of a target socket must not wait), the station's own thread takes.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <systemc>
+#include <vector>
+
+#include "timing_params.hpp"
+
+namespace mc1 {
+
+class HdlcMailbox {
+ public:
+  struct Message {
+    Picos arrived = 0;   // simulated time of delivery
+    unsigned from = 0;   // 0 = RC, k = NC k
+    std::vector<std::uint8_t> data;
+  };
+
+  void put(Message m) {
+    q_.push_back(std::move(m));
+    ev_.notify(sc_core::SC_ZERO_TIME);
+  }
+  bool empty() const { return q_.empty(); }
+  std::size_t size() const { return q_.size(); }
+  // Blocks the calling SystemC thread until a message is there.
+  Message take() {
+    while (q_.empty()) sc_core::wait(ev_);
+    Message m = std::move(q_.front());
+    q_.pop_front();
+    return m;
+  }
+
+ private:
+  std::deque<Message> q_;
+  sc_core::sc_event ev_;
+};
+
+}  // namespace mc1
