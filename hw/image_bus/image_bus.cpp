@@ -22,10 +22,14 @@ void ImageBus::b_transport(int index, tlm::tlm_generic_payload& p, sc_core::sc_t
   sc_core::wait(r.done);
 }
 
-ImageBus::Request* ImageBus::pick() {
-  // Round robin: the first NC after the last granted one, cyclically.
+ImageBus::Request* ImageBus::pick(const sc_core::sc_time& decided) {
+  // Round robin among the requests made by the decision instant: the first
+  // NC after the last granted one, cyclically. Requests of later instants
+  // wait for the next round, whatever delta cycle they arrived in.
   const unsigned n = static_cast<unsigned>(nc2bus_pixels.size());
-  auto rank = [&](const Request* r) { return (r->nc + n - last_nc_ - 1) % n; };
+  auto rank = [&](const Request* r) {
+    return r->requested <= decided ? (r->nc + n - last_nc_ - 1) % n : n;
+  };
   auto it = std::min_element(pending_.begin(), pending_.end(), [&](Request* a, Request* b) {
     return rank(a) != rank(b) ? rank(a) < rank(b) : a->requested < b->requested;
   });
@@ -37,13 +41,13 @@ ImageBus::Request* ImageBus::pick() {
 void ImageBus::arbiter() {
   for (;;) {
     if (pending_.empty()) sc_core::wait(request_ev_);
-    sc_core::wait(sc_core::SC_ZERO_TIME);  // every request of this instant is in
-    if (pending_.empty()) continue;
-    Request* r = pick();
-    last_nc_ = r->nc;
+    // Arbitration decides among the requests of this instant; picking after
+    // the arbitration time sees all of them, in whichever delta they came.
     const sc_core::sc_time decided = sc_core::sc_time_stamp();
     sc_core::wait(to_sc_time(t_.image_bus_arbitration_ns * 1000));
     const sc_core::sc_time granted = sc_core::sc_time_stamp();
+    Request* r = pick(decided);
+    last_nc_ = r->nc;
 
     tlm::tlm_generic_payload& p = *r->payload;
     const sc_core::sc_time transfer = to_sc_time(t_.image_bus_bytes_ps(p.get_data_length()));

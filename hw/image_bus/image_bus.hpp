@@ -57,7 +57,7 @@ class ImageBus : public sc_core::sc_module {
   };
   void b_transport(int index, tlm::tlm_generic_payload& p, sc_core::sc_time& delay);
   void arbiter();
-  Request* pick();
+  Request* pick(const sc_core::sc_time& decided);
 
   TimingParams t_;
   std::deque<Request*> pending_;
