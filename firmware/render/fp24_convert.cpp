@@ -1,0 +1,50 @@
+#include "fp24_convert.hpp"
+
+#include <cstring>
+
+namespace mc1::render {
+
+std::uint32_t fp24_from_double(double x) {
+  std::uint64_t u;
+  std::memcpy(&u, &x, sizeof u);
+  const std::uint32_t sign = (u >> 63) ? 0x800000u : 0u;
+  const int e = static_cast<int>((u >> 52) & 0x7FF);
+  const std::uint64_t f = u & ((std::uint64_t{1} << 52) - 1);
+  if (e == 0x7FF) return f ? 0x7F8000u : (sign | 0x7F0000u);  // NaN, inf
+  if (e == 0) return sign;                                     // zero, subnormal: far below 2^-62
+  // 53-bit significand; keep 17 bits, round to nearest even on the 36 dropped.
+  std::uint64_t sig = (std::uint64_t{1} << 52) | f;
+  int exp = e - 1023;
+  const std::uint64_t dropped = sig & ((std::uint64_t{1} << 36) - 1);
+  sig >>= 36;
+  const std::uint64_t half = std::uint64_t{1} << 35;
+  if (dropped > half || (dropped == half && (sig & 1))) ++sig;
+  if (sig == (std::uint64_t{1} << 17)) {
+    sig >>= 1;
+    ++exp;
+  }
+  const int biased = exp + 63;
+  if (biased >= 127) return sign | 0x7F0000u;  // overflow
+  if (biased <= 0) return sign;                // tiny after rounding
+  return sign | (static_cast<std::uint32_t>(biased) << 16) | static_cast<std::uint32_t>(sig & 0xFFFF);
+}
+
+double fp24_to_double(std::uint32_t bits) {
+  const int e = static_cast<int>((bits >> 16) & 0x7F);
+  const bool neg = (bits & 0x800000u) != 0;
+  if (e == 0) return neg ? -0.0 : 0.0;
+  // Assemble the binary64 encoding: same value, exponent rebiased.
+  std::uint64_t u = neg ? (std::uint64_t{1} << 63) : 0;
+  if (e == 127) {
+    u |= std::uint64_t{0x7FF} << 52;
+    if (bits & 0xFFFF) u |= std::uint64_t{1} << 51;
+  } else {
+    u |= static_cast<std::uint64_t>(e - 63 + 1023) << 52;
+    u |= static_cast<std::uint64_t>(bits & 0xFFFF) << 36;
+  }
+  double x;
+  std::memcpy(&x, &u, sizeof x);
+  return x;
+}
+
+}  // namespace mc1::render

@@ -1,0 +1,679 @@
+#include "render_fw.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "apuasm.hpp"
+#include "render_kernels.hpp"
+#include "render_layout.hpp"
+
+namespace mc1::render {
+
+using namespace layout;
+
+// ---------------------------------------------------------------- kernels
+
+const std::vector<apu::Encoded>& kernel_words(const std::string& name) {
+  static std::map<std::string, std::vector<apu::Encoded>> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return it->second;
+  for (const auto& k : kernel_images()) {
+    if (name == k.name) {
+      std::string bytes(reinterpret_cast<const char*>(k.bytes), k.size);
+      return cache.emplace(name, apuasm::parse_image(bytes, name)).first->second;
+    }
+  }
+  throw std::out_of_range("no renderer kernel named " + name);
+}
+
+// ---------------------------------------------------------------- links, costs
+
+void DirectLink::wait_swap() {
+  std::uint64_t spent = 0;
+  while (drv_.data_ready()) {
+    if (drv_.state() != apu::RunState::Running || spent > max_cycles_)
+      throw std::runtime_error("render: APU stopped waiting for a data bank (state " +
+                               std::to_string(static_cast<int>(drv_.state())) + ", fault " +
+                               apu::fault_name(drv_.engine().fault()) + ")");
+    spent += drv_.run(16);  // the MPU polls every 16 APU cycles
+  }
+}
+
+void DirectLink::wait_halt() {
+  if (drv_.state() == apu::RunState::Running) drv_.run_until_done(max_cycles_);
+  if (drv_.state() != apu::RunState::Halted)
+    throw std::runtime_error(std::string("render: APU did not halt: fault ") +
+                             apu::fault_name(drv_.engine().fault()));
+}
+
+StepCost& StepCost::operator+=(const StepCost& o) {
+  apu_cycles += o.apu_cycles;
+  apu_runs += o.apu_runs;
+  batches += o.batches;
+  word_copies += o.word_copies;
+  list_elements += o.list_elements;
+  sort_compares += o.sort_compares;
+  apu_commands += o.apu_commands;
+  return *this;
+}
+
+const char* step_name(Step s) {
+  static const char* names[kSteps] = {"step1 transform", "step2 block lists", "s1 hidden surface",
+                                      "s2 shadows", "s3 shading", "s4 reflection/transmission",
+                                      "output"};
+  return names[static_cast<int>(s)];
+}
+
+StepCost RenderStats::total() const {
+  StepCost t;
+  for (const auto& s : step) t += s;
+  return t;
+}
+
+// ---------------------------------------------------------------- banks, streams
+
+RenderFirmware::RenderFirmware(ApuLink& link) : link_(link) { invalidate_banks(); }
+
+RenderFirmware::RenderFirmware(apu::ApuDriver& drv)
+    : own_link_(std::make_unique<DirectLink>(drv)), link_(*own_link_) {
+  invalidate_banks();
+}
+
+void RenderFirmware::invalidate_banks() {
+  for (auto& b : banks_) {
+    b.scene_valid = false;
+    b.slot_prim.assign(kPrimSlots, -1);
+  }
+  apu_prog_.clear();
+  mpu_prog_.clear();
+}
+
+void RenderFirmware::write(std::uint16_t addr, const std::uint32_t* w, std::size_t n, Step step) {
+  link_.apu().load_data(addr, w, n);
+  link_.copy_words(n);
+  stats_.step[static_cast<int>(step)].word_copies += n;
+}
+
+std::vector<std::uint32_t> RenderFirmware::read(std::uint16_t addr, std::size_t n, Step step) {
+  link_.copy_words(n);
+  stats_.step[static_cast<int>(step)].word_copies += n;
+  return link_.apu().read_results(addr, n);
+}
+
+void RenderFirmware::ensure_scene(Step step) {
+  if (mpu_bank().scene_valid) return;
+  write(C_D0, scene_words_.data(), scene_words_.size(), step);
+  mpu_bank().scene_valid = true;
+}
+
+std::vector<int> RenderFirmware::place_prims(const std::vector<int>& prims, Step step) {
+  if (prims.size() > static_cast<std::size_t>(kPrimSlots)) throw std::logic_error("place_prims: too many");
+  std::vector<int> slots(prims.size());
+  for (std::size_t i = 0; i < prims.size(); ++i) {
+    slots[i] = static_cast<int>(i);
+    if (mpu_bank().slot_prim[i] == prims[i]) continue;
+    write(static_cast<std::uint16_t>(PRIMS + P_SIZE * i), view_.prims.at(prims[i]).data(), P_SIZE, step);
+    mpu_bank().slot_prim[i] = prims[i];
+  }
+  return slots;
+}
+
+void RenderFirmware::use_kernel(const std::string& name, Step step) {
+  auto& cost = stats_.step[static_cast<int>(step)];
+  auto& drv = link_.apu();
+  if (apu_prog_ == name && !drv.program_ready()) return;
+  if (mpu_prog_ != name) {
+    const auto& words = kernel_words(name);
+    drv.load_program(words);
+    link_.copy_words(8 * words.size());
+    cost.word_copies += 8 * words.size();
+    mpu_prog_ = name;
+  }
+  drv.hand_over_program();
+  link_.apu_commands(1);
+  cost.apu_commands += 1;
+  std::swap(apu_prog_, mpu_prog_);  // start() takes the hand-over
+}
+
+template <class Fill, class Drain>
+void RenderFirmware::stream(const std::string& kernel, int items, Step step, Fill fill, Drain drain) {
+  if (items <= 0) return;
+  auto& cost = stats_.step[static_cast<int>(step)];
+  auto& drv = link_.apu();
+  use_kernel(kernel, step);
+  const std::uint32_t zero = 0;
+  fill(0);
+  drv.hand_over_data();
+  const std::uint64_t c0 = drv.engine().cycle();
+  drv.start(0);
+  link_.apu_commands(2);
+  cost.apu_commands += 2;
+  cost.apu_runs += 1;
+  for (int i = 1; i <= items; ++i) {
+    link_.wait_swap();
+    mpu_bank_ ^= 1;
+    if (i >= 2) drain(i - 2);
+    if (i < items) {
+      fill(i);
+    } else {
+      write(COUNT, &zero, 1, step);  // the end of the stream
+    }
+    drv.hand_over_data();
+    link_.apu_commands(1);
+    cost.apu_commands += 1;
+  }
+  link_.wait_swap();
+  mpu_bank_ ^= 1;
+  drain(items - 1);
+  link_.wait_halt();
+  cost.apu_cycles += drv.engine().cycle() - c0;
+  cost.batches += static_cast<std::uint64_t>(items);
+}
+
+// ---------------------------------------------------------------- scene
+
+void RenderFirmware::load_view_scene(const ViewScene& view) {
+  if (view.lights.size() > static_cast<std::size_t>(kMaxLights) ||
+      view.materials.size() > static_cast<std::size_t>(kMaxMaterials))
+    throw std::invalid_argument("render: at most 8 lights and 16 materials");
+  view_ = view;
+  scene_words_.assign(PRIMS - C_D0, 0);
+  std::copy(view.constants.begin(), view.constants.end(), scene_words_.begin());
+  for (std::size_t l = 0; l < view.lights.size(); ++l)
+    std::copy(view.lights[l].begin(), view.lights[l].end(), scene_words_.begin() + (LIGHTS - C_D0) + L_SIZE * l);
+  for (std::size_t m = 0; m < view.materials.size(); ++m)
+    std::copy(view.materials[m].begin(), view.materials[m].end(),
+              scene_words_.begin() + (MATS - C_D0) + M_SIZE * m);
+  for (auto& b : banks_) {
+    b.scene_valid = false;
+    b.slot_prim.assign(kPrimSlots, -1);
+  }
+}
+
+// ---------------------------------------------------------------- step 1: r_xform
+
+namespace {
+// r_xform's batch words (r_xform.apu header).
+constexpr int X_R = 2, X_EYE = 11, X_LOOK = 16, X_UP = 19, X_FOV = 22, X_W = 23, X_H = 24, X_DEG = 25;
+constexpr int kItems = 640, kItemSize = 32, kItemsPerBatch = (4096 - kItems) / kItemSize;
+constexpr std::uint32_t kPiOver360 = 0x381DF4;  // fp24(pi / 360), degrees to half-angle radians
+constexpr std::uint32_t kBig = 0x7ABC17;        // fp24(1e18): "no hit"
+bool positive(std::uint32_t fp24) { return !(fp24 & 0x800000) && (fp24 & 0x7F0000); }
+}  // namespace
+
+void RenderFirmware::load_scene(const SceneImage& img) {
+  constexpr Step step = Step::Transform;
+  if (img.lights.size() > static_cast<std::size_t>(kMaxLights) ||
+      img.materials.size() > static_cast<std::size_t>(kMaxMaterials))
+    throw std::invalid_argument("render: at most 8 lights and 16 materials");
+  // The camera (mode 0).
+  std::array<std::uint32_t, 9> rot{};
+  std::array<std::uint32_t, 32> cam{};  // words C_D0 .. C_D0 + 31 as r_xform left them
+  stream("r_xform", 1, step,
+         [&](int) {
+           std::array<std::uint32_t, 26> w{};
+           w[COUNT] = 1;
+           w[H_MODE] = 0;
+           std::copy(img.eye.begin(), img.eye.end(), w.begin() + X_EYE);
+           std::copy(img.look_at.begin(), img.look_at.end(), w.begin() + X_LOOK);
+           std::copy(img.up.begin(), img.up.end(), w.begin() + X_UP);
+           w[X_FOV] = img.fov_deg;
+           w[X_W] = static_cast<std::uint32_t>(img.width);
+           w[X_H] = static_cast<std::uint32_t>(img.height);
+           w[X_DEG] = kPiOver360;
+           write(1, w.data() + 1, w.size() - 1, step);
+           write(COUNT, w.data(), 1, step);
+         },
+         [&](int) {
+           const auto r = read(X_R, 9, step);
+           std::copy(r.begin(), r.end(), rot.begin());
+           const auto c = read(C_D0, 32, step);
+           std::copy(c.begin(), c.end(), cam.begin());
+         });
+  for (auto& b : banks_) b.scene_valid = false;  // the camera batch wrote constants
+
+  // Everything else (mode 1), in place: lights, checker frames, triangles,
+  // ellipsoids, object boxes.
+  struct Item {
+    std::array<std::uint32_t, kItemSize> w{};
+  };
+  std::vector<Item> items;
+  auto add = [&](int kind, const std::uint32_t* in, int at, int n) {
+    Item it;
+    it.w[0] = static_cast<std::uint32_t>(kind);
+    std::copy(in, in + n, it.w.begin() + at);
+    items.push_back(it);
+    return static_cast<int>(items.size()) - 1;
+  };
+  std::vector<int> light_item, mat_item, prim_item, box_item;
+  for (const auto& l : img.lights) light_item.push_back(add(1, l.data(), 1, 3));
+  for (const auto& m : img.materials) {
+    const int k = add(2, m.w.data() + M_CKO, 1, 9);
+    items[k].w[10] = m.checker_scale;
+    mat_item.push_back(k);
+  }
+  for (const auto& p : img.prims) {
+    int k = -1;
+    if (p.type == kTriangle || p.type == kPseudoTriangle) {
+      k = add(3, p.w.data(), 1, 12);
+      std::copy(p.w.begin() + 12, p.w.begin() + 21, items[k].w.begin() + 22);
+    } else if (p.type == kEllipsoid) {
+      k = add(4, p.w.data(), 1, 12);
+    }
+    prim_item.push_back(k);
+  }
+  for (const auto& o : img.objects) {
+    const int k = add(5, o.box_min.data(), 1, 3);
+    std::copy(o.box_max.begin(), o.box_max.end(), items[k].w.begin() + 4);
+    box_item.push_back(k);
+  }
+  const int batches = (static_cast<int>(items.size()) + kItemsPerBatch - 1) / kItemsPerBatch;
+  stream("r_xform", batches, step,
+         [&](int b) {
+           const int first = b * kItemsPerBatch;
+           const int n = std::min(kItemsPerBatch, static_cast<int>(items.size()) - first);
+           for (int i = 0; i < n; ++i)
+             write(static_cast<std::uint16_t>(kItems + kItemSize * i), items[first + i].w.data(), kItemSize, step);
+           write(X_R, rot.data(), 9, step);
+           write(X_EYE, img.eye.data(), 3, step);
+           const std::uint32_t head[2] = {static_cast<std::uint32_t>(n), 1};
+           write(H_MODE, head + 1, 1, step);
+           write(COUNT, head, 1, step);
+         },
+         [&](int b) {
+           const int first = b * kItemsPerBatch;
+           const int n = std::min(kItemsPerBatch, static_cast<int>(items.size()) - first);
+           for (int i = 0; i < n; ++i) {
+             const auto back = read(static_cast<std::uint16_t>(kItems + kItemSize * i), 28, step);
+             std::copy(back.begin(), back.end(), items[first + i].w.begin());
+           }
+         });
+  for (auto& b : banks_) b.scene_valid = false;
+
+  // The view scene: integer copies of r_xform's results into the records.
+  ViewScene v;
+  v.width = img.width;
+  v.height = img.height;
+  v.max_depth = img.max_depth;
+  std::copy(cam.begin(), cam.end(), v.constants.begin());
+  v.constants[C_EPS - C_D0] = img.epsilon;
+  v.constants[C_BIG - C_D0] = kBig;
+  v.constants[C_NLIGHTS - C_D0] = static_cast<std::uint32_t>(img.lights.size());
+  std::copy(img.background.begin(), img.background.end(), v.constants.begin() + (C_BG - C_D0));
+  for (std::size_t l = 0; l < img.lights.size(); ++l) {
+    std::array<std::uint32_t, 8> w{};
+    std::copy(items[light_item[l]].w.begin() + 1, items[light_item[l]].w.begin() + 4, w.begin() + L_POS);
+    std::copy(img.lights[l].begin() + 3, img.lights[l].end(), w.begin() + L_I);
+    v.lights.push_back(w);
+  }
+  for (std::size_t m = 0; m < img.materials.size(); ++m) {
+    auto w = img.materials[m].w;
+    std::copy(items[mat_item[m]].w.begin() + 1, items[mat_item[m]].w.begin() + 10, w.begin() + M_CKO);
+    v.materials.push_back(w);
+  }
+  for (std::size_t o = 0; o < img.objects.size(); ++o) {
+    const auto& oi = img.objects[o];
+    ViewScene::Object vo;
+    vo.solid = oi.solid;
+    const auto& mw = img.materials.at(oi.material).w;
+    vo.secondary = positive(mw[M_KS]) || positive(mw[M_KT]);
+    vo.first_prim = oi.first_prim;
+    vo.prim_count = oi.prim_count;
+    std::copy(items[box_item[o]].w.begin() + 1, items[box_item[o]].w.begin() + 7, vo.box.begin());
+    v.objects.push_back(vo);
+  }
+  for (std::size_t i = 0; i < img.prims.size(); ++i) {
+    const auto& p = img.prims[i];
+    std::array<std::uint32_t, 32> w{};
+    w[P_TYPE] = static_cast<std::uint32_t>(p.type);
+    w[P_MAT] = static_cast<std::uint32_t>(MATS + M_SIZE * img.objects.at(p.object).material);
+    w[P_SOLID] = img.objects[p.object].solid ? 1 : 0;
+    w[P_ID] = static_cast<std::uint32_t>(i);
+    const auto& x = prim_item[i] >= 0 ? items[prim_item[i]].w : items.front().w;
+    if (p.type == kTriangle || p.type == kPseudoTriangle) {
+      std::copy(x.begin() + 1, x.begin() + 19, w.begin() + P_P0);   // P0 E1 E2 N UA VA
+      std::copy(x.begin() + 19, x.begin() + 28, w.begin() + P_VN0);
+    } else if (p.type == kEllipsoid) {
+      std::copy(x.begin() + 1, x.begin() + 13, w.begin() + P_A);    // A, b
+    } else {
+      std::copy(p.w.begin(), p.w.begin() + 16, w.begin() + P_Q);    // world: a1..a10, box
+    }
+    v.prims.push_back(w);
+    v.prim_object.push_back(p.object);
+  }
+  load_view_scene(v);
+}
+
+// ---------------------------------------------------------------- step 2: block lists
+
+BlockList RenderFirmware::build_block_list(const Block& block) {
+  auto& cost = stats_.step[static_cast<int>(Step::BlockLists)];
+  BlockList bl;
+  bl.block = block;
+  // Sort key: the nearest distance of the box along the view axis, -max z
+  // (the view looks down -z), 0 if the box reaches the eye plane; as a
+  // non-negative FP24 number it orders as an integer. A box wholly behind
+  // the eye (min z > 0) is dropped.
+  std::vector<std::pair<std::uint32_t, int>> keyed;
+  for (int o = 0; o < static_cast<int>(view_.objects.size()); ++o) {
+    const std::uint32_t zmin = view_.objects[o].box[2];  // most distant
+    cost.list_elements += 1;
+    if (!(zmin & 0x800000) && (zmin & 0x7F0000)) continue;  // min z > 0: behind the eye
+    const std::uint32_t zmax = view_.objects[o].box[5];
+    // distance = -zmax, or 0 when the box contains the eye plane
+    const std::uint32_t key = (zmax & 0x800000) ? (zmax & 0x7FFFFF) : 0;
+    keyed.emplace_back(key, o);
+  }
+  std::stable_sort(keyed.begin(), keyed.end(), [&](const auto& a, const auto& b) {
+    ++cost.sort_compares;
+    return a.first < b.first;
+  });
+  link_.sort_compares(cost.sort_compares);
+  for (const auto& [key, o] : keyed) {
+    bl.objects.push_back(o);
+    bl.load += view_.objects[o].secondary ? 4 : 1;
+  }
+  return bl;
+}
+
+// ---------------------------------------------------------------- s1/s2/s4: r_cast
+
+void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, Step step) {
+  constexpr int kListsPerBatch = 8;
+  constexpr int kListWords = 48;
+  auto& cost = stats_.step[static_cast<int>(step)];
+  struct Plan {
+    int first = 0, n = 0;
+    std::vector<int> lists;                // distinct candidate lists
+    std::vector<std::vector<int>> chunks;  // the lists' primitives, <= 48 per chunk
+  };
+  std::vector<Plan> plans;
+  for (int i = 0; i < static_cast<int>(rays.size());) {
+    Plan p;
+    p.first = i;
+    while (i < static_cast<int>(rays.size()) && p.n < kRaysPerBatch) {
+      const int l = rays[i].list;
+      if (std::find(p.lists.begin(), p.lists.end(), l) == p.lists.end()) {
+        if (static_cast<int>(p.lists.size()) == kListsPerBatch) break;
+        p.lists.push_back(l);
+      }
+      ++p.n;
+      ++i;
+    }
+    std::set<int> all;
+    for (int l : p.lists) {
+      all.insert(lists[l].begin(), lists[l].end());
+      cost.list_elements += lists[l].size();
+    }
+    std::vector<int> chunk;
+    for (int prim : all) {
+      chunk.push_back(prim);
+      if (static_cast<int>(chunk.size()) == kPrimSlots) p.chunks.push_back(std::move(chunk)), chunk.clear();
+    }
+    if (!chunk.empty() || p.chunks.empty()) p.chunks.push_back(chunk);
+    plans.push_back(std::move(p));
+  }
+  std::size_t levels = 0;
+  for (const auto& p : plans) levels = std::max(levels, p.chunks.size());
+  // One stream per chunk level: pass c + 1 of a batch needs pass c's results.
+  for (std::size_t c = 0; c < levels; ++c) {
+    std::vector<int> items;
+    for (int b = 0; b < static_cast<int>(plans.size()); ++b)
+      if (plans[b].chunks.size() > c) items.push_back(b);
+    auto fill = [&](int item) {
+      const Plan& p = plans[items[item]];
+      ensure_scene(step);
+      const auto& chunk = p.chunks[c];
+      const auto slots = place_prims(chunk, step);
+      std::map<int, int> slot_of;
+      for (std::size_t k = 0; k < chunk.size(); ++k) slot_of[chunk[k]] = slots[k];
+      std::vector<std::uint32_t> list_words(kListWords);
+      std::vector<int> list_n(p.lists.size());
+      for (std::size_t k = 0; k < p.lists.size(); ++k) {
+        int n = 0;
+        for (int prim : lists[p.lists[k]]) {
+          auto it = slot_of.find(prim);
+          if (it != slot_of.end()) list_words[n++] = static_cast<std::uint32_t>(it->second);
+        }
+        cost.list_elements += lists[p.lists[k]].size();
+        list_n[k] = n;
+        if (n) write(static_cast<std::uint16_t>(LISTS + kListWords * k), list_words.data(), n, step);
+      }
+      for (int j = 0; j < p.n; ++j) {
+        auto rec = rays[p.first + j].rec;
+        const int k = static_cast<int>(std::find(p.lists.begin(), p.lists.end(), rays[p.first + j].list) -
+                                       p.lists.begin());
+        rec[R_LIST] = static_cast<std::uint32_t>(LISTS + kListWords * k);
+        rec[R_LISTN] = static_cast<std::uint32_t>(list_n[k]);
+        if (c > 0) rec[R_KIND] = rec[R_KIND] == 2 ? 3 : rec[R_KIND] == 1 ? 0 : rec[R_KIND];
+        write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rec.data(), R_SLOT + 1, step);
+      }
+      const std::uint32_t count = static_cast<std::uint32_t>(p.n);
+      write(COUNT, &count, 1, step);
+    };
+    auto drain = [&](int item) {
+      const Plan& p = plans[items[item]];
+      for (int j = 0; j < p.n; ++j) {
+        auto back = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j), R_SLOT + 1, step);
+        auto& rec = rays[p.first + j].rec;
+        for (int w = R_O; w <= R_T; ++w) rec[w] = back[w];
+        rec[R_ID] = back[R_ID];
+        rec[R_SLOT] = back[R_SLOT];
+      }
+    };
+    stream("r_cast", static_cast<int>(items.size()), step, fill, drain);
+  }
+}
+
+// ---------------------------------------------------------------- s1: r_surf
+
+namespace {
+constexpr std::uint32_t kOne = 0x3F0000;  // FP24 1.0
+bool is_hit(const RenderFirmware::Ray& r) { return r.rec[R_ID] != kNoHit; }
+}  // namespace
+
+void RenderFirmware::surface(std::vector<Ray>& rays, Step step) {
+  std::vector<int> hits;
+  for (int i = 0; i < static_cast<int>(rays.size()); ++i)
+    if (is_hit(rays[i])) hits.push_back(i);
+  const int items = (static_cast<int>(hits.size()) + kRaysPerBatch - 1) / kRaysPerBatch;
+  auto fill = [&](int item) {
+    ensure_scene(step);
+    const int first = item * kRaysPerBatch;
+    const int n = std::min(kRaysPerBatch, static_cast<int>(hits.size()) - first);
+    std::vector<int> prims;
+    for (int j = 0; j < n; ++j) {
+      const int id = static_cast<int>(rays[hits[first + j]].rec[R_ID]);
+      if (std::find(prims.begin(), prims.end(), id) == prims.end()) prims.push_back(id);
+    }
+    const auto slots = place_prims(prims, step);
+    for (int j = 0; j < n; ++j) {
+      auto rec = rays[hits[first + j]].rec;
+      const int id = static_cast<int>(rec[R_ID]);
+      rec[R_SLOT] = static_cast<std::uint32_t>(slots[std::find(prims.begin(), prims.end(), id) - prims.begin()]);
+      write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rec.data(), R_SLOT + 1, step);
+    }
+    const std::uint32_t count = static_cast<std::uint32_t>(n);
+    write(COUNT, &count, 1, step);
+  };
+  auto drain = [&](int item) {
+    const int first = item * kRaysPerBatch;
+    const int n = std::min(kRaysPerBatch, static_cast<int>(hits.size()) - first);
+    for (int j = 0; j < n; ++j) {
+      auto& rec = rays[hits[first + j]].rec;
+      const auto back = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_P), R_INSIDE - R_P + 1, step);
+      std::copy(back.begin(), back.end(), rec.begin() + R_P);
+      rec[R_SOLID] = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_SOLID), 1, step)[0];
+    }
+  };
+  stream("r_surf", items, step, fill, drain);
+}
+
+// ---------------------------------------------------------------- s2: shadow rays
+
+void RenderFirmware::shadows(std::vector<Ray>& rays) {
+  const int lights = static_cast<int>(view_.lights.size());
+  std::vector<Ray> probes;
+  std::vector<std::pair<int, int>> owner;  // (ray, light)
+  for (int i = 0; i < static_cast<int>(rays.size()); ++i) {
+    rays[i].rec[R_SHADOW] = 0;
+    if (!is_hit(rays[i])) continue;
+    for (int l = 0; l < lights; ++l) {
+      Ray s;
+      std::copy(rays[i].rec.begin() + R_P, rays[i].rec.begin() + R_P + 3, s.rec.begin() + R_O);
+      s.rec[R_KIND] = 1;
+      s.rec[R_ARG] = static_cast<std::uint32_t>(l);
+      s.rec[R_ID] = kNoHit;
+      // fig. 6: the shadow list of (object hit, light l); every object may
+      // block (docs/scene-format.md s2), so all lists are the full list.
+      s.list = 1;
+      probes.push_back(s);
+      owner.emplace_back(i, l);
+    }
+  }
+  stats_.shadow_rays += probes.size();
+  cast(probes, lists_, Step::Shadows);
+  for (std::size_t k = 0; k < probes.size(); ++k)
+    if (is_hit(probes[k])) rays[owner[k].first].rec[R_SHADOW] |= 1u << owner[k].second;
+  stats_.step[static_cast<int>(Step::Shadows)].list_elements += probes.size();
+}
+
+// ---------------------------------------------------------------- s3/s4: r_shade
+
+void RenderFirmware::shade(std::vector<Ray>& rays, Step step) {
+  const int items = (static_cast<int>(rays.size()) + kRaysPerBatch - 1) / kRaysPerBatch;
+  auto fill = [&](int item) {
+    ensure_scene(step);
+    const int first = item * kRaysPerBatch;
+    const int n = std::min(kRaysPerBatch, static_cast<int>(rays.size()) - first);
+    for (int j = 0; j < n; ++j)
+      write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rays[first + j].rec.data(), R_SIZE, step);
+    const std::uint32_t count = static_cast<std::uint32_t>(n);
+    write(COUNT, &count, 1, step);
+  };
+  auto drain = [&](int item) {
+    const int first = item * kRaysPerBatch;
+    const int n = std::min(kRaysPerBatch, static_cast<int>(rays.size()) - first);
+    for (int j = 0; j < n; ++j) {
+      const auto back = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_OUT), R_TW + 3 - R_OUT, step);
+      std::copy(back.begin(), back.end(), rays[first + j].rec.begin() + R_OUT);
+    }
+  };
+  stream("r_shade", items, step, fill, drain);
+}
+
+// ---------------------------------------------------------------- output: r_sum
+
+std::vector<Rgb8> RenderFirmware::sum(const std::vector<std::vector<std::array<std::uint32_t, 3>>>& contrib) {
+  constexpr Step step = Step::Output;
+  constexpr int kPixels = 64;
+  constexpr int kPool = (4096 - POOL) / 3;
+  struct Batch {
+    int first = 0, n = 0;
+  };
+  std::vector<Batch> batches;
+  for (int p = 0; p < static_cast<int>(contrib.size());) {
+    Batch b{p, 0};
+    int pool = 0;
+    while (p < static_cast<int>(contrib.size()) && b.n < kPixels &&
+           (b.n == 0 || pool + static_cast<int>(contrib[p].size()) <= kPool)) {
+      if (static_cast<int>(contrib[p].size()) > kPool) throw std::runtime_error("r_sum: too many rays for a pixel");
+      pool += static_cast<int>(contrib[p].size());
+      ++b.n;
+      ++p;
+    }
+    batches.push_back(b);
+  }
+  std::vector<Rgb8> out(contrib.size());
+  auto fill = [&](int item) {
+    const Batch& b = batches[item];
+    std::vector<std::uint32_t> pix(2 * b.n), pool;
+    for (int k = 0; k < b.n; ++k) {
+      pix[2 * k] = static_cast<std::uint32_t>(POOL + pool.size());
+      pix[2 * k + 1] = static_cast<std::uint32_t>(contrib[b.first + k].size());
+      for (const auto& c : contrib[b.first + k]) pool.insert(pool.end(), c.begin(), c.end());
+    }
+    write(PIX, pix.data(), pix.size(), step);
+    if (!pool.empty()) write(POOL, pool.data(), pool.size(), step);
+    const std::uint32_t count = static_cast<std::uint32_t>(b.n);
+    write(COUNT, &count, 1, step);
+  };
+  auto drain = [&](int item) {
+    const Batch& b = batches[item];
+    const auto v = read(OUT, 3 * b.n, step);
+    for (int k = 0; k < b.n; ++k)
+      out[b.first + k] = Rgb8{static_cast<std::uint8_t>(v[3 * k]), static_cast<std::uint8_t>(v[3 * k + 1]),
+                              static_cast<std::uint8_t>(v[3 * k + 2])};
+  };
+  stream("r_sum", static_cast<int>(batches.size()), step, fill, drain);
+  return out;
+}
+
+// ---------------------------------------------------------------- step 3 per block
+
+std::vector<Rgb8> RenderFirmware::render_block(const BlockList& list) {
+  const Block& b = list.block;
+  // Candidate lists of primitives: 0 the block list's (s1), 1 every primitive
+  // in file order (s2, s4).
+  lists_.assign(2, {});
+  for (int o : list.objects) {
+    const auto& obj = view_.objects.at(o);
+    for (int k = 0; k < obj.prim_count; ++k) lists_[0].push_back(obj.first_prim + k);
+  }
+  for (int p = 0; p < static_cast<int>(view_.prims.size()); ++p) lists_[1].push_back(p);
+  stats_.step[static_cast<int>(Step::HiddenSurface)].list_elements += lists_[0].size();
+
+  std::vector<Ray> gen;
+  for (int j = 0; j < b.h; ++j)
+    for (int i = 0; i < b.w; ++i) {
+      Ray r;
+      r.rec[R_KIND] = 2;
+      r.rec[R_ARG] = static_cast<std::uint32_t>(b.x0 + i);
+      r.rec[R_ARG2] = static_cast<std::uint32_t>(b.y0 + j);
+      r.rec[R_ID] = kNoHit;
+      r.rec[R_W] = r.rec[R_W + 1] = r.rec[R_W + 2] = kOne;
+      r.rec[R_CHILD] = view_.max_depth > 0 ? 3 : 0;
+      r.pixel = j * b.w + i;
+      r.list = 0;
+      gen.push_back(r);
+    }
+  std::vector<std::vector<std::array<std::uint32_t, 3>>> contrib(gen.size());
+  stats_.rays += gen.size();
+  const std::uint32_t big = scene_words_[C_BIG - C_D0];
+  for (int depth = 0; !gen.empty(); ++depth) {
+    const Step s1 = depth == 0 ? Step::HiddenSurface : Step::Secondary;
+    const Step s3 = depth == 0 ? Step::Shading : Step::Secondary;
+    cast(gen, lists_, s1);
+    surface(gen, s1);
+    shadows(gen);
+    shade(gen, s3);
+    std::vector<Ray> next;
+    for (const auto& r : gen) {
+      contrib[r.pixel].push_back({r.rec[R_OUT], r.rec[R_OUT + 1], r.rec[R_OUT + 2]});
+      for (int c = 0; c < 2; ++c) {
+        if (!(r.rec[R_CHILD] & (1u << c))) continue;
+        Ray k;
+        const int dir = c == 0 ? R_RD : R_TD, w = c == 0 ? R_RW : R_TW;
+        std::copy(r.rec.begin() + R_P, r.rec.begin() + R_P + 3, k.rec.begin() + R_O);
+        std::copy(r.rec.begin() + dir, r.rec.begin() + dir + 3, k.rec.begin() + R_D);
+        std::copy(r.rec.begin() + w, r.rec.begin() + w + 3, k.rec.begin() + R_W);
+        k.rec[R_T] = big;
+        k.rec[R_ID] = kNoHit;
+        k.rec[R_KIND] = 0;
+        k.rec[R_CHILD] = depth + 1 < view_.max_depth ? 3 : 0;
+        k.pixel = r.pixel;
+        k.depth = depth + 1;
+        k.list = 1;
+        next.push_back(k);
+      }
+    }
+    stats_.secondary_rays += next.size();
+    stats_.step[static_cast<int>(s3)].list_elements += gen.size();
+    gen = std::move(next);
+  }
+  return sum(contrib);
+}
+
+}  // namespace mc1::render

@@ -1,0 +1,159 @@
+// The renderer's MPU firmware (paper section 4, fig. 3): integer work, lists,
+// transfers, bank swaps and control around the APU kernels r_*.apu, which do
+// every floating-point operation of the frame in FP24. Independent of
+// SystemC: it reaches the APU only through an ApuLink (ApuDriver plus the
+// NC's notion of waiting), so the same code runs standalone on the ISS and
+// inside the platform's node computer. docs/renderer.md describes the data
+// layouts and the steps.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "apu_driver.hpp"
+#include "scene_image.hpp"
+
+namespace mc1::render {
+
+// What the firmware needs of its node computer. The platform implements it
+// on its NcPort (apu_wait_swap, apu_wait_halt, copy_words, ...); DirectLink
+// clocks the APU itself.
+class ApuLink {
+ public:
+  virtual ~ApuLink() = default;
+  virtual apu::ApuDriver& apu() = 0;
+  virtual void wait_swap() = 0;  // until the APU took the handed-over data bank
+  virtual void wait_halt() = 0;  // until HALT; throws on a fault
+  // MPU work, by the classes of the platform's timing table.
+  virtual void copy_words(std::uint64_t) {}
+  virtual void list_elements(std::uint64_t) {}
+  virtual void sort_compares(std::uint64_t) {}
+  virtual void apu_commands(std::uint64_t) {}
+};
+
+// Standalone: the MPU is infinitely fast; waiting clocks the APU.
+class DirectLink final : public ApuLink {
+ public:
+  explicit DirectLink(apu::ApuDriver& drv, std::uint64_t max_cycles = 2'000'000'000ull)
+      : drv_(drv), max_cycles_(max_cycles) {}
+  apu::ApuDriver& apu() override { return drv_; }
+  void wait_swap() override;
+  void wait_halt() override;
+
+ private:
+  apu::ApuDriver& drv_;
+  std::uint64_t max_cycles_;
+};
+
+// APU and MPU work of one step of the frame algorithm.
+struct StepCost {
+  std::uint64_t apu_cycles = 0;   // start() to HALT, stalls included
+  std::uint64_t apu_runs = 0;     // kernel runs (start .. HALT)
+  std::uint64_t batches = 0;      // data banks handed over
+  std::uint64_t word_copies = 0;  // MPU <-> APU bank words (program words count 8)
+  std::uint64_t list_elements = 0;
+  std::uint64_t sort_compares = 0;
+  std::uint64_t apu_commands = 0;  // hand-overs and starts
+  StepCost& operator+=(const StepCost& o);
+};
+
+enum class Step { Transform, BlockLists, HiddenSurface, Shadows, Shading, Secondary, Output };
+constexpr int kSteps = 7;
+const char* step_name(Step s);
+
+struct RenderStats {
+  std::array<StepCost, kSteps> step{};
+  std::uint64_t rays = 0, shadow_rays = 0, secondary_rays = 0;
+  StepCost total() const;
+};
+
+struct Block {
+  int x0 = 0, y0 = 0, w = 0, h = 0;  // pixels [x0, x0 + w) x [y0, y0 + h)
+};
+
+// s2 of fig. 3: the objects whose projected box overlaps a block, nearest
+// first (by the FP24 nearest z of the box, compared as integers).
+struct BlockList {
+  Block block;
+  std::vector<int> objects;
+  std::uint32_t load = 0;  // the RC's load prediction: objects, reflecting ones counted 4x
+};
+
+struct Rgb8 {
+  std::uint8_t r = 0, g = 0, b = 0;
+  bool operator==(const Rgb8& o) const { return r == o.r && g == o.g && b == o.b; }
+};
+
+class RenderFirmware {
+ public:
+  explicit RenderFirmware(ApuLink& link);
+  explicit RenderFirmware(apu::ApuDriver& drv);  // with its own DirectLink
+
+  // Step 1 (fig. 3): the broadcast scene to view coordinates on the APU
+  // (r_xform), with the eye-ray constants and each object's view box.
+  void load_scene(const SceneImage& image);
+  // Or the product of step 1 directly (tests; a scene already in view
+  // coordinates).
+  void load_view_scene(const ViewScene& view);
+  const ViewScene& view() const { return view_; }
+
+  // Step 2: project the object boxes (r_box) and list the objects that may
+  // appear in `block`, nearest first.
+  BlockList build_block_list(const Block& block);
+  // Step 3, s1..s4 for one block: RGB8 pixels, row-major.
+  std::vector<Rgb8> render_block(const BlockList& list);
+
+  const RenderStats& stats() const { return stats_; }
+  void reset_stats() { stats_ = {}; }
+  // Another program used the APU: forget what the banks hold.
+  void invalidate_banks();
+
+  // One ray as the MPU keeps it: the 48-word record of r_layout.inc plus
+  // integer bookkeeping.
+  struct Ray {
+    std::array<std::uint32_t, 48> rec{};
+    int list = 0;    // candidate list (index into lists_)
+    int pixel = 0;   // index in the block
+    int depth = 0;   // 0: eye ray
+  };
+  // s1/s2/s4 intersection pass over `rays` (r_cast); public for tests.
+  void cast(std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, Step step);
+  // s1 (r_surf): hit point, shading normal, material, colour of every hit.
+  void surface(std::vector<Ray>& rays, Step step);
+  // s2: shadow rays to every light (r_cast), R_SHADOW bits.
+  void shadows(std::vector<Ray>& rays);
+  // s3/s4 (r_shade): weighted local colour and the secondary rays' data.
+  void shade(std::vector<Ray>& rays, Step step);
+
+ private:
+  struct Bank {
+    bool scene_valid = false;
+    std::vector<int> slot_prim;  // primitive cached in each PRIMS slot, -1 none
+  };
+  void use_kernel(const std::string& name, Step step);
+  // The stream protocol over `items` batches: fill(i) writes batch i into the
+  // MPU's bank, drain(i) reads its results back.
+  template <class Fill, class Drain>
+  void stream(const std::string& kernel, int items, Step step, Fill fill, Drain drain);
+  Bank& mpu_bank() { return banks_[mpu_bank_]; }
+  void write(std::uint16_t addr, const std::uint32_t* w, std::size_t n, Step step);
+  std::vector<std::uint32_t> read(std::uint16_t addr, std::size_t n, Step step);
+  void ensure_scene(Step step);
+  std::vector<int> place_prims(const std::vector<int>& prims, Step step);  // slots
+  std::vector<Rgb8> sum(const std::vector<std::vector<std::array<std::uint32_t, 3>>>& contrib);
+
+  std::unique_ptr<DirectLink> own_link_;  // before link_: it may refer to it
+  ApuLink& link_;
+  ViewScene view_;
+  std::vector<std::vector<int>> lists_;     // candidate lists of the block being rendered
+  std::vector<std::uint32_t> scene_words_;  // words C_D0 .. PRIMS-1 of every bank
+  std::array<Bank, 2> banks_;
+  int mpu_bank_ = 0;  // which of banks_ the MPU owns (relative naming)
+  std::string apu_prog_, mpu_prog_;
+  RenderStats stats_;
+};
+
+}  // namespace mc1::render

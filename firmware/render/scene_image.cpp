@@ -1,0 +1,129 @@
+#include "scene_image.hpp"
+
+#ifdef MC1_RENDER_HAVE_SCENE
+#include <stdexcept>
+#include <string>
+
+#include "fp24_convert.hpp"
+#include "render_layout.hpp"
+#include "scene.hpp"
+#endif
+
+namespace mc1::render {
+
+#ifdef MC1_RENDER_HAVE_SCENE
+namespace {
+
+Vec3w v3(const glm::dvec3& v) { return {fp24_from_double(v.x), fp24_from_double(v.y), fp24_from_double(v.z)}; }
+
+template <std::size_t N>
+void put(std::array<Word, N>& w, int at, const glm::dvec3& v) {
+  const auto x = v3(v);
+  w[at] = x[0];
+  w[at + 1] = x[1];
+  w[at + 2] = x[2];
+}
+
+}  // namespace
+
+SceneImage make_scene_image(const scene::Scene& s) {
+  using namespace layout;
+  SceneImage img;
+  img.eye = v3(s.camera.eye);
+  img.look_at = v3(s.camera.look_at);
+  img.up = v3(s.camera.up);
+  img.fov_deg = fp24_from_double(s.camera.fov_deg);
+  img.width = s.camera.width;
+  img.height = s.camera.height;
+  img.max_depth = s.render.max_depth;
+  img.background = v3(s.render.background);
+  img.epsilon = fp24_from_double(s.render.epsilon);
+  if (s.lights.size() > static_cast<std::size_t>(kMaxLights))
+    throw std::invalid_argument(s.source + ": the renderer takes at most 8 lights, not " +
+                                std::to_string(s.lights.size()));
+  if (s.materials.size() > static_cast<std::size_t>(kMaxMaterials))
+    throw std::invalid_argument(s.source + ": the renderer takes at most 16 materials, not " +
+                                std::to_string(s.materials.size()));
+  for (const auto& l : s.lights) {
+    std::array<Word, 6> w{};
+    put(w, 0, l.position);
+    put(w, 3, l.intensity);
+    img.lights.push_back(w);
+  }
+  for (const auto& m : s.materials) {
+    MaterialImage mi;
+    put(mi.w, M_C, m.colour);
+    mi.w[M_KO] = fp24_from_double(m.ko);
+    mi.w[M_KD] = fp24_from_double(m.kd);
+    mi.w[M_KM] = fp24_from_double(m.km);
+    const double n = m.n < 0 ? 0 : m.n > 32767 ? 32767 : m.n;
+    // n = M_N + M_NF / 256 (docs/renderer.md: cos^n by squaring and square roots)
+    const Word fixed = static_cast<Word>(n * 256 + 0.5);
+    mi.w[M_N] = fixed >> 8;
+    mi.w[M_NF] = fixed & 0xFF;
+    mi.w[M_KS] = fp24_from_double(m.ks);
+    mi.w[M_KT] = fp24_from_double(m.kt);
+    mi.w[M_ETA] = fp24_from_double(m.index);
+    mi.w[M_TEX] = m.textured ? 1 : 0;
+    put(mi.w, M_CK0, m.checker.colours[0]);
+    put(mi.w, M_CK1, m.checker.colours[1]);
+    put(mi.w, M_CKO, m.checker.origin);
+    put(mi.w, M_CKU, m.checker.u);
+    put(mi.w, M_CKV, m.checker.v);
+    mi.checker_scale = fp24_from_double(m.checker.scale);
+    img.materials.push_back(mi);
+  }
+  for (std::size_t o = 0; o < s.objects.size(); ++o) {
+    const auto& obj = s.objects[o];
+    ObjectImage oi;
+    oi.solid = obj.kind == scene::ObjectKind::solid;
+    oi.material = obj.material;
+    oi.first_prim = static_cast<int>(img.prims.size());
+    oi.box_min = v3(obj.box_min);
+    oi.box_max = v3(obj.box_max);
+    for (const auto& p : obj.primitives) {
+      PrimImage pi;
+      pi.object = static_cast<int>(o);
+      switch (p.kind) {
+        case scene::PrimitiveKind::triangle:
+        case scene::PrimitiveKind::quad:
+        case scene::PrimitiveKind::pseudo_triangle:
+        case scene::PrimitiveKind::pseudo_quad: {
+          const bool pseudo = p.kind == scene::PrimitiveKind::pseudo_triangle ||
+                              p.kind == scene::PrimitiveKind::pseudo_quad;
+          pi.type = pseudo ? kPseudoTriangle : kTriangle;
+          // A quad is (v0, v1, v2) and (v0, v2, v3).
+          for (int t = 0; t + 2 < p.vertex_count; ++t) {
+            const int idx[3] = {0, t + 1, t + 2};
+            for (int k = 0; k < 3; ++k) {
+              put(pi.w, 3 * k, p.vertices[idx[k]]);
+              put(pi.w, 12 + 3 * k, pseudo ? p.vertex_normals[idx[k]] : p.normal);
+            }
+            put(pi.w, 9, p.normal);
+            img.prims.push_back(pi);
+          }
+          continue;
+        }
+        case scene::PrimitiveKind::ellipsoid:
+          pi.type = kEllipsoid;
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) pi.w[3 * r + c] = fp24_from_double(p.A[c][r]);
+          put(pi.w, 9, p.centre);
+          break;
+        case scene::PrimitiveKind::quadric:
+          pi.type = kQuadric;
+          for (int k = 0; k < 10; ++k) pi.w[k] = fp24_from_double(p.coefficients[k]);
+          put(pi.w, 10, p.box_min);
+          put(pi.w, 13, p.box_max);
+          break;
+      }
+      img.prims.push_back(pi);
+    }
+    oi.prim_count = static_cast<int>(img.prims.size()) - oi.first_prim;
+    img.objects.push_back(oi);
+  }
+  return img;
+}
+#endif
+
+}  // namespace mc1::render
