@@ -10,10 +10,7 @@
 #include "apu_driver.hpp"
 #include "apu_random.hpp"
 #include "disasm.hpp"
-#if __has_include("apu_rtl_engine.hpp")
 #include "apu_rtl_engine.hpp"
-#define MC1_TEST_HAVE_RTL 1
-#endif
 
 namespace mc1::apu {
 namespace {
@@ -221,7 +218,6 @@ TEST(ApuRandom, ProgramsAreValidVariedAndEndAsPlanned) {
   EXPECT_GT(multi_image, 30);
 }
 
-#ifdef MC1_TEST_HAVE_RTL
 TEST(ApuCosim, IssAndRtlAgreeOnRandomPrograms) {
   for (std::uint64_t i = 0; i < 30; ++i) {
     const RandomCase c = make_random_case(case_seed(5, i));
@@ -231,7 +227,6 @@ TEST(ApuCosim, IssAndRtlAgreeOnRandomPrograms) {
     EXPECT_FALSE(d) << c.describe() << "\n" << d->report("iss", "rtl");
   }
 }
-#endif
 
 }  // namespace
 }  // namespace mc1::apu

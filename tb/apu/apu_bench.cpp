@@ -152,8 +152,7 @@ Result bench(const std::string& name, const std::vector<Encoded>& kernel, std::u
 
 int main(int argc, char** argv) {
   std::string kernel_path = std::string(MC1_SOURCE_DIR) + "/firmware/kernels/xform4.apu";
-  std::vector<std::string> engines = {"iss"};
-  if (tools::rtl_available()) engines.push_back("rtl");
+  std::vector<std::string> engines = {"iss", "rtl"};
   std::uint64_t iss_cycles = 40'000'000, rtl_cycles = 4'000'000;
   bool check = false;
   for (int i = 1; i < argc; ++i) {
