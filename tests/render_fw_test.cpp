@@ -3,6 +3,7 @@
 // written out by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -374,26 +375,195 @@ imgcmp::Image render_frame(RenderFirmware& fw, int width, int height) {
   return img;
 }
 
-// scenes/room.json (polyhedra and three quadric regions) at 64 x 48.
-TEST(RenderFrame, RoomWithQuadricsMatchesTheReferenceRenderer) {
+std::string scene_path(const std::string& name) {
   const std::string src = __FILE__;
-  scene::Scene sc = scene::load_scene(src.substr(0, src.rfind("/tests/")) + "/scenes/room.json");
-  const int w = std::getenv("ROOM_W") ? std::atoi(std::getenv("ROOM_W")) : 64;
-  sc.camera.width = w;
-  sc.camera.height = w * 3 / 4;
+  return src.substr(0, src.rfind("/tests/")) + "/scenes/" + name + ".json";
+}
+
+// A standard scene (docs/scene-format.md) at width x height, co-simulated
+// block by block on the ISS, against the double-precision reference renderer.
+// The bound: PSNR >= 35 dB. On a failure the frame, the reference and
+// their difference (x8) go to the working directory (the build tree).
+double standard_scene_psnr(const std::string& name, int width, int height) {
+  scene::Scene sc = scene::load_scene(scene_path(name));
+  sc.camera.width = width;
+  sc.camera.height = height;
   Rig rig;
   rig.fw.load_scene(make_scene_image(sc));
-  const imgcmp::Image img = render_frame(rig.fw, sc.camera.width, sc.camera.height);
+  const imgcmp::Image img = render_frame(rig.fw, width, height);
   const imgcmp::Image want = refrender::Renderer(sc).render();
-  if (const char* dir = std::getenv("MC1_RENDER_DUMP")) {
-    imgcmp::write_png(std::string(dir) + "/room_fw.png", img);
-    imgcmp::write_png(std::string(dir) + "/room_ref.png", want);
-  }
   const double db = psnr_db(img, want);
-  std::printf("room %dx%d: PSNR %.2f dB\n", sc.camera.width, sc.camera.height, db);
-  // Measured 33.1 dB at 64x48 (31.4 dB at 160x120): quadric pixels that
-  // come out ambient-only (docs/renderer.md "Known gaps"); below the 35 dB goal.
-  EXPECT_GT(db, 32.5);
+  std::printf("%s %dx%d: PSNR %.2f dB, max diff %d\n", name.c_str(), width, height, db,
+              imgcmp::max_abs_diff(img, want));
+  const std::string stem = "render_fw_" + name + "_" + std::to_string(width) + "x" + std::to_string(height);
+  if (db < 35.0 || std::getenv("MC1_RENDER_DUMP")) {
+    imgcmp::write_png(stem + "_fw.png", img);
+    imgcmp::write_png(stem + "_ref.png", want);
+    imgcmp::write_png(stem + "_diff.png", imgcmp::difference(img, want, 8));
+    std::printf("  wrote %s_{fw,ref,diff}.png\n", stem.c_str());
+  }
+  return db;
+}
+
+// Measured (docs/renderer.md): whitted 64x48 67.3 dB, room 64x48 47.0 dB,
+// smooth 64x48 50.0 dB, teapot 32x24 73.3 dB (64x48 44.9 dB).
+TEST(RenderScenes, WhittedWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("whitted", 64, 48), 35.0); }
+TEST(RenderScenes, RoomWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("room", 64, 48), 35.0); }
+// The teapot (1153 primitives) is smaller here; its 64x48 frame runs under
+// `ctest -L long` (firmware/render/CMakeLists.txt).
+TEST(RenderScenes, SmoothWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("smooth", 64, 48), 35.0); }
+TEST(RenderScenes, TeapotWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("teapot", 32, 24), 35.0); }
+TEST(RenderScenes, DISABLED_Long_TeapotAt64x48) { EXPECT_GE(standard_scene_psnr("teapot", 64, 48), 35.0); }
+
+// Step 2 (r_box): block lists hold only the objects whose projected box
+// meets the block, and s1's candidates only the triangles whose projection
+// does; both are conservative: every eye ray's hit (all primitives, one
+// pass) is among its block's candidates.
+void expect_block_lists_conservative(const scene::Scene& sc, int bs, std::size_t* listed) {
+  Rig rig;
+  rig.fw.load_scene(make_scene_image(sc));
+  const auto& v = rig.fw.view();
+  const int w = sc.camera.width, h = sc.camera.height;
+  std::vector<int> all(v.prims.size());
+  for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+  std::vector<RenderFirmware::Ray> rays;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      RenderFirmware::Ray r;
+      r.rec[R_KIND] = 2;
+      r.rec[R_ARG] = static_cast<Word>(i);
+      r.rec[R_ARG2] = static_cast<Word>(j);
+      r.rec[R_ID] = kNoHit;
+      rays.push_back(r);
+    }
+  rig.fw.cast(rays, {all}, Step::HiddenSurface);
+  *listed = 0;
+  for (int y0 = 0; y0 < h; y0 += bs)
+    for (int x0 = 0; x0 < w; x0 += bs) {
+      const BlockList bl = rig.fw.build_block_list({x0, y0, std::min(bs, w - x0), std::min(bs, h - y0)});
+      const auto cand = rig.fw.eye_candidates(bl);
+      *listed += cand.size();
+      for (int j = y0; j < std::min(h, y0 + bs); ++j)
+        for (int i = x0; i < std::min(w, x0 + bs); ++i) {
+          const Word id = rays[j * w + i].rec[R_ID];
+          if (id == kNoHit) continue;
+          EXPECT_NE(std::find(bl.objects.begin(), bl.objects.end(), v.prim_object[id]), bl.objects.end())
+              << "pixel " << i << "," << j;
+          EXPECT_NE(std::find(cand.begin(), cand.end(), static_cast<int>(id)), cand.end())
+              << "pixel " << i << "," << j << " primitive " << id;
+        }
+    }
+}
+
+TEST(RenderBlockLists, ProjectedBoxesCullObjectsAndTriangles) {
+  scene::Scene room = scene::load_scene(scene_path("room"));
+  room.camera.width = 64;
+  room.camera.height = 48;
+  Rig rig;
+  rig.fw.load_scene(make_scene_image(room));
+  // Objects: 0 floor, 1 walls, 2 box, 3 tetrahedron, 4 cylinder, 5 cone,
+  // 6 paraboloid (chrome), 7 ellipsoid (chrome); nearest first.
+  const BlockList top = rig.fw.build_block_list({0, 0, 16, 16});
+  EXPECT_EQ(top.objects, (std::vector<int>{1, 4}));
+  EXPECT_EQ(top.load, 2u);
+  const BlockList mid = rig.fw.build_block_list({32, 16, 16, 16});
+  EXPECT_EQ(mid.objects, (std::vector<int>{1, 0, 6, 2, 5, 3}));
+  EXPECT_EQ(mid.load, 1u + 1u + 4u + 1u + 1u + 1u);
+  EXPECT_EQ(rig.fw.eye_candidates(mid).size(), 22u);  // of 30 primitives
+  std::size_t listed = 0;
+  expect_block_lists_conservative(room, 16, &listed);
+  EXPECT_EQ(listed, 105u);  // 12 blocks x 30 primitives without step 2
+  const scene::Scene small = scene::parse_scene(kWhitted, "whitted-small.json", ".");
+  expect_block_lists_conservative(small, 8, &listed);  // 8x8 blocks: triangles and a pseudo quad
+  EXPECT_EQ(listed, 129u);  // 30 blocks x 13 primitives without step 2
+}
+
+// fig. 6 (r_slist): the objects that may block a light for an object.
+TEST(RenderShadows, ShadowListsHoldTheObjectsBetweenAnObjectAndALight) {
+  scene::Scene room = scene::load_scene(scene_path("room"));
+  Rig rig;
+  rig.fw.load_scene(make_scene_image(room));
+  // The floor's box touches every object: everything may shadow it.
+  EXPECT_EQ(rig.fw.shadow_list(0, 0), (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7}));
+  // The box (right, front) toward light 1 (right, high): floor, walls, itself.
+  EXPECT_EQ(rig.fw.shadow_list(2, 1), (std::vector<int>{0, 1, 2}));
+  // The cylinder (left, back) toward light 0 (left, front).
+  EXPECT_EQ(rig.fw.shadow_list(4, 0), (std::vector<int>{0, 1, 4}));
+}
+
+// The cause of the room's old 33 dB: FP24 hit points of quadrics and
+// ellipsoids lie up to ~2e-3 off the surface, and shadow rays met their own
+// surface just past epsilon. With R_FROM (r_cast: the primitive a ray leaves
+// contributes only its other root, -B/A) every eye hit of room.json at 64x48
+// has the reference's per-light shadow flags.
+TEST(RenderShadows, RoomEyeHitsHaveTheReferenceShadowFlags) {
+  scene::Scene sc = scene::load_scene(scene_path("room"));
+  const int w = 64, h = 48;
+  sc.camera.width = w;
+  sc.camera.height = h;
+  Rig rig;
+  rig.fw.load_scene(make_scene_image(sc));
+  const auto& v = rig.fw.view();
+  std::vector<int> all(v.prims.size());
+  for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+  std::vector<RenderFirmware::Ray> rays;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      RenderFirmware::Ray r;
+      r.rec[R_KIND] = 2;
+      r.rec[R_ARG] = static_cast<Word>(i);
+      r.rec[R_ARG2] = static_cast<Word>(j);
+      r.rec[R_ID] = kNoHit;
+      rays.push_back(r);
+    }
+  rig.fw.cast(rays, {all}, Step::HiddenSurface);
+  rig.fw.surface(rays, Step::HiddenSurface);
+  const int lights = static_cast<int>(sc.lights.size());
+  std::vector<RenderFirmware::Ray> probes;
+  for (const auto& r : rays) {
+    if (r.rec[R_ID] == kNoHit) continue;
+    for (int l = 0; l < lights; ++l) {
+      RenderFirmware::Ray s;
+      std::copy(r.rec.begin() + R_P, r.rec.begin() + R_P + 3, s.rec.begin() + R_O);
+      s.rec[R_KIND] = 1;
+      s.rec[R_ARG] = static_cast<Word>(l);
+      s.rec[R_ID] = kNoHit;
+      s.from = static_cast<int>(r.rec[R_ID]);
+      s.list = 1 + v.prim_object[s.from] * lights + l;  // its shadow list (fig. 6)
+      probes.push_back(s);
+    }
+  }
+  std::vector<std::vector<int>> lists{all};
+  for (int o = 0; o < static_cast<int>(v.objects.size()); ++o)
+    for (int l = 0; l < lights; ++l) {
+      lists.emplace_back();
+      for (int b : rig.fw.shadow_list(o, l))
+        for (int q = 0; q < v.objects[b].prim_count; ++q) lists.back().push_back(v.objects[b].first_prim + q);
+    }
+  rig.fw.cast(probes, lists, Step::Shadows);
+  const refrender::Renderer ref(sc);
+  int other_object = 0, other_flags = 0, lit = 0, k = 0;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const auto& rec = rays[j * w + i].rec;
+      refrender::Hit hit;
+      const bool ref_hit = ref.nearest_hit(refrender::eye_ray(sc.camera, i, j, w, h), hit);
+      const int obj = rec[R_ID] == kNoHit ? -1 : v.prim_object[rec[R_ID]];
+      int flags = 0, ref_flags = 0;
+      if (obj >= 0)
+        for (int l = 0; l < lights; ++l, ++k) flags |= (probes[k].rec[R_ID] != kNoHit) << l;
+      if (obj != (ref_hit ? hit.object : -1)) {
+        ++other_object;
+        continue;
+      }
+      if (obj < 0) continue;
+      for (int l = 0; l < lights; ++l) ref_flags |= ref.shadowed(hit.point, sc.lights[l]) << l;
+      other_flags += flags != ref_flags;
+      lit += flags != 3;
+    }
+  EXPECT_EQ(other_flags, 0);    // was 51 (self-shadowed quadric and ellipsoid pixels)
+  EXPECT_LE(other_object, 2);   // silhouette pixels: (21, 27) and (34, 33)
+  EXPECT_GT(lit, 2000);
 }
 
 // Determinism: a block's pixels depend only on the scene and the block, not

@@ -190,6 +190,8 @@ void RenderFirmware::load_view_scene(const ViewScene& view) {
     b.scene_valid = false;
     b.slot_prim.assign(kPrimSlots, -1);
   }
+  project_boxes();
+  build_shadow_lists();
 }
 
 // ---------------------------------------------------------------- step 1: r_xform
@@ -348,19 +350,130 @@ void RenderFirmware::load_scene(const SceneImage& img) {
 
 // ---------------------------------------------------------------- step 2: block lists
 
+bool RenderFirmware::ScreenRect::overlaps(const Block& b) const {
+  if (status == kBehind) return false;
+  if (status == kWholeScreen) return true;
+  return i0 <= b.x0 + b.w - 1 && i1 >= b.x0 && j0 <= b.y0 + b.h - 1 && j1 >= b.y0;
+}
+
+// fig. 5: every object box (four points: x / z and y / z are extreme at
+// (min, min, zmin), (max, max, zmin), (min, min, zmax), (max, max, zmax)) and
+// every triangle (its vertices) projected on the screen by r_box, once per
+// frame; the MPU keeps the integer rectangles.
+void RenderFirmware::project_boxes() {
+  constexpr Step step = Step::BlockLists;
+  constexpr int kSize = 16, kPerBatch = (4096 - LISTS) / kSize;
+  struct Item {
+    std::array<std::uint32_t, 13> w{};
+    ScreenRect* out = nullptr;
+  };
+  object_rect_.assign(view_.objects.size(), ScreenRect{});
+  prim_rect_.assign(view_.prims.size(), ScreenRect{});
+  std::vector<Item> items;
+  for (std::size_t o = 0; o < view_.objects.size(); ++o) {
+    const auto& b = view_.objects[o].box;  // min xyz, max xyz
+    Item it;
+    const int corner[4][3] = {{0, 1, 2}, {3, 4, 2}, {0, 1, 5}, {3, 4, 5}};
+    for (int p = 0; p < 4; ++p)
+      for (int c = 0; c < 3; ++c) it.w[1 + 3 * p + c] = b[corner[p][c]];
+    it.out = &object_rect_[o];
+    items.push_back(it);
+  }
+  for (std::size_t k = 0; k < view_.prims.size(); ++k) {
+    const auto& p = view_.prims[k];
+    if (p[P_TYPE] != kTriangle && p[P_TYPE] != kPseudoTriangle) continue;
+    Item it;
+    it.w[0] = 1;
+    std::copy(p.begin() + P_P0, p.begin() + P_P0 + 9, it.w.begin() + 1);  // v0, E1, E2
+    it.out = &prim_rect_[k];
+    items.push_back(it);
+  }
+  const int batches = (static_cast<int>(items.size()) + kPerBatch - 1) / kPerBatch;
+  auto count_of = [&](int b) { return std::min(kPerBatch, static_cast<int>(items.size()) - b * kPerBatch); };
+  stream("r_box", batches, step,
+         [&](int b) {
+           ensure_scene(step);
+           for (int i = 0; i < count_of(b); ++i)
+             write(static_cast<std::uint16_t>(LISTS + kSize * i), items[b * kPerBatch + i].w.data(), 13, step);
+           const std::uint32_t count = static_cast<std::uint32_t>(count_of(b));
+           write(COUNT, &count, 1, step);
+         },
+         [&](int b) {
+           for (int i = 0; i < count_of(b); ++i) {
+             const auto v = read(static_cast<std::uint16_t>(LISTS + kSize * i), 5, step);
+             ScreenRect& r = *items[b * kPerBatch + i].out;
+             r.status = static_cast<int>(v[0]);
+             r.i0 = static_cast<std::int16_t>(v[1]);
+             r.i1 = static_cast<std::int16_t>(v[2]);
+             r.j0 = static_cast<std::int16_t>(v[3]);
+             r.j1 = static_cast<std::int16_t>(v[4]);
+           }
+         });
+}
+
+// fig. 6, once per frame after step 1: for each object A and light L, the
+// objects B whose view box meets the box of A's box and L (r_slist); then
+// the primitives of those objects as candidate lists.
+void RenderFirmware::build_shadow_lists() {
+  constexpr Step step = Step::Shadows;
+  constexpr int kSize = 16, kPerBatch = (4096 - LISTS) / kSize;
+  const int nobj = static_cast<int>(view_.objects.size());
+  const int nlights = static_cast<int>(view_.lights.size());
+  struct Item {
+    std::array<std::uint32_t, 15> w{};
+    int a = 0, l = 0, b = 0;
+  };
+  std::vector<Item> items;
+  for (int a = 0; a < nobj; ++a)
+    for (int l = 0; l < nlights; ++l)
+      for (int b = 0; b < nobj; ++b) {
+        if (view_.objects[a].prim_count == 0 || view_.objects[b].prim_count == 0) continue;
+        Item it{{}, a, l, b};
+        std::copy(view_.objects[a].box.begin(), view_.objects[a].box.end(), it.w.begin());
+        std::copy(view_.lights[l].begin() + L_POS, view_.lights[l].begin() + L_POS + 3, it.w.begin() + 6);
+        std::copy(view_.objects[b].box.begin(), view_.objects[b].box.end(), it.w.begin() + 9);
+        items.push_back(it);
+      }
+  shadow_objects_.assign(static_cast<std::size_t>(nobj) * nlights, {});
+  const int batches = (static_cast<int>(items.size()) + kPerBatch - 1) / kPerBatch;
+  auto count_of = [&](int b) { return std::min(kPerBatch, static_cast<int>(items.size()) - b * kPerBatch); };
+  stream("r_slist", batches, step,
+         [&](int b) {
+           ensure_scene(step);
+           for (int i = 0; i < count_of(b); ++i)
+             write(static_cast<std::uint16_t>(LISTS + kSize * i), items[b * kPerBatch + i].w.data(), 15, step);
+           const std::uint32_t count = static_cast<std::uint32_t>(count_of(b));
+           write(COUNT, &count, 1, step);
+         },
+         [&](int b) {
+           for (int i = 0; i < count_of(b); ++i) {
+             const Item& it = items[b * kPerBatch + i];
+             if (read(static_cast<std::uint16_t>(LISTS + kSize * i + 15), 1, step)[0])
+               shadow_objects_[static_cast<std::size_t>(it.a) * nlights + it.l].push_back(it.b);
+           }
+         });
+  lists_.assign(2 + shadow_objects_.size(), {});
+  for (int p = 0; p < static_cast<int>(view_.prims.size()); ++p) lists_[1].push_back(p);
+  for (std::size_t k = 0; k < shadow_objects_.size(); ++k)
+    for (int b : shadow_objects_[k]) {
+      const auto& obj = view_.objects[b];
+      for (int q = 0; q < obj.prim_count; ++q) lists_[2 + k].push_back(obj.first_prim + q);
+      stats_.step[static_cast<int>(step)].list_elements += obj.prim_count;
+    }
+}
+
 BlockList RenderFirmware::build_block_list(const Block& block) {
   auto& cost = stats_.step[static_cast<int>(Step::BlockLists)];
   BlockList bl;
   bl.block = block;
-  // Sort key: the nearest distance of the box along the view axis, -max z
-  // (the view looks down -z), 0 if the box reaches the eye plane; as a
-  // non-negative FP24 number it orders as an integer. A box wholly behind
-  // the eye (min z > 0) is dropped.
+  // The objects whose projected box (r_box) overlaps the block. Sort key:
+  // the nearest distance of the box along the view axis, -max z (the view
+  // looks down -z), 0 if the box reaches the eye plane; as a non-negative
+  // FP24 number it orders as an integer.
   std::vector<std::pair<std::uint32_t, int>> keyed;
   for (int o = 0; o < static_cast<int>(view_.objects.size()); ++o) {
-    const std::uint32_t zmin = view_.objects[o].box[2];  // most distant
     cost.list_elements += 1;
-    if (!(zmin & 0x800000) && (zmin & 0x7F0000)) continue;  // min z > 0: behind the eye
+    if (view_.objects[o].prim_count == 0 || !object_rect_.at(o).overlaps(block)) continue;
     const std::uint32_t zmax = view_.objects[o].box[5];
     // distance = -zmax, or 0 when the box contains the eye plane
     const std::uint32_t key = (zmax & 0x800000) ? (zmax & 0x7FFFFF) : 0;
@@ -447,8 +560,14 @@ void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<
                                        p.lists.begin());
         rec[R_LIST] = static_cast<std::uint32_t>(LISTS + kListWords * k);
         rec[R_LISTN] = static_cast<std::uint32_t>(list_n[k]);
-        if (c > 0) rec[R_KIND] = rec[R_KIND] == 2 ? 3 : rec[R_KIND] == 1 ? 0 : rec[R_KIND];
+        if (c > 0) {  // a later pass: the ray's data as the earlier pass left it
+          if (rec[R_KIND] == 1 && rec[R_ID] != kNoHit) rec[R_LISTN] = 0;  // already blocked
+          rec[R_KIND] = rec[R_KIND] == 2 ? 3 : rec[R_KIND] == 1 ? 4 : rec[R_KIND];
+        }
         write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rec.data(), R_SLOT + 1, step);
+        const int from = rays[p.first + j].from;
+        const std::uint32_t from_word = from < 0 ? kNoHit : static_cast<std::uint32_t>(from);
+        write(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_FROM), &from_word, 1, step);
       }
       const std::uint32_t count = static_cast<std::uint32_t>(p.n);
       write(COUNT, &count, 1, step);
@@ -526,9 +645,9 @@ void RenderFirmware::shadows(std::vector<Ray>& rays) {
       s.rec[R_KIND] = 1;
       s.rec[R_ARG] = static_cast<std::uint32_t>(l);
       s.rec[R_ID] = kNoHit;
-      // fig. 6: the shadow list of (object hit, light l); every object may
-      // block (docs/scene-format.md s2), so all lists are the full list.
-      s.list = 1;
+      s.from = static_cast<int>(rays[i].rec[R_ID]);
+      // fig. 6: the shadow list of (object hit, light l).
+      s.list = 2 + view_.prim_object.at(s.from) * lights + l;
       probes.push_back(s);
       owner.emplace_back(i, l);
     }
@@ -613,17 +732,22 @@ std::vector<Rgb8> RenderFirmware::sum(const std::vector<std::vector<std::array<s
 
 // ---------------------------------------------------------------- step 3 per block
 
-std::vector<Rgb8> RenderFirmware::render_block(const BlockList& list) {
-  const Block& b = list.block;
-  // Candidate lists of primitives: 0 the block list's (s1), 1 every primitive
-  // in file order (s2, s4).
-  lists_.assign(2, {});
+std::vector<int> RenderFirmware::eye_candidates(const BlockList& list) {
+  std::vector<int> prims;
   for (int o : list.objects) {
     const auto& obj = view_.objects.at(o);
-    for (int k = 0; k < obj.prim_count; ++k) lists_[0].push_back(obj.first_prim + k);
+    stats_.step[static_cast<int>(Step::HiddenSurface)].list_elements += obj.prim_count;
+    // Within an object of the block list, a triangle whose own projection
+    // (r_box) misses the block cannot be met by the block's eye rays.
+    for (int k = 0; k < obj.prim_count; ++k)
+      if (prim_rect_.at(obj.first_prim + k).overlaps(list.block)) prims.push_back(obj.first_prim + k);
   }
-  for (int p = 0; p < static_cast<int>(view_.prims.size()); ++p) lists_[1].push_back(p);
-  stats_.step[static_cast<int>(Step::HiddenSurface)].list_elements += lists_[0].size();
+  return prims;
+}
+
+std::vector<Rgb8> RenderFirmware::render_block(const BlockList& list) {
+  const Block& b = list.block;
+  lists_.at(0) = eye_candidates(list);  // [1] and the shadow lists are the frame's
 
   std::vector<Ray> gen;
   for (int j = 0; j < b.h; ++j)
@@ -665,6 +789,7 @@ std::vector<Rgb8> RenderFirmware::render_block(const BlockList& list) {
         k.rec[R_CHILD] = depth + 1 < view_.max_depth ? 3 : 0;
         k.pixel = r.pixel;
         k.depth = depth + 1;
+        k.from = static_cast<int>(r.rec[R_ID]);
         k.list = 1;
         next.push_back(k);
       }

@@ -103,6 +103,15 @@ class RenderFirmware {
   // Step 2: project the object boxes (r_box) and list the objects that may
   // appear in `block`, nearest first.
   BlockList build_block_list(const Block& block);
+  // s1's candidates for the block's eye rays: the primitives of the block
+  // list's objects, nearest object first, less the triangles whose own
+  // projection misses the block.
+  std::vector<int> eye_candidates(const BlockList& list);
+  // fig. 6: the objects that may block `light` for the points of `object`
+  // (r_slist on the view boxes, once per frame), in file order.
+  const std::vector<int>& shadow_list(int object, int light) const {
+    return shadow_objects_.at(static_cast<std::size_t>(object) * view_.lights.size() + light);
+  }
   // Step 3, s1..s4 for one block: RGB8 pixels, row-major.
   std::vector<Rgb8> render_block(const BlockList& list);
 
@@ -118,6 +127,7 @@ class RenderFirmware {
     int list = 0;    // candidate list (index into lists_)
     int pixel = 0;   // index in the block
     int depth = 0;   // 0: eye ray
+    int from = -1;   // primitive the ray leaves (R_FROM): shadow and secondary rays
   };
   // s1/s2/s4 intersection pass over `rays` (r_cast); public for tests.
   void cast(std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, Step step);
@@ -145,10 +155,26 @@ class RenderFirmware {
   std::vector<int> place_prims(const std::vector<int>& prims, Step step);  // slots
   std::vector<Rgb8> sum(const std::vector<std::vector<std::array<std::uint32_t, 3>>>& contrib);
 
+  // Step 2's product (r_box): a screen rectangle in pixel indices, padded.
+  struct ScreenRect {
+    enum Status : int { kBounded = 0, kWholeScreen = 1, kBehind = 2 };
+    int status = kWholeScreen;
+    int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+    bool overlaps(const Block& b) const;
+  };
+  void project_boxes();  // r_box over every object box and triangle
+  void build_shadow_lists();  // r_slist over every (object, light, object)
+
   std::unique_ptr<DirectLink> own_link_;  // before link_: it may refer to it
   ApuLink& link_;
   ViewScene view_;
-  std::vector<std::vector<int>> lists_;     // candidate lists of the block being rendered
+  std::vector<ScreenRect> object_rect_;     // per object: its view box on the screen
+  std::vector<ScreenRect> prim_rect_;       // per primitive: triangles' own, regions kWholeScreen
+  std::vector<std::vector<int>> shadow_objects_;  // [object * lights + light]
+  // Candidate lists of primitives: [0] the block's eye rays (s1), [1] every
+  // primitive in file order (s4), [2 + object * lights + light] the shadow
+  // list's primitives (s2).
+  std::vector<std::vector<int>> lists_;
   std::vector<std::uint32_t> scene_words_;  // words C_D0 .. PRIMS-1 of every bank
   std::array<Bank, 2> banks_;
   int mpu_bank_ = 0;  // which of banks_ the MPU owns (relative naming)
