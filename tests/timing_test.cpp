@@ -43,7 +43,7 @@ TEST(Timing, DefaultsAndDerivedDurations) {
 
 TEST(Timing, TableListsEveryKeyOnceAndTextRoundTrips) {
   const auto& table = timing_param_table();
-  EXPECT_EQ(table.size(), 17u);
+  EXPECT_EQ(table.size(), 20u);
   TimingParams t;
   for (const ParamInfo& p : table) {
     EXPECT_GE(t.get(p.key), p.min) << p.key;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 
 namespace mc1::cli {
 
@@ -114,6 +115,46 @@ std::vector<unsigned> parse_list(const std::string& opt, const std::string& text
     from = comma + 1;
   }
   return out;
+}
+
+NodeKill parse_kill(const std::string& text) {
+  const std::string opt = "--kill-node";
+  const auto at = text.find('@');
+  if (at == std::string::npos) throw CliError(opt + ": bad value '" + text + "' (expected K@TIME, e.g. 3@20ms)");
+  NodeKill k;
+  k.nc = parse_unsigned(opt + " (NC)", text.substr(0, at), 1, 1u << 20);
+  k.time = parse_time(opt, text.substr(at + 1));
+  return k;
+}
+
+EngineKind parse_engine(const std::string& s) {
+  if (s == "iss") return EngineKind::Iss;
+  if (s == "rtl") {
+    if (!rtl_engine_available()) throw CliError("--engine rtl: this build has no verilated APU core");
+    return EngineKind::Rtl;
+  }
+  throw CliError("--engine: bad value '" + s + "' (expected iss or rtl)");
+}
+
+bool wants_help(const std::vector<std::string>& args) {
+  for (const std::string& a : args)
+    if (a == "--help" || a == "-h") return true;
+  return false;
+}
+
+std::vector<std::string> take_params(TimingParams& t, const std::vector<std::string>& args) {
+  try {
+    return apply_param_args(t, args);
+  } catch (const ParamError& e) {
+    throw CliError(e.what());
+  }
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  out << text;
+  if (!out) throw std::runtime_error(path + ": write failed");
 }
 
 }  // namespace mc1::cli

@@ -42,5 +42,15 @@ Picos parse_time(const std::string& opt, const std::string& text);
 DeadLink parse_dead_link(const std::string& text);
 // A list "16,256".
 std::vector<unsigned> parse_list(const std::string& opt, const std::string& text, unsigned min, unsigned max);
+// "K@TIME", e.g. "3@20ms": NC K's processor stops at TIME.
+NodeKill parse_kill(const std::string& text);
+// "iss" or "rtl" (an error if this build has no RTL engine).
+EngineKind parse_engine(const std::string& text);
+
+// Helpers of the commands.
+bool wants_help(const std::vector<std::string>& args);
+// The timing table first (it consumes --param/--params); returns the rest.
+std::vector<std::string> take_params(TimingParams& t, const std::vector<std::string>& args);
+void write_text(const std::string& path, const std::string& text);
 
 }  // namespace mc1::cli

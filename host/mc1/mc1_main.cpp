@@ -1,4 +1,5 @@
 // mc1: the MC-1 machine model from the command line (docs/platform.md).
+//   mc1 render, mc1 bench-render   the rendered frame of fig. 3 (mc1_render_cmd.cpp)
 //   mc1 diag   the machine's self-test frame, checked against the FP24 model
 //   mc1 bench  host time and simulated time of the diagnostic frame
 //   mc1 params the timing table in effect
@@ -17,6 +18,9 @@
 #include "mc1_cli.hpp"
 #include "mc1_system.hpp"
 #include "png_writer.hpp"
+#ifdef MC1_HAVE_RENDER
+#include "mc1_render_cmd.hpp"
+#endif
 
 namespace {
 
@@ -32,10 +36,13 @@ const char* kUsage =
     "as a loosely-timed SystemC/TLM-2.0 model.\n"
     "\n"
     "commands:\n"
-    "  diag     run the self-test frame and check it bit for bit against the FP24 model\n"
-    "  bench    host seconds and simulated time of the self-test frame at 16 and 256 NCs\n"
-    "  params   print the timing table (after --params/--param)\n"
-    "  help     this text; `mc1 <command> --help` for a command's options\n";
+    "  render        render a scene (fig. 3): broadcast, block lists, blocks by schedule;\n"
+    "                PNG, stats, Gantt\n"
+    "  bench-render  speed of the rendered frame: speedup, efficiency, lpt against static\n"
+    "  diag          run the self-test frame and check it bit for bit against the FP24 model\n"
+    "  bench         host seconds and simulated time of the self-test frame at 16 and 256 NCs\n"
+    "  params        print the timing table (after --params/--param)\n"
+    "  help          this text; `mc1 <command> --help` for a command's options\n";
 
 const char* kDiagUsage =
     "usage: mc1 diag [options]\n"
@@ -83,36 +90,10 @@ const char* kParamsUsage =
     "\n"
     "Prints the timing table in effect, in the --params file format (docs/timing.md).\n";
 
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  out << text;
-  if (!out) throw std::runtime_error(path + ": write failed");
-}
-
-bool wants_help(const std::vector<std::string>& args) {
-  for (const std::string& a : args)
-    if (a == "--help" || a == "-h") return true;
-  return false;
-}
-
-// Timing table first (it consumes --param/--params), then the rest.
-std::vector<std::string> take_params(TimingParams& t, const std::vector<std::string>& args) {
-  try {
-    return apply_param_args(t, args);
-  } catch (const ParamError& e) {
-    throw CliError(e.what());
-  }
-}
-
-EngineKind parse_engine(const std::string& s) {
-  if (s == "iss") return EngineKind::Iss;
-  if (s == "rtl") {
-    if (!rtl_engine_available()) throw CliError("--engine rtl: this build has no verilated APU core");
-    return EngineKind::Rtl;
-  }
-  throw CliError("--engine: bad value '" + s + "' (expected iss or rtl)");
-}
+using cli::parse_engine;
+using cli::take_params;
+using cli::wants_help;
+using cli::write_text;
 
 void frame_options(const cli::Args& a, SystemConfig& cfg) {
   if (a.has("engine")) cfg.engine = parse_engine(a.get("engine"));
@@ -270,6 +251,10 @@ int sc_main(int argc, char** argv) {
   args.erase(args.begin());
   try {
     if (cmd == "diag") return cmd_diag(args);
+#ifdef MC1_HAVE_RENDER
+    if (cmd == "render") return cli::cmd_render(args);
+    if (cmd == "bench-render") return cli::cmd_bench_render(args);
+#endif
     if (cmd == "bench") return cmd_bench(args);
     if (cmd == "params") return cmd_params(args);
     std::fprintf(stderr, "mc1: unknown command '%s'\n%s", cmd.c_str(), kUsage);

@@ -5,7 +5,17 @@
 // signals image_bus_grant / image_bus_owner (NC id, 0 = none) for the
 // run's bus time: the longer of its transfer and the DC's handling, as
 // ImageBus holds it (docs/timing.md).
+//
+// It is also the DC's write-once filter: it keeps a map of the FM pixels
+// written so far, and a run whose pixels are all written already is a late
+// duplicate (a block the RC handed out again after a deadline, rendered by
+// the new owner after the first had sent some rows) and is dropped after
+// its transfer: every FM pixel is written once. Both copies are equal (the
+// image does not depend on the NC), so dropping either would do.
 #pragma once
+
+#include <cstdint>
+#include <vector>
 
 #include <systemc>
 #include <tlm>
@@ -21,8 +31,10 @@ class ImageBusMonitor : public sc_core::sc_module {
   tlm_utils::simple_target_socket<ImageBusMonitor> bus2dc;
   tlm_utils::simple_initiator_socket<ImageBusMonitor> mon2dc;
 
-  ImageBusMonitor(sc_core::sc_module_name name, const TimingParams& t);
+  ImageBusMonitor(sc_core::sc_module_name name, const TimingParams& t, unsigned width, unsigned height);
   void trace(sc_core::sc_trace_file* tf);
+  std::uint64_t duplicate_runs() const { return duplicate_runs_; }
+  std::uint64_t duplicate_pixels() const { return duplicate_pixels_; }
 
  private:
   void b_transport(tlm::tlm_generic_payload& p, sc_core::sc_time& delay);
@@ -33,6 +45,9 @@ class ImageBusMonitor : public sc_core::sc_module {
   sc_core::sc_signal<unsigned, sc_core::SC_MANY_WRITERS> owner_;
   sc_core::sc_event release_ev_;
   sc_core::sc_time release_at_;
+  unsigned width_, height_;
+  std::vector<bool> written_;
+  std::uint64_t duplicate_runs_ = 0, duplicate_pixels_ = 0;
 };
 
 }  // namespace mc1

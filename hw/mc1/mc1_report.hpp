@@ -15,7 +15,10 @@ namespace mc1 {
 
 struct NcReport {
   unsigned id = 0;
-  Picos busy = 0, wait_rc = 0, wait_bus = 0, idle = 0;  // sum = frame time
+  Picos busy = 0, wait_rc = 0, wait_bus = 0, idle = 0, dead = 0;  // sum = frame time
+  bool killed = false;
+  Picos killed_at = 0;
+  std::vector<std::pair<std::string, Picos>> milestones;
   Picos apu_busy = 0;                                   // APU started, not halted
   std::uint64_t apu_cycles = 0, blocks = 0, pixels = 0, runs = 0;
   Picos mpu_busy = 0;
@@ -43,6 +46,19 @@ struct HdlcReport {
 struct BusReport {
   std::uint64_t runs = 0, bytes = 0, pixels = 0;
   Picos busy = 0, waiting = 0;
+  std::uint64_t duplicate_runs = 0, duplicate_pixels = 0;  // dropped by the write-once filter
+};
+
+struct KillReport {
+  unsigned nc = 0;
+  Picos time = 0;
+};
+
+// APU and MPU work of one step of the renderer (fig. 3), summed over NCs.
+struct StepReport {
+  std::string name;
+  std::uint64_t apu_cycles = 0, apu_runs = 0, batches = 0, word_copies = 0, list_elements = 0,
+                sort_compares = 0, apu_commands = 0;
 };
 
 struct DeadLinkReport {
@@ -52,9 +68,15 @@ struct DeadLinkReport {
 
 struct FrameReport {
   std::string engine;
+  std::string schedule;
+  std::string scene;  // rendered frame: the scene file
   unsigned nodes = 0, width = 0, height = 0, block_w = 0, block_h = 0, blocks = 0;
   double ber = 0;
   std::vector<DeadLinkReport> dead_links;
+  std::vector<KillReport> kills;
+  std::vector<rc::Timeout> timeouts;
+  std::vector<std::uint32_t> block_loads;     // step 2's predicted load by block id (rendered frame)
+  std::vector<rc::BlockListMsg> block_lists;  // step 2's block lists by block id (rendered frame)
   Picos frame_time = 0;
   Picos apu_cycle_ps = 0;  // from the timing table
   double host_seconds = 0;
@@ -64,12 +86,18 @@ struct FrameReport {
   rc::RcStats rc;
   std::vector<rc::Dispatch> dispatches;
   std::vector<rc::Completion> completions;
+  std::vector<StepReport> steps;  // rendered frame
+  std::uint64_t rays = 0, shadow_rays = 0, secondary_rays = 0;
   std::uint64_t fm_pixels_written = 0;
   std::vector<std::uint8_t> rgb;  // the frame memory, rows top first
   std::vector<std::uint8_t> png;
 };
 
 std::string stats_json(const FrameReport& r);
+// The latest time any live NC reached milestone `name` (0: none did).
+Picos milestone_time(const FrameReport& r, const std::string& name);
+// Mean over NCs of apu_busy / T.
+double apu_utilization_mean(const FrameReport& r);
 std::string gantt_svg(const FrameReport& r);
 
 }  // namespace mc1

@@ -26,39 +26,58 @@ bool rtl_engine_available() {
 #endif
 }
 
-std::unique_ptr<apu::ApuEngine> make_engine(EngineKind e) {
-  if (e == EngineKind::Iss) return std::make_unique<apu::Iss>();
+std::unique_ptr<apu::ApuEngine> make_engine(EngineKind e, const std::string& fst_path) {
+  if (e == EngineKind::Iss && fst_path.empty()) return std::make_unique<apu::Iss>();
 #ifdef MC1_HAVE_RTL_ENGINE
-  return std::make_unique<apu::RtlEngine>();
+  return std::make_unique<apu::RtlEngine>(fst_path.empty() ? nullptr : fst_path.c_str());
 #else
+  if (!fst_path.empty()) throw std::runtime_error("--trace: this build has no verilated APU core (apu_rtl_engine)");
   throw std::runtime_error("--engine rtl: this build has no verilated APU core (apu_rtl_engine)");
 #endif
 }
 
+namespace {
+
+rc::FramePlan diag_plan(const SystemConfig& cfg, std::vector<apu::Encoded> program) {
+  rc::FramePlan p;
+  p.downloads = {rc::encode(rc::ProgramMsg{std::move(program)}),
+                 rc::encode(rc::SetupMsg{static_cast<std::uint16_t>(cfg.width),
+                                         static_cast<std::uint16_t>(cfg.height)})};
+  p.blocks = rc::split_screen(cfg.width, cfg.height, cfg.block_w, cfg.block_h);
+  return p;
+}
+
+}  // namespace
+
 Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg,
                      std::vector<apu::Encoded> program, nc::Firmware firmware)
+    : Mc1System(name, cfg, diag_plan(cfg, std::move(program)), std::move(firmware)) {}
+
+Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::FramePlan plan,
+                     nc::Firmware firmware)
     : sc_module(name), cfg_(cfg) {
   if (cfg.nodes < 1) throw std::invalid_argument("the machine needs at least one NC");
   tlm_utils::tlm_quantumkeeper::set_global_quantum(to_sc_time(cfg.timing.tlm_quantum_ns * 1000));
   const TimingParams& t = cfg.timing;
 
-  std::vector<rc::Block> blocks = rc::split_screen(cfg.width, cfg.height, cfg.block_w, cfg.block_h);
-  rc_ = std::make_unique<RootComputer>(
-      "rc", t, cfg.nodes, std::move(program),
-      rc::SetupMsg{static_cast<std::uint16_t>(cfg.width), static_cast<std::uint16_t>(cfg.height)},
-      std::move(blocks));
+  plan.schedule = cfg.schedule;
+  rc_ = std::make_unique<RootComputer>("rc", t, cfg.nodes, std::move(plan));
   hdlc_ = std::make_unique<HdlcChannel>("hdlc", t, cfg.nodes);
   bus_ = std::make_unique<ImageBus>("image_bus", t);
   bus_->keep_grant_log(false);
-  monitor_ = std::make_unique<ImageBusMonitor>("image_bus_monitor", t);
+  monitor_ = std::make_unique<ImageBusMonitor>("image_bus_monitor", t, cfg.width, cfg.height);
   dc_ = std::make_unique<DataCollector>("dc", t, cfg.width, cfg.height);
   fm_ = std::make_unique<FrameMemory>("fm", t, cfg.width, cfg.height);
 
   rc_->rc2nc_hdlc.bind(hdlc_->rc2nc_hdlc);
   hdlc_->hdlc2rc.bind(rc_->hdlc2rc);
+  if (cfg.trace_node > cfg.nodes)
+    throw std::invalid_argument("--trace-node " + std::to_string(cfg.trace_node) + ": the machine has NC 1.." +
+                                std::to_string(cfg.nodes));
   for (unsigned k = 1; k <= cfg.nodes; ++k) {
+    const std::string fst = k == cfg.trace_node ? cfg.trace_path : std::string();
     ncs_.push_back(std::make_unique<nc::NodeComputer>(("nc" + std::to_string(k)).c_str(), t, k,
-                                                      make_engine(cfg.engine), firmware));
+                                                      make_engine(cfg.engine, fst), firmware));
     nc::NodeComputer& n = *ncs_.back();
     n.nc2rc_hdlc.bind(hdlc_->nc2rc_hdlc);
     hdlc_->hdlc2nc.bind(n.hdlc2nc);
@@ -68,6 +87,12 @@ Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg,
   monitor_->mon2dc.bind(dc_->bus2dc);
   dc_->dc2fm.bind(fm_->dc2fm);
 
+  for (const NodeKill& x : cfg.kills) {
+    if (x.nc < 1 || x.nc > cfg.nodes)
+      throw std::invalid_argument("kill of NC " + std::to_string(x.nc) + ": the machine has NC 1.." +
+                                  std::to_string(cfg.nodes));
+    ncs_[x.nc - 1]->kill_at(x.time);
+  }
   for (const DeadLink& d : cfg.dead_links)
     if (d.nc < 1 || d.nc > cfg.nodes)
       throw std::invalid_argument("dead link of NC " + std::to_string(d.nc) + ": the machine has NC 1.." +
@@ -128,12 +153,15 @@ FrameReport Mc1System::report(double host_seconds) {
   r.block_w = cfg_.block_w;
   r.block_h = cfg_.block_h;
   r.blocks = static_cast<unsigned>(rc_->schedule().size());
+  r.schedule = rc::schedule_name(cfg_.schedule);
   r.ber = cfg_.ber;
+  for (const NodeKill& x : cfg_.kills) r.kills.push_back({x.nc, x.time});
   for (const DeadLink& d : cfg_.dead_links) r.dead_links.push_back({d.nc, d.begin, d.end});
   r.host_seconds = host_seconds;
 
-  // The frame ends when the RC has every block back and every NC is told.
-  Picos end = rc_->stats().last_completion;
+  // The frame ends when the RC has every block back and every live NC is
+  // told (an NC that never asked: taken as dead, docs/platform.md).
+  Picos end = std::max(rc_->stats().last_completion, rc_->stats().done_at);
   for (const auto& n : ncs_) end = std::max(end, n->stats().finished_at);
   r.frame_time = end;
   r.apu_cycle_ps = cfg_.timing.apu_cycle_ps();
@@ -147,6 +175,10 @@ FrameReport Mc1System::report(double host_seconds) {
     x.wait_rc = s.time[static_cast<int>(nc::Activity::WaitRc)];
     x.wait_bus = s.time[static_cast<int>(nc::Activity::WaitBus)];
     x.idle = s.time[static_cast<int>(nc::Activity::Idle)];
+    x.dead = s.time[static_cast<int>(nc::Activity::Dead)];
+    x.killed = s.killed;
+    x.killed_at = s.killed_at;
+    x.milestones = s.milestones;
     x.apu_busy = s.apu_running;
     x.apu_cycles = s.apu_cycles;
     x.blocks = s.blocks;
@@ -186,18 +218,41 @@ FrameReport Mc1System::report(double host_seconds) {
   r.bus.pixels = b.pixels;
   r.bus.busy = to_picos(b.busy);
   r.bus.waiting = to_picos(b.waiting);
+  r.bus.duplicate_runs = monitor_->duplicate_runs();
+  r.bus.duplicate_pixels = monitor_->duplicate_pixels();
 
   r.rc = rc_->stats();
   r.dispatches = rc_->dispatches();
   r.completions = rc_->completions();
+  r.timeouts = rc_->timeouts();
+  r.block_lists = rc_->block_lists();
+  for (const rc::BlockListMsg& l : r.block_lists) r.block_loads.push_back(l.load);
   r.fm_pixels_written = fm_->pixels_written();
   r.rgb = fm_->rgb();
   return r;
 }
 
+namespace {
+
+FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_path);
+
+}  // namespace
+
 FrameReport run_frame(const SystemConfig& cfg, const std::vector<apu::Encoded>& program,
                       const nc::Firmware& firmware, const std::string& vcd_path) {
-  auto sys = std::make_unique<Mc1System>("mc1", cfg, program, firmware);
+  return run_system(std::make_unique<Mc1System>("mc1", cfg, program, firmware), vcd_path);
+}
+
+FrameReport run_plan(const SystemConfig& cfg, rc::FramePlan plan, const nc::Firmware& firmware,
+                     const std::string& vcd_path, std::function<void(const rc::Progress&)> progress) {
+  auto sys = std::make_unique<Mc1System>("mc1", cfg, std::move(plan), firmware);
+  if (progress) sys->rc().on_progress(std::move(progress));
+  return run_system(std::move(sys), vcd_path);
+}
+
+namespace {
+
+FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_path) {
   sc_core::sc_trace_file* tf = nullptr;
   if (!vcd_path.empty()) {
     std::string base = vcd_path;  // SystemC appends ".vcd"
@@ -211,9 +266,12 @@ FrameReport run_frame(const SystemConfig& cfg, const std::vector<apu::Encoded>& 
   const double host = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (tf) sc_core::sc_close_vcd_trace_file(tf);
   if (!sys->rc().done())
-    throw std::runtime_error("the simulation stopped before every NC was finished (see the SystemC report above)");
+    throw std::runtime_error("the simulation stopped before the frame was complete: " + sys->rc().status() +
+                             " (see the SystemC report above, if any)");
   return sys->report(host);
 }
+
+}  // namespace
 
 FrameReport run_diag(const SystemConfig& cfg, const std::string& vcd_path) {
   return run_frame(cfg, diag::kernel(), diag::nc_main, vcd_path);

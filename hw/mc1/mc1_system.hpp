@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <systemc>
@@ -26,11 +27,17 @@ namespace mc1 {
 enum class EngineKind { Iss, Rtl };
 const char* engine_name(EngineKind e);
 bool rtl_engine_available();  // the verilated core was built
-std::unique_ptr<apu::ApuEngine> make_engine(EngineKind e);
+// `fst_path` (RTL only): every cycle of this engine into an FST waveform.
+std::unique_ptr<apu::ApuEngine> make_engine(EngineKind e, const std::string& fst_path = "");
 
 struct DeadLink {
   unsigned nc = 0;  // both directions of this NC's link are dead in [begin, end)
   Picos begin = 0, end = 0;
+};
+
+struct NodeKill {
+  unsigned nc = 0;  // this NC's processor stops at `time` (NodeComputer::kill_at)
+  Picos time = 0;
 };
 
 struct SystemConfig {
@@ -41,13 +48,22 @@ struct SystemConfig {
   double ber = 0.0;        // every receiving end of every line, both directions
   std::uint64_t seed = 1;  // fault streams: seed + 2k (down to NC k), seed + 2k + 1 (up)
   std::vector<DeadLink> dead_links;
+  std::vector<NodeKill> kills;
+  rc::Schedule schedule = rc::Schedule::Lpt;
+  // The APU of NC trace_node (0: none) runs on the RTL engine with an FST
+  // waveform (whatever `engine` is: both engines are cycle- and bit-exact).
+  unsigned trace_node = 0;
+  std::string trace_path;
   TimingParams timing;
 };
 
 class Mc1System : public sc_core::sc_module {
  public:
+  // The diagnostic frame: the RC broadcasts `program` and the set-up.
   Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, std::vector<apu::Encoded> program,
             nc::Firmware firmware);
+  // Any frame: the RC follows `plan` (its schedule is cfg.schedule).
+  Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::FramePlan plan, nc::Firmware firmware);
 
   const SystemConfig& config() const { return cfg_; }
   RootComputer& rc() { return *rc_; }
@@ -75,6 +91,10 @@ class Mc1System : public sc_core::sc_module {
 // platform signals if vcd_path is not empty) and reports.
 FrameReport run_frame(const SystemConfig& cfg, const std::vector<apu::Encoded>& program,
                       const nc::Firmware& firmware, const std::string& vcd_path = "");
+// Same for a frame plan; `progress` is called at every block completion.
+FrameReport run_plan(const SystemConfig& cfg, rc::FramePlan plan, const nc::Firmware& firmware,
+                     const std::string& vcd_path = "",
+                     std::function<void(const rc::Progress&)> progress = {});
 
 // The machine's self-test frame: diag.apu on every NC (firmware/diag).
 FrameReport run_diag(const SystemConfig& cfg, const std::string& vcd_path = "");

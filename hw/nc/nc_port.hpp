@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "apu_driver.hpp"
@@ -51,6 +52,9 @@ class NcPort {
   virtual void block_begin(std::uint32_t block) = 0;
   virtual void block_end() = 0;
   virtual void finished() = 0;
+  // For the statistics: the firmware reached a named point of the frame
+  // ("downloaded", "step1", ...); the NC records the time.
+  virtual void milestone(const std::string& /*name*/) {}
 };
 
 using Firmware = std::function<void(NcPort&)>;

@@ -25,6 +25,9 @@ class HostTimer {
   std::chrono::steady_clock::time_point t0_;
 };
 
+// Unwinds the firmware when the NC's processor stops (kill_at).
+struct Killed {};
+
 }  // namespace
 
 const char* activity_name(Activity a) {
@@ -33,6 +36,7 @@ const char* activity_name(Activity a) {
     case Activity::Busy: return "busy";
     case Activity::WaitBus: return "wait_bus";
     case Activity::Idle: return "idle";
+    case Activity::Dead: return "dead";
   }
   return "?";
 }
@@ -119,7 +123,17 @@ void NodeComputer::catch_up() {
   }
 }
 
+void NodeComputer::check_alive() {
+  if (now() >= kill_at_) throw Killed{};
+}
+
 void NodeComputer::advance(Picos ps) {
+  const Picos t = now();
+  if (t + ps >= kill_at_) {  // the processor stops inside this span
+    qk_.inc(to_sc_time(kill_at_ > t ? kill_at_ - t : 0));
+    catch_up();
+    throw Killed{};
+  }
   qk_.inc(to_sc_time(ps));
   catch_up();
   if (qk_.need_sync()) qk_.sync();
@@ -136,6 +150,7 @@ void NodeComputer::send_to_rc(const std::vector<std::uint8_t>& msg) {
   // Copy into the controller's buffer and start it; the controller sends
   // while the MPU goes on (a posted write on the HDLC channel).
   mpu_work((msg.size() + 1) / 2 * t_.mpu_cycles_per_word_copy);
+  check_alive();
   std::vector<std::uint8_t> data = msg;
   tlm::tlm_generic_payload p;
   p.set_command(tlm::TLM_WRITE_COMMAND);
@@ -154,9 +169,13 @@ void NodeComputer::send_to_rc(const std::vector<std::uint8_t>& msg) {
 }
 
 std::vector<std::uint8_t> NodeComputer::receive_from_rc() {
+  check_alive();
   if (inbox_.empty()) qk_.sync();  // everything due up to our local time has arrived
   if (inbox_.empty()) mark(Activity::WaitRc, now());
-  HdlcMailbox::Message m = inbox_.take();
+  std::optional<HdlcMailbox::Message> got =
+      kill_at_ == ~Picos{0} ? std::optional<HdlcMailbox::Message>(inbox_.take()) : inbox_.take_until(kill_at_);
+  if (!got) throw Killed{};
+  HdlcMailbox::Message m = std::move(*got);
   catch_up();  // the APU ran while the MPU waited
   ++stats_.messages_received;
   // Receive interrupt, then copy the message out of the controller's buffer.
@@ -184,10 +203,17 @@ void NodeComputer::apu_wait_swap() {
   {
     // Cycle by cycle: the swap interrupt comes in the cycle the APU takes the bank.
     HostTimer timer(stats_.apu_host_seconds);
-    while (driver_.data_ready() && engine_->state() == apu::RunState::Running) n += driver_.run(1);
+    // Not past the kill time: the processor stops there.
+    const std::uint64_t limit =
+        kill_at_ == ~Picos{0} ? ~std::uint64_t{0} : kill_at_ > apu_time_ ? (kill_at_ - apu_time_) / cycle_ps_ : 0;
+    while (driver_.data_ready() && engine_->state() == apu::RunState::Running && n < limit) n += driver_.run(1);
   }
   stats_.apu_cycles += n;
   apu_time_ += n * cycle_ps_;
+  if (driver_.data_ready() && engine_->state() == apu::RunState::Running) {  // the kill time came first
+    const Picos t = now();
+    advance(kill_at_ > t ? kill_at_ - t : 0);  // throws Killed
+  }
   check_fault();
   if (driver_.data_ready())
     throw std::runtime_error("NC " + std::to_string(id_) + ": the APU stopped without taking the data bank");
@@ -221,6 +247,7 @@ void NodeComputer::apu_wait_halt() {
 }
 
 void NodeComputer::send_pixels(const PixelRun& run) {
+  check_alive();
   pixel_bytes_ = encode_run(run);
   const Picos requested = now();
   mark(Activity::WaitBus, requested);
@@ -270,8 +297,19 @@ void NodeComputer::finished() {
   finished_ = true;
 }
 
+void NodeComputer::milestone(const std::string& name) { stats_.milestones.emplace_back(name, now()); }
+
+void NodeComputer::die() {
+  const Picos t = std::max(since_, std::min(now(), kill_at_));
+  apu_stopped(std::max(apu_begin_, std::min(apu_time_, t)));
+  block_ = 0xFFFFFFFF;
+  mark(Activity::Dead, t);
+  stats_.killed = true;
+  stats_.killed_at = t;
+}
+
 void NodeComputer::close(Picos frame_end) {
-  catch_up();
+  if (!stats_.killed) catch_up();
   apu_stopped(std::min(apu_time_, frame_end));
   mark(current_, frame_end);
   if (const auto* iss = dynamic_cast<const apu::Iss*>(engine_.get())) {
@@ -287,6 +325,8 @@ void NodeComputer::run() {
   try {
     firmware_(*this);
     finished();
+  } catch (const Killed&) {
+    die();
   } catch (const std::exception& e) {
     SC_REPORT_ERROR(name(), e.what());
   }

@@ -12,7 +12,15 @@
 // Activity (for statistics and the Gantt chart) partitions the NC's time:
 // WaitRc (waiting for a message from the RC: download, the next block),
 // Busy (MPU or APU working on a block, pixels on the bus), WaitBus (waiting
-// for an image-bus grant), Idle (after Finish).
+// for an image-bus grant), Idle (after Finish), Dead (after a kill).
+//
+// Fault injection (--kill-node): kill_at(T) stops the NC's processor at
+// simulated time T: the MPU firmware and the APU stop where they are (the
+// first time the NC's local time reaches T), nothing more is sent; the
+// HDLC controller keeps acknowledging frames at link level, so the lines
+// stay usable, and the RC finds out only by its own deadline. (A kill
+// inside apu_wait_halt() stops the NC's time at T, but the APU run in
+// progress is clocked to its HALT: its cycles count in apu_cycles.)
 #pragma once
 
 #include <cstdint>
@@ -34,8 +42,8 @@
 
 namespace mc1::nc {
 
-enum class Activity : std::uint8_t { WaitRc, Busy, WaitBus, Idle };
-constexpr int kActivityKinds = 4;
+enum class Activity : std::uint8_t { WaitRc, Busy, WaitBus, Idle, Dead };
+constexpr int kActivityKinds = 5;
 const char* activity_name(Activity a);
 
 struct Span {
@@ -55,6 +63,9 @@ struct NcStats {
   std::uint64_t blocks = 0, pixels = 0, runs = 0;
   std::uint64_t messages_sent = 0, messages_received = 0;
   Picos finished_at = 0;
+  bool killed = false;
+  Picos killed_at = 0;
+  std::vector<std::pair<std::string, Picos>> milestones;  // in the order reached
   Picos mpu_busy = 0;               // MPU work annotated (copies, commands, interrupts)
   double apu_host_seconds = 0;      // host time spent clocking the APU engine
   // Only when the engine is the ISS (it counts them): words issued, and
@@ -72,6 +83,10 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   NodeComputer(sc_core::sc_module_name name, const TimingParams& t, unsigned id,
                std::unique_ptr<apu::ApuEngine> engine, Firmware firmware);
   ~NodeComputer() override;
+
+  // Stop the processor at `t` (before sc_start()).
+  void kill_at(Picos t) { kill_at_ = t; }
+  bool killed() const { return stats_.killed; }
 
   // After the simulation: the last span runs to `frame_end` (>= finished_at).
   void close(Picos frame_end);  // also reads the ISS's counters
@@ -94,6 +109,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   void block_begin(std::uint32_t block) override;
   void block_end() override;
   void finished() override;
+  void milestone(const std::string& name) override;
 
  private:
   void run();
@@ -104,6 +120,8 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   void apu_stopped(Picos at);
   void check_fault() const;
   void mark(Activity a, Picos at);     // from `at` on, the NC does `a`
+  void check_alive();                  // throws Killed at or after the kill time
+  void die();
 
   TimingParams t_;
   unsigned id_;
@@ -126,6 +144,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   std::vector<ApuSpan> apu_spans_;
   NcStats stats_;
   bool finished_ = false;
+  Picos kill_at_ = ~Picos{0};
 
   tlm::tlm_generic_payload pixels_;
   std::vector<std::uint8_t> pixel_bytes_;

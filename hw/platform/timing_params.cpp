@@ -48,6 +48,12 @@ const std::vector<Entry>& entries() {
        &TimingParams::dc_run_setup_ns},
       {{"fm_write_ns_per_pixel", "ns", 0, kBig, "FM write of one RGB8 pixel"},
        &TimingParams::fm_write_ns_per_pixel},
+      {{"rc_timeout_base_ns", "ns", 1, kBig, "RC deadline of any piece of work: fixed part"},
+       &TimingParams::rc_timeout_base_ns},
+      {{"rc_timeout_ns_per_pixel_prim", "ns", 0, kBig, "RC deadline of a block: per pixel and listed primitive"},
+       &TimingParams::rc_timeout_ns_per_pixel_prim},
+      {{"rc_timeout_ns_per_list_block", "ns", 0, kBig, "RC deadline of a list job: per block"},
+       &TimingParams::rc_timeout_ns_per_list_block},
       {{"tlm_quantum_ns", "ns", 1, kBig, "TLM-2.0 global quantum"},
        &TimingParams::tlm_quantum_ns},
   };

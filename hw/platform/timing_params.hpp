@@ -46,6 +46,14 @@ struct TimingParams {
   std::uint64_t dc_run_setup_ns = 400;       // decode a run header, set the FM address
   std::uint64_t fm_write_ns_per_pixel = 300;  // one RGB8 word into the FM
 
+  // The RC's deadline for a piece of work it handed out (fault detection,
+  // docs/timing.md): base + pixels x (1 + primitives of the block's list,
+  // those of reflecting/refracting objects 4x) x per_pixel_prim for a
+  // block, base + blocks x per_list_block for a step-2 list job.
+  std::uint64_t rc_timeout_base_ns = 200'000'000;
+  std::uint64_t rc_timeout_ns_per_pixel_prim = 5'000'000;
+  std::uint64_t rc_timeout_ns_per_list_block = 20'000'000;
+
   // Simulation: TLM-2.0 global quantum for temporal decoupling.
   std::uint64_t tlm_quantum_ns = 1'000;
 

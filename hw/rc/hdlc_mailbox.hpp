@@ -5,9 +5,11 @@
 
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <systemc>
 #include <vector>
 
+#include "sc_time_conv.hpp"
 #include "timing_params.hpp"
 
 namespace mc1 {
@@ -32,6 +34,15 @@ class HdlcMailbox {
     Message m = std::move(q_.front());
     q_.pop_front();
     return m;
+  }
+  // Same, but gives up at simulated time `deadline` (absolute): nullopt.
+  std::optional<Message> take_until(Picos deadline) {
+    while (q_.empty()) {
+      const Picos now = to_picos(sc_core::sc_time_stamp());
+      if (now >= deadline) return std::nullopt;
+      sc_core::wait(to_sc_time(deadline - now), ev_);
+    }
+    return take();
   }
 
  private:

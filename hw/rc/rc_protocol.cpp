@@ -74,7 +74,12 @@ MsgType type_of(const Bytes& msg) {
     case MsgType::Setup:
     case MsgType::Request:
     case MsgType::Assign:
-    case MsgType::Finish: return static_cast<MsgType>(msg[0]);
+    case MsgType::Finish:
+    case MsgType::Download:
+    case MsgType::RenderSetup:
+    case MsgType::ListJob:
+    case MsgType::Lists:
+    case MsgType::AssignList: return static_cast<MsgType>(msg[0]);
   }
   throw ProtocolError("unknown message type " + std::to_string(msg[0]));
 }
@@ -111,6 +116,131 @@ AssignMsg decode_assign(const Bytes& msg) {
   m.block.w = static_cast<std::uint16_t>(get(msg, 9, 2));
   m.block.h = static_cast<std::uint16_t>(get(msg, 11, 2));
   return m;
+}
+
+Bytes encode(const DownloadMsg& m) {
+  Bytes b(2 + m.payload.size());
+  b[0] = static_cast<std::uint8_t>(MsgType::Download);
+  b[1] = m.tag;
+  std::copy(m.payload.begin(), m.payload.end(), b.begin() + 2);
+  return b;
+}
+
+Bytes encode(const RenderSetupMsg& m) {
+  Bytes b{static_cast<std::uint8_t>(MsgType::RenderSetup)};
+  put16(b, m.width);
+  put16(b, m.height);
+  put16(b, m.block_w);
+  put16(b, m.block_h);
+  return b;
+}
+
+Bytes encode(const ListJobMsg& m) {
+  Bytes b{static_cast<std::uint8_t>(MsgType::ListJob)};
+  put32(b, m.first);
+  put32(b, m.stride);
+  return b;
+}
+
+namespace {
+
+void put_list(Bytes& b, const BlockListMsg& l) {
+  if (l.objects.size() > 0xFFFF) throw ProtocolError("block list of " + std::to_string(l.objects.size()) + " objects");
+  put32(b, l.block.id);
+  put16(b, l.block.x);
+  put16(b, l.block.y);
+  put16(b, l.block.w);
+  put16(b, l.block.h);
+  put32(b, l.load);
+  put16(b, static_cast<std::uint16_t>(l.objects.size()));
+  for (std::uint16_t o : l.objects) put16(b, o);
+}
+
+// Reads one block list at `at`; false if the message ends inside it.
+bool get_list(const Bytes& b, std::size_t& at, BlockListMsg& l) {
+  if (at + 18 > b.size()) return false;
+  l.block.id = static_cast<std::uint32_t>(get(b, at, 4));
+  l.block.x = static_cast<std::uint16_t>(get(b, at + 4, 2));
+  l.block.y = static_cast<std::uint16_t>(get(b, at + 6, 2));
+  l.block.w = static_cast<std::uint16_t>(get(b, at + 8, 2));
+  l.block.h = static_cast<std::uint16_t>(get(b, at + 10, 2));
+  l.load = static_cast<std::uint32_t>(get(b, at + 12, 4));
+  const std::size_t n = get(b, at + 16, 2);
+  at += 18;
+  if (at + 2 * n > b.size()) return false;
+  l.objects.resize(n);
+  for (std::size_t i = 0; i < n; ++i) l.objects[i] = static_cast<std::uint16_t>(get(b, at + 2 * i, 2));
+  at += 2 * n;
+  return true;
+}
+
+[[noreturn]] void malformed(const Bytes& m, const char* what) {
+  throw ProtocolError(std::string("malformed ") + what + " message: " + std::to_string(m.size()) + " bytes");
+}
+
+}  // namespace
+
+Bytes encode(const ListsMsg& m) {
+  Bytes b{static_cast<std::uint8_t>(MsgType::Lists)};
+  put32(b, m.job.first);
+  put32(b, m.job.stride);
+  put32(b, static_cast<std::uint32_t>(m.lists.size()));
+  for (const BlockListMsg& l : m.lists) put_list(b, l);
+  return b;
+}
+
+Bytes encode(const AssignListMsg& m) {
+  Bytes b{static_cast<std::uint8_t>(MsgType::AssignList)};
+  put_list(b, m.list);
+  return b;
+}
+
+DownloadMsg decode_download(const Bytes& msg) {
+  if (msg.size() < 2 || msg[0] != static_cast<std::uint8_t>(MsgType::Download)) malformed(msg, "download");
+  return DownloadMsg{msg[1], Bytes(msg.begin() + 2, msg.end())};
+}
+
+RenderSetupMsg decode_render_setup(const Bytes& msg) {
+  expect(msg, MsgType::RenderSetup, 9, "render setup");
+  return RenderSetupMsg{static_cast<std::uint16_t>(get(msg, 1, 2)), static_cast<std::uint16_t>(get(msg, 3, 2)),
+                        static_cast<std::uint16_t>(get(msg, 5, 2)), static_cast<std::uint16_t>(get(msg, 7, 2))};
+}
+
+ListJobMsg decode_list_job(const Bytes& msg) {
+  expect(msg, MsgType::ListJob, 9, "list job");
+  const ListJobMsg m{static_cast<std::uint32_t>(get(msg, 1, 4)), static_cast<std::uint32_t>(get(msg, 5, 4))};
+  if (m.stride == 0) throw ProtocolError("list job with stride 0");
+  return m;
+}
+
+ListsMsg decode_lists(const Bytes& msg) {
+  if (msg.size() < 13 || msg[0] != static_cast<std::uint8_t>(MsgType::Lists)) malformed(msg, "lists");
+  ListsMsg m;
+  m.job.first = static_cast<std::uint32_t>(get(msg, 1, 4));
+  m.job.stride = static_cast<std::uint32_t>(get(msg, 5, 4));
+  const std::size_t n = get(msg, 9, 4);
+  std::size_t at = 13;
+  for (std::size_t i = 0; i < n; ++i) {
+    BlockListMsg l;
+    if (!get_list(msg, at, l)) malformed(msg, "lists");
+    m.lists.push_back(std::move(l));
+  }
+  if (at != msg.size()) malformed(msg, "lists");
+  return m;
+}
+
+AssignListMsg decode_assign_list(const Bytes& msg) {
+  if (msg.empty() || msg[0] != static_cast<std::uint8_t>(MsgType::AssignList)) malformed(msg, "assign-list");
+  AssignListMsg m;
+  std::size_t at = 1;
+  if (!get_list(msg, at, m.list) || at != msg.size()) malformed(msg, "assign-list");
+  return m;
+}
+
+std::vector<std::uint32_t> job_blocks(const ListJobMsg& job, std::size_t block_count) {
+  std::vector<std::uint32_t> out;
+  for (std::size_t i = job.first; i < block_count; i += job.stride) out.push_back(static_cast<std::uint32_t>(i));
+  return out;
 }
 
 std::vector<Block> split_screen(unsigned width, unsigned height, unsigned bw, unsigned bh) {

@@ -1,0 +1,368 @@
+// mc1 render / mc1 bench-render: the rendered frame of fig. 3 on the machine
+// (docs/platform.md "The rendered frame", "Rendering benchmark").
+#include "mc1_render_cmd.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "image.hpp"
+#include "mc1_cli.hpp"
+#include "mc1_render.hpp"
+#include "png_writer.hpp"
+#include "refrender.hpp"
+#include "scene.hpp"
+
+namespace mc1::cli {
+namespace {
+
+const char* kRenderUsage =
+    "usage: mc1 render SCENE [options]\n"
+    "\n"
+    "Renders a scene (docs/scene-format.md) on the machine as the paper's fig. 3 does: the RC\n"
+    "broadcasts the renderer's kernels and the scene in FP24 over HDLC; every NC transforms it\n"
+    "to view coordinates on its APU (step 1); the NCs build the block lists (step 2); the RC\n"
+    "hands the blocks out by its schedule and the NCs render them and send the pixels over the\n"
+    "image bus to the frame memory (step 3). The frame does not depend on the node count, the\n"
+    "schedule, the engine or the faults.\n"
+    "\n"
+    "options:\n"
+    "  --nodes N            node computers, 1..4096 (default 16)\n"
+    "  --size WxH           frame size (default: the scene's camera size)\n"
+    "  --block B|WxH        block size (default 16)\n"
+    "  --engine iss|rtl     APU engine: C++ ISS or verilated RTL core (default iss)\n"
+    "  --schedule S         lpt: heaviest predicted load first (the paper's, default);\n"
+    "                       fifo: screen order as NCs ask; static: block i to NC (i mod N) + 1\n"
+    "  --kill-node K@TIME   NC K's processor stops at TIME (e.g. 3@20ms); the RC's deadline\n"
+    "                       finds it and hands its blocks to the others; repeatable\n"
+    "  --ber X              HDLC bit error rate on every line end, both directions (default 0)\n"
+    "  --seed S             seed of the bit-error streams (default 1)\n"
+    "  --dead-link NC@T0-T1 NC's link dead in both directions from T0 to T1; repeatable\n"
+    "  --params FILE        timing table file (docs/timing.md); repeatable, in order\n"
+    "  --param key=value    one timing figure; repeatable, in order\n"
+    "  --out FILE.png       write the frame memory as PNG\n"
+    "  --stats FILE.json    write statistics (docs/platform.md \"Statistics\")\n"
+    "  --gantt FILE.svg     write the activity chart of every NC and the RC's dispatches\n"
+    "  --trace FILE.fst     APU waveform of NC --trace-node (that NC runs the RTL core)\n"
+    "  --trace-node K       the NC to trace (default 1)\n"
+    "  --vcd FILE.vcd       trace platform signals (HDLC line busy, image-bus grant/owner)\n"
+    "  --ref                also render the double-precision reference (mc1-ref) at the same\n"
+    "                       size and print the PSNR of the frame against it\n"
+    "  --diff FILE.png      with --ref: the difference image, |frame - reference| x 8\n"
+    "  --min-psnr DB        with --ref: exit status 1 when the PSNR is below DB\n"
+    "  --quiet              print nothing but errors (no progress bar)\n";
+
+const char* kBenchRenderUsage =
+    "usage: mc1 bench-render [options]\n"
+    "\n"
+    "The rendering benchmark (docs/platform.md \"Rendering benchmark\"), on the Whitted scene:\n"
+    "  1. --size (256x256) on each of --nodes (1,4,16,64) NCs, lpt: simulated frame time,\n"
+    "     speedup over 1 NC, APU utilization, host seconds;\n"
+    "  2. the same size on --static-nodes (16) NCs with the static split: lpt's gain;\n"
+    "  3. --big (512x512) on 1 and --big-nodes (64) NCs, lpt and static: parallel efficiency\n"
+    "     T1 / (N TN), the serial download's share, lpt's gain over static;\n"
+    "  4. with --rtl: --size on --static-nodes NCs on the RTL engine (host time).\n"
+    "Every run's frame must equal the first run's of its size bit for bit.\n"
+    "\n"
+    "options:\n"
+    "  --scene FILE         (default: scenes/whitted.json of the source tree)\n"
+    "  --size WxH           (default 256x256)   --nodes LIST (default 1,4,16,64)\n"
+    "  --static-nodes N     (default 16)        --block B (default 16)\n"
+    "  --big WxH|0          (default 512x512; 0 skips part 3)\n"
+    "  --big-nodes N        (default 64)        --rtl  also run part 4\n"
+    "  --params FILE, --param key=value         timing table\n"
+    "  --json FILE          also write the figures as JSON\n";
+
+std::string pct(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1f %%", 100 * x);
+  return b;
+}
+
+std::string ms(Picos t) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3f ms", t * 1e-9);
+  return b;
+}
+
+// A progress bar on the terminal: blocks done of the total, simulated time.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool on) : on_(on) {}
+  ~ProgressBar() { done(); }
+  void update(const rc::Progress& p) {
+    if (!on_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (p.blocks_done != p.blocks && drawn_ && now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    drawn_ = true;
+    constexpr int kWidth = 30;
+    const int fill = p.blocks ? static_cast<int>(kWidth * static_cast<double>(p.blocks_done) / p.blocks) : kWidth;
+    std::fprintf(stderr, "\r  [%s%s] %u/%u blocks, %.3f ms simulated", std::string(fill, '#').c_str(),
+                 std::string(kWidth - fill, '.').c_str(), p.blocks_done, p.blocks, p.time * 1e-9);
+    std::fflush(stderr);
+  }
+  void done() {
+    if (on_ && drawn_) std::fputc('\n', stderr);
+    drawn_ = false;
+  }
+
+ private:
+  bool on_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point last_;
+};
+
+void frame_options(const Args& a, SystemConfig& cfg, RenderJob& job) {
+  if (a.has("nodes")) cfg.nodes = parse_unsigned("--nodes", a.get("nodes"), 1, 4096);
+  if (a.has("engine")) cfg.engine = parse_engine(a.get("engine"));
+  if (a.has("size")) std::tie(job.width, job.height) = parse_size("--size", a.get("size"), false);
+  if (a.has("block")) std::tie(cfg.block_w, cfg.block_h) = parse_size("--block", a.get("block"), true);
+  if (a.has("schedule")) {
+    const auto s = rc::parse_schedule(a.get("schedule"));
+    if (!s) throw CliError("--schedule: bad value '" + a.get("schedule") + "' (expected lpt, fifo or static)");
+    cfg.schedule = *s;
+  }
+}
+
+imgcmp::Image frame_image(const FrameReport& r) {
+  imgcmp::Image img(static_cast<int>(r.width), static_cast<int>(r.height));
+  img.rgb = r.rgb;
+  return img;
+}
+
+void print_summary(const RenderRun& run) {
+  const FrameReport& r = run.report;
+  const Picos T = r.frame_time;
+  std::printf("mc1 render: %s, %u NCs (%s engine, %s), %ux%u pixels, %u blocks of %ux%u\n", r.scene.c_str(), r.nodes,
+              r.engine.c_str(), r.schedule.c_str(), r.width, r.height, r.blocks, r.block_w, r.block_h);
+  const Picos dl = milestone_time(r, "downloaded"), s1 = milestone_time(r, "step1");
+  std::printf("  simulated %s: download done %s (%s), step 1 done %s, block lists done %s; host %.2f s\n",
+              ms(T).c_str(), ms(dl).c_str(), pct(T ? static_cast<double>(dl) / T : 0).c_str(), ms(s1).c_str(),
+              ms(r.rc.lists_done).c_str(), r.host_seconds);
+  std::uint64_t retx = 0;
+  for (const LineReport& l : r.hdlc.down) retx += l.retransmissions;
+  for (const LineReport& l : r.hdlc.up) retx += l.retransmissions;
+  std::printf("  APU utilization %s (mean over NCs); HDLC %llu bytes broadcast, %llu retransmissions, %llu FCS "
+              "errors; image bus %s busy\n",
+              pct(apu_utilization_mean(r)).c_str(), static_cast<unsigned long long>(r.rc.download_bytes),
+              static_cast<unsigned long long>(retx), static_cast<unsigned long long>(r.hdlc.fcs_errors),
+              pct(T ? static_cast<double>(r.bus.busy) / T : 0).c_str());
+  for (const KillReport& k : r.kills) std::printf("  NC %u killed at %s\n", k.nc, ms(k.time).c_str());
+  for (const rc::Timeout& x : r.timeouts)
+    std::printf("  %s: NC %u missed its deadline (%s %u); %u pieces handed out again\n", ms(x.time).c_str(), x.nc,
+                x.list_job ? "list job" : "block", x.block, x.requeued);
+  if (r.bus.duplicate_runs || r.rc.late_reports)
+    std::printf("  %llu late reports ignored, %llu duplicate pixel runs dropped by the DC\n",
+                static_cast<unsigned long long>(r.rc.late_reports),
+                static_cast<unsigned long long>(r.bus.duplicate_runs));
+}
+
+}  // namespace
+
+int cmd_render(const std::vector<std::string>& argv_in) {
+  if (wants_help(argv_in)) {
+    std::cout << kRenderUsage;
+    return 0;
+  }
+  std::vector<std::string> argv = argv_in;
+  RenderJob job;
+  if (!argv.empty() && argv[0].rfind("--", 0) != 0) {
+    job.scene = argv[0];
+    argv.erase(argv.begin());
+  }
+  SystemConfig cfg;
+  cfg.nodes = 16;
+  const Args a(take_params(cfg.timing, argv),
+               {"nodes", "size", "block", "engine", "schedule", "kill-node", "ber", "seed", "dead-link", "out",
+                "stats", "gantt", "trace", "trace-node", "vcd", "diff", "scene", "min-psnr"},
+               {"quiet", "ref"});
+  if (a.has("scene")) job.scene = a.get("scene");
+  if (job.scene.empty()) throw CliError("missing SCENE (see --help)");
+  frame_options(a, cfg, job);
+  if (a.has("ber")) cfg.ber = parse_double("--ber", a.get("ber"), 0.0, 0.01);
+  if (a.has("seed")) cfg.seed = parse_unsigned("--seed", a.get("seed"), 0, 0xFFFFFFFFu);
+  for (const std::string& d : a.all("dead-link")) {
+    cfg.dead_links.push_back(parse_dead_link(d));
+    if (cfg.dead_links.back().nc > cfg.nodes)
+      throw CliError("--dead-link " + d + ": the machine has NC 1.." + std::to_string(cfg.nodes));
+  }
+  for (const std::string& k : a.all("kill-node")) {
+    cfg.kills.push_back(parse_kill(k));
+    if (cfg.kills.back().nc > cfg.nodes)
+      throw CliError("--kill-node " + k + ": the machine has NC 1.." + std::to_string(cfg.nodes));
+  }
+  if (a.has("trace")) {
+    cfg.trace_path = a.get("trace");
+    cfg.trace_node = a.has("trace-node") ? parse_unsigned("--trace-node", a.get("trace-node"), 1, cfg.nodes) : 1;
+    if (!rtl_engine_available()) throw CliError("--trace: this build has no verilated APU core");
+  } else if (a.has("trace-node")) {
+    throw CliError("--trace-node needs --trace FILE.fst");
+  }
+  if ((a.has("diff") || a.has("min-psnr")) && !a.has("ref")) throw CliError("--diff and --min-psnr need --ref");
+  const double min_psnr = a.has("min-psnr") ? parse_double("--min-psnr", a.get("min-psnr"), 0, 200) : 0;
+  const bool quiet = a.has("quiet");
+
+  RenderRun run;
+  {
+    ProgressBar bar(!quiet && isatty(fileno(stderr)));
+    run = run_render(job, cfg, a.get("vcd"), [&bar](const rc::Progress& p) { bar.update(p); });
+  }
+  const FrameReport& r = run.report;
+  if (a.has("out")) write_file(a.get("out"), encode_png_rgb8(r.width, r.height, r.rgb.data()));
+  if (a.has("stats")) write_text(a.get("stats"), stats_json(r));
+  if (a.has("gantt")) write_text(a.get("gantt"), gantt_svg(r));
+  if (!quiet) print_summary(run);
+  if (r.fm_pixels_written != std::uint64_t{r.width} * r.height) {
+    std::fprintf(stderr, "mc1 render: the frame memory got %llu pixel writes for %u pixels\n",
+                 static_cast<unsigned long long>(r.fm_pixels_written), r.width * r.height);
+    return 1;
+  }
+  if (a.has("ref")) {
+    scene::Scene s = scene::load_scene(job.scene);
+    const imgcmp::Image ref = refrender::Renderer(s).render(static_cast<int>(r.width), static_cast<int>(r.height));
+    const imgcmp::Image got = frame_image(r);
+    const double p = imgcmp::psnr(got, ref);
+    if (!quiet)
+      std::printf("  against the reference renderer: PSNR %.2f dB, largest difference %d\n", p,
+                  imgcmp::max_abs_diff(got, ref));
+    if (a.has("diff")) imgcmp::write_png(a.get("diff"), imgcmp::difference(got, ref, 8));
+    if (p < min_psnr) {
+      std::fprintf(stderr, "mc1 render: PSNR %.2f dB against the reference is below --min-psnr %.2f\n", p, min_psnr);
+      return 1;
+    }
+  }
+  return 0;
+}
+
+namespace {
+
+struct BenchRun {
+  std::string label;
+  unsigned nodes = 0, width = 0, height = 0;
+  rc::Schedule schedule = rc::Schedule::Lpt;
+  EngineKind engine = EngineKind::Iss;
+  FrameReport r;
+};
+
+}  // namespace
+
+int cmd_bench_render(const std::vector<std::string>& argv) {
+  if (wants_help(argv)) {
+    std::cout << kBenchRenderUsage;
+    return 0;
+  }
+  SystemConfig base;
+  const Args a(take_params(base.timing, argv),
+               {"scene", "size", "nodes", "static-nodes", "block", "big", "big-nodes", "json"}, {"rtl"});
+  const std::string scene = a.get("scene", MC1_SOURCE_DIR "/scenes/whitted.json");
+  const auto size = parse_size("--size", a.get("size", "256x256"), false);
+  const std::vector<unsigned> nodes = parse_list("--nodes", a.get("nodes", "1,4,16,64"), 1, 4096);
+  const unsigned static_nodes = parse_unsigned("--static-nodes", a.get("static-nodes", "16"), 1, 4096);
+  if (a.has("block")) std::tie(base.block_w, base.block_h) = parse_size("--block", a.get("block"), true);
+  const std::string big_text = a.get("big", "512x512");
+  const auto big = big_text == "0" ? std::pair<unsigned, unsigned>{0, 0} : parse_size("--big", big_text, false);
+  const unsigned big_nodes = parse_unsigned("--big-nodes", a.get("big-nodes", "64"), 1, 4096);
+
+  std::vector<BenchRun> runs;
+  std::map<std::pair<unsigned, unsigned>, std::vector<std::uint8_t>> first_image;
+  bool same = true;
+  std::printf("%-26s %5s %9s %7s %13s %9s %9s %9s %8s\n", "run", "NCs", "size", "sched", "simulated", "APU util",
+              "download", "host", "frame");
+  auto run_one = [&](const std::string& label, unsigned n, std::pair<unsigned, unsigned> wh, rc::Schedule s,
+                     EngineKind e) -> const FrameReport& {
+    if (!runs.empty()) fresh_systemc_kernel();
+    SystemConfig cfg = base;
+    cfg.nodes = n;
+    cfg.schedule = s;
+    cfg.engine = e;
+    BenchRun b{label, n, wh.first, wh.second, s, e, run_render(RenderJob{scene, wh.first, wh.second}, cfg).report};
+    auto it = first_image.find(wh);
+    bool ok = true;
+    if (it == first_image.end())
+      first_image[wh] = b.r.rgb;
+    else
+      ok = it->second == b.r.rgb;
+    same = same && ok;
+    const Picos T = b.r.frame_time;
+    std::printf("%-26s %5u %4ux%-4u %7s %10.3f ms %9s %9s %7.2f s %8s\n", label.c_str(), n, wh.first, wh.second,
+                rc::schedule_name(s), T * 1e-9, pct(apu_utilization_mean(b.r)).c_str(),
+                pct(T ? static_cast<double>(milestone_time(b.r, "downloaded")) / T : 0).c_str(), b.r.host_seconds,
+                ok ? "same" : "DIFFERS");
+    if (!b.r.timeouts.empty())
+      std::printf("  (%zu deadlines missed: the timing table's rc_timeout_* figures are too short here)\n",
+                  b.r.timeouts.size());
+    std::fflush(stdout);
+    runs.push_back(std::move(b));
+    return runs.back().r;
+  };
+
+  std::ostringstream json;
+  json << "{\"scene\": \"" << scene << "\", \"block\": " << base.block_w << ", \"runs\": [";
+  std::map<unsigned, Picos> t_size;
+  for (unsigned n : nodes)
+    t_size[n] = run_one("speedup", n, size, rc::Schedule::Lpt, EngineKind::Iss).frame_time;
+  const Picos lpt_ref = t_size.count(static_nodes)
+                            ? t_size[static_nodes]
+                            : run_one("lpt", static_nodes, size, rc::Schedule::Lpt, EngineKind::Iss).frame_time;
+  const Picos static_ref = run_one("static split", static_nodes, size, rc::Schedule::Static, EngineKind::Iss).frame_time;
+  Picos big1 = 0, bign = 0, bigs = 0, big_dl = 0;
+  if (big.first) {
+    big1 = run_one("efficiency, 1 NC", 1, big, rc::Schedule::Lpt, EngineKind::Iss).frame_time;
+    const FrameReport& r = run_one("efficiency", big_nodes, big, rc::Schedule::Lpt, EngineKind::Iss);
+    bign = r.frame_time;
+    big_dl = milestone_time(r, "downloaded");
+    bigs = run_one("static split", big_nodes, big, rc::Schedule::Static, EngineKind::Iss).frame_time;
+  }
+  double rtl_host = 0;
+  if (a.has("rtl")) {
+    if (!rtl_engine_available()) throw CliError("--rtl: this build has no verilated APU core");
+    rtl_host = run_one("RTL engine", static_nodes, size, rc::Schedule::Lpt, EngineKind::Rtl).host_seconds;
+  }
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const BenchRun& b = runs[i];
+    json << (i ? ", " : "") << "{\"label\": \"" << b.label << "\", \"nodes\": " << b.nodes << ", \"width\": " << b.width
+         << ", \"height\": " << b.height << ", \"schedule\": \"" << rc::schedule_name(b.schedule)
+         << "\", \"engine\": \"" << engine_name(b.engine) << "\", \"simulated_time_s\": " << b.r.frame_time * 1e-12
+         << ", \"host_seconds\": " << b.r.host_seconds << ", \"apu_utilization\": " << apu_utilization_mean(b.r)
+         << ", \"download_done_s\": " << milestone_time(b.r, "downloaded") * 1e-12 << "}";
+  }
+  json << "], \"speedup\": {";
+
+  std::printf("\n%ux%u, lpt:", size.first, size.second);
+  bool first = true;
+  for (unsigned n : nodes) {
+    if (!t_size.count(1)) break;
+    const double sp = static_cast<double>(t_size[1]) / static_cast<double>(t_size[n]);
+    std::printf("  %u NCs speedup %.2f (efficiency %s)", n, sp, pct(sp / n).c_str());
+    json << (first ? "" : ", ") << "\"" << n << "\": " << sp;
+    first = false;
+  }
+  const double gain = static_cast<double>(static_ref) / static_cast<double>(lpt_ref);
+  std::printf("\n%ux%u on %u NCs: lpt %.3f ms, static %.3f ms: lpt gains %.2fx\n", size.first, size.second,
+              static_nodes, lpt_ref * 1e-9, static_ref * 1e-9, gain);
+  json << "}, \"lpt_over_static\": " << gain;
+  if (big.first) {
+    const double eff = static_cast<double>(big1) / (static_cast<double>(big_nodes) * static_cast<double>(bign));
+    const double big_gain = static_cast<double>(bigs) / static_cast<double>(bign);
+    std::printf("%ux%u: 1 NC %.3f ms, %u NCs %.3f ms: parallel efficiency %s; the download (serial) is %s of the "
+                "%u-NC frame; lpt gains %.2fx over static\n",
+                big.first, big.second, big1 * 1e-9, big_nodes, bign * 1e-9, pct(eff).c_str(),
+                pct(static_cast<double>(big_dl) / bign).c_str(), big_nodes, big_gain);
+    json << ", \"big\": {\"width\": " << big.first << ", \"height\": " << big.second << ", \"nodes\": " << big_nodes
+         << ", \"efficiency\": " << eff << ", \"download_share\": " << static_cast<double>(big_dl) / bign
+         << ", \"lpt_over_static\": " << big_gain << "}";
+  }
+  if (a.has("rtl")) std::printf("RTL engine, %u NCs: host %.1f s\n", static_nodes, rtl_host);
+  json << ", \"frames_equal\": " << (same ? "true" : "false") << "}\n";
+  if (a.has("json")) write_text(a.get("json"), json.str());
+  if (!same) std::fprintf(stderr, "mc1 bench-render: frames of one size differ between runs\n");
+  return same ? 0 : 1;
+}
+
+}  // namespace mc1::cli

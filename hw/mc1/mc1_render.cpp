@@ -1,0 +1,59 @@
+#include "mc1_render.hpp"
+
+#include <memory>
+
+#include "scene.hpp"
+#include "scene_image.hpp"
+
+namespace mc1 {
+namespace {
+
+// The renderer's per-step costs (fig. 3), summed over the NCs.
+void add_steps(FrameReport& r, const std::vector<render_nc::NcResult>& ncs) {
+  for (int i = 0; i < render::kSteps; ++i) {
+    StepReport s;
+    s.name = render::step_name(static_cast<render::Step>(i));
+    for (const render_nc::NcResult& n : ncs) {
+      const render::StepCost& c = n.stats.step[static_cast<std::size_t>(i)];
+      s.apu_cycles += c.apu_cycles;
+      s.apu_runs += c.apu_runs;
+      s.batches += c.batches;
+      s.word_copies += c.word_copies;
+      s.list_elements += c.list_elements;
+      s.sort_compares += c.sort_compares;
+      s.apu_commands += c.apu_commands;
+    }
+    r.steps.push_back(s);
+  }
+  for (const render_nc::NcResult& n : ncs) {
+    r.rays += n.stats.rays;
+    r.shadow_rays += n.stats.shadow_rays;
+    r.secondary_rays += n.stats.secondary_rays;
+  }
+}
+
+}  // namespace
+
+RenderRun run_render(const RenderJob& job, SystemConfig cfg, const std::string& vcd_path,
+                     std::function<void(const rc::Progress&)> progress) {
+  scene::Scene s = scene::load_scene(job.scene);
+  if (job.width) s.camera.width = static_cast<int>(job.width);
+  if (job.height) s.camera.height = static_cast<int>(job.height);
+  const render::SceneImage image = render::make_scene_image(s);
+  cfg.width = static_cast<unsigned>(image.width);
+  cfg.height = static_cast<unsigned>(image.height);
+
+  auto results = std::make_shared<std::vector<render_nc::NcResult>>(cfg.nodes);
+  const nc::Firmware firmware = [results](nc::NcPort& port) {
+    render_nc::nc_main(port, &(*results)[port.id() - 1]);
+  };
+  RenderRun out;
+  out.report = run_plan(cfg, render_nc::frame_plan(image, cfg.block_w, cfg.block_h), firmware, vcd_path,
+                        std::move(progress));
+  out.report.scene = job.scene;
+  out.ncs = *results;
+  add_steps(out.report, out.ncs);
+  return out;
+}
+
+}  // namespace mc1

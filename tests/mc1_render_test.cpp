@@ -1,0 +1,418 @@
+// The rendered frame on the machine (docs/platform.md "The rendered frame"):
+// the frame's messages, the same PNG bit for bit for 1, 4, 16 and 64 NCs,
+// every schedule and both APU engines; a killed NC's blocks go to the others
+// and the frame is unchanged; HDLC bit errors leave it unchanged; each
+// schedule hands the blocks out as documented; the frame is within 35 dB
+// PSNR of the reference renderer on every standard scene (a difference
+// image is written when it is not).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <string>
+
+#include "image.hpp"
+#include "mc1_render.hpp"
+#include "png_writer.hpp"
+#include "refrender.hpp"
+#include "render_kernels.hpp"
+#include "render_nc.hpp"
+#include "sc_test_harness.hpp"
+#include "scene.hpp"
+#include "scene_image.hpp"
+
+using namespace mc1;
+
+namespace {
+
+std::string scenes_dir() {
+  const std::string f = __FILE__;
+  return f.substr(0, f.rfind('/')) + "/../scenes";
+}
+
+SystemConfig config(unsigned nodes, rc::Schedule s = rc::Schedule::Lpt, unsigned block = 8) {
+  SystemConfig c;
+  c.nodes = nodes;
+  c.schedule = s;
+  c.block_w = block;
+  c.block_h = block;
+  return c;
+}
+
+RenderRun render_frame(const SystemConfig& c, const std::string& scene = "tiny", unsigned w = 0, unsigned h = 0) {
+  test::fresh_kernel();
+  return run_render(RenderJob{scenes_dir() + "/" + scene + ".json", w, h}, c);
+}
+
+// Every block done exactly once, every pixel written once; the NCs' times
+// tile the frame.
+void expect_complete(const FrameReport& r) {
+  std::map<std::uint32_t, int> done;
+  for (const rc::Completion& c : r.completions) ++done[c.block];
+  ASSERT_EQ(done.size(), r.blocks);
+  for (const auto& d : done) EXPECT_EQ(d.second, 1) << "block " << d.first;
+  EXPECT_EQ(r.fm_pixels_written, std::uint64_t{r.width} * r.height);
+  for (const NcReport& n : r.ncs) {
+    EXPECT_EQ(n.busy + n.wait_rc + n.wait_bus + n.idle + n.dead, r.frame_time) << "NC " << n.id;
+    ASSERT_FALSE(n.spans.empty());
+    EXPECT_EQ(n.spans.front().begin, 0u);
+    EXPECT_EQ(n.spans.back().end, r.frame_time);
+    for (std::size_t i = 1; i < n.spans.size(); ++i) ASSERT_EQ(n.spans[i].begin, n.spans[i - 1].end);
+  }
+}
+
+// The blocks in the order the RC handed them out (step 3).
+std::vector<rc::Dispatch> block_dispatches(const FrameReport& r) {
+  std::vector<rc::Dispatch> out;
+  for (const rc::Dispatch& d : r.dispatches)
+    if (!d.list_job && d.block != rc::kNoBlock) out.push_back(d);
+  return out;
+}
+
+class Mc1Render : public test::SystemCTest {};
+
+}  // namespace
+
+TEST(Mc1RenderProtocol, MessagesRoundTrip) {
+  const rc::RenderSetupMsg setup{320, 240, 16, 8};
+  const rc::RenderSetupMsg s2 = rc::decode_render_setup(rc::encode(setup));
+  EXPECT_EQ(s2.width, 320);
+  EXPECT_EQ(s2.block_h, 8);
+
+  const rc::ListJobMsg job{1, 4};
+  EXPECT_EQ(rc::encode(job), (rc::Bytes{0x13, 1, 0, 0, 0, 4, 0, 0, 0}));
+  EXPECT_EQ(rc::job_blocks(rc::decode_list_job(rc::encode(job)), 10), (std::vector<std::uint32_t>{1, 5, 9}));
+
+  rc::ListsMsg lists{job, {{rc::Block{1, 16, 0, 16, 16}, 9, {2, 0, 1}}, {rc::Block{5, 16, 16, 16, 16}, 1, {}}}};
+  const rc::ListsMsg l2 = rc::decode_lists(rc::encode(lists));
+  EXPECT_EQ(l2.job.first, 1u);
+  EXPECT_EQ(l2.job.stride, 4u);
+  ASSERT_EQ(l2.lists.size(), 2u);
+  EXPECT_EQ(l2.lists[0], lists.lists[0]);
+  EXPECT_EQ(l2.lists[1], lists.lists[1]);
+  // type, id, x, y, w, h, load, n, 3 objects = 1 + 18 + 6 bytes
+  const rc::Bytes a = rc::encode(rc::AssignListMsg{lists.lists[0]});
+  EXPECT_EQ(a.size(), 25u);
+  EXPECT_EQ(rc::decode_assign_list(a).list, lists.lists[0]);
+
+  rc::Bytes bad = rc::encode(lists);
+  bad.pop_back();
+  EXPECT_THROW(rc::decode_lists(bad), rc::ProtocolError);
+  EXPECT_THROW(rc::decode_list_job(rc::encode(rc::ListJobMsg{0, 0})), rc::ProtocolError);
+  EXPECT_THROW(rc::decode_assign_list(rc::Bytes(a.begin(), a.end() - 1)), rc::ProtocolError);
+  EXPECT_EQ(rc::decode_download(rc::encode(rc::DownloadMsg{2, {7, 8}})).payload, (rc::Bytes{7, 8}));
+}
+
+TEST(Mc1RenderProtocol, SceneAndKernelDownloads) {
+  scene::Scene s = scene::load_scene(scenes_dir() + "/tiny.json");
+  const render::SceneImage img = render::make_scene_image(s);
+  const rc::Bytes bytes = render_nc::encode_scene(img);
+  const render::SceneImage back = render_nc::decode_scene(bytes);
+  EXPECT_EQ(render_nc::encode_scene(back), bytes);
+  EXPECT_EQ(back.width, 32);
+  EXPECT_EQ(back.objects.size(), 3u);
+  EXPECT_EQ(back.prims.size(), 5u);  // floor and mirror quads: 2 triangles each; the ball
+  EXPECT_EQ(back.lights.size(), 1u);
+  EXPECT_EQ(back.prims[2].w, img.prims[2].w);
+  // Camera and settings: 14 words + width, height, depth (5 bytes); then
+  // count + records: 1 light of 6 words, 3 materials of 33 words, 3
+  // objects of 10 bytes + 6 words, 5 primitives of 3 bytes + 21 words.
+  EXPECT_EQ(bytes.size(), 14u * 3 + 5 + (1 + 18) + (1 + 3 * 99) + (2 + 3 * 28) + (4 + 5 * 66));
+  EXPECT_THROW(render_nc::decode_scene(rc::Bytes(bytes.begin(), bytes.end() - 1)), rc::ProtocolError);
+
+  const rc::FramePlan plan = render_nc::frame_plan(img, 8, 8);
+  const std::size_t kernels = render::kernel_images().size();
+  ASSERT_EQ(plan.downloads.size(), kernels + 2);  // the kernels, the scene, the set-up
+  for (std::size_t i = 0; i < kernels; ++i) {
+    const rc::DownloadMsg d = rc::decode_download(plan.downloads[i]);
+    EXPECT_EQ(d.tag, static_cast<std::uint8_t>(rc::DownloadTag::Kernel));
+    const render_nc::KernelDownload k = render_nc::decode_kernel(d.payload);
+    EXPECT_EQ(k.name, render::kernel_images()[i].name);
+    const auto& words = render::kernel_words(k.name);
+    ASSERT_EQ(k.words.size(), words.size());
+    for (std::size_t w = 0; w < words.size(); ++w) EXPECT_TRUE(k.words[w].lo == words[w].lo && k.words[w].hi == words[w].hi);
+  }
+  EXPECT_EQ(rc::decode_download(plan.downloads[kernels]).payload, bytes);
+  EXPECT_EQ(rc::decode_render_setup(plan.downloads[kernels + 1]).block_w, 8);
+  EXPECT_EQ(plan.blocks.size(), 16u);
+  EXPECT_EQ(plan.object_work, (std::vector<std::uint32_t>{2, 1, 8}));  // floor, ball, mirror (ks = 1)
+  EXPECT_TRUE(plan.block_lists);
+  EXPECT_TRUE(plan.fault_tolerant);
+}
+
+// The deliverable: one PNG whatever the node count and the schedule.
+TEST_F(Mc1Render, SamePngForEveryNodeCountAndSchedule) {
+  const RenderRun ref = render_frame(config(1));
+  expect_complete(ref.report);
+  EXPECT_EQ(ref.report.blocks, 16u);
+  const std::vector<std::uint8_t> png = encode_png_rgb8(32, 32, ref.report.rgb.data());
+  for (unsigned n : {1u, 4u, 16u, 64u})
+    for (rc::Schedule s : {rc::Schedule::Lpt, rc::Schedule::Fifo, rc::Schedule::Static}) {
+      SCOPED_TRACE(std::to_string(n) + " NCs, " + rc::schedule_name(s));
+      const RenderRun run = render_frame(config(n, s));
+      const FrameReport& r = run.report;
+      EXPECT_EQ(encode_png_rgb8(32, 32, r.rgb.data()), png);
+      expect_complete(r);
+      EXPECT_TRUE(r.timeouts.empty());
+      EXPECT_EQ(r.rc.late_reports, 0u);
+      EXPECT_EQ(r.bus.duplicate_runs, 0u);
+      std::uint64_t lists = 0, blocks = 0;
+      for (const render_nc::NcResult& x : run.ncs) {
+        lists += x.lists_built;
+        blocks += x.blocks_rendered;
+      }
+      EXPECT_EQ(lists, 16u);  // step 2: every block's list built once
+      EXPECT_EQ(blocks, 16u);
+    }
+}
+
+// Not asked of the machine, but true of the renderer: a pixel does not
+// depend on the block it is rendered in.
+TEST_F(Mc1Render, SamePngForEveryBlockSize) {
+  const FrameReport ref = render_frame(config(4)).report;
+  for (unsigned b : {4u, 16u, 32u}) {
+    SCOPED_TRACE("blocks of " + std::to_string(b));
+    EXPECT_EQ(render_frame(config(4, rc::Schedule::Lpt, b)).report.rgb, ref.rgb);
+  }
+  SystemConfig wide = config(4);
+  wide.block_w = 16;
+  wide.block_h = 4;
+  EXPECT_EQ(render_frame(wide).report.rgb, ref.rgb);
+}
+
+// lpt: heaviest predicted load first, ties in screen order; fifo: screen
+// order; static: block i on NC (i mod N) + 1.
+TEST_F(Mc1Render, SchedulesHandOutBlocksAsDocumented) {
+  const FrameReport lpt = render_frame(config(4, rc::Schedule::Lpt), "whitted", 48, 32).report;
+  ASSERT_EQ(lpt.block_loads.size(), 24u);
+  const auto order = block_dispatches(lpt);
+  ASSERT_EQ(order.size(), 24u);
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    const std::uint32_t a = lpt.block_loads[order[i - 1].block], b = lpt.block_loads[order[i].block];
+    EXPECT_GE(a, b) << "dispatch " << i;
+    if (a == b) {
+      EXPECT_LT(order[i - 1].block, order[i].block) << "dispatch " << i;
+    }
+  }
+
+  const FrameReport fifo = render_frame(config(4, rc::Schedule::Fifo), "whitted", 48, 32).report;
+  const auto f = block_dispatches(fifo);
+  ASSERT_EQ(f.size(), 24u);
+  for (std::size_t i = 0; i < f.size(); ++i) EXPECT_EQ(f[i].block, i);
+
+  const FrameReport st = render_frame(config(4, rc::Schedule::Static), "whitted", 48, 32).report;
+  const auto s = block_dispatches(st);
+  ASSERT_EQ(s.size(), 24u);
+  for (const rc::Dispatch& d : s) EXPECT_EQ(d.nc, d.block % 4 + 1) << "block " << d.block;
+  for (const NcReport& n : st.ncs) EXPECT_EQ(n.blocks, 6u) << "NC " << n.id;
+
+  EXPECT_EQ(lpt.rgb, fifo.rgb);
+  EXPECT_EQ(lpt.rgb, st.rgb);
+  EXPECT_EQ(lpt.block_loads, st.block_loads);  // step 2 does not depend on the schedule
+}
+
+// --kill-node: the NC stops; the RC's deadline finds it; its block goes to
+// another NC; the frame is the fault-free one, every pixel written once.
+// The first time the RC handed NC `nc` a piece (a list job or a block).
+Picos first_dispatch(const FrameReport& r, unsigned nc, bool list_job) {
+  for (const rc::Dispatch& d : r.dispatches)
+    if (d.nc == nc && d.list_job == list_job && d.block != rc::kNoBlock) return d.time;
+  ADD_FAILURE() << "NC " << nc << " got no " << (list_job ? "list job" : "block");
+  return 0;
+}
+
+TEST_F(Mc1Render, KilledNodeIsDetectedAndItsBlocksGoToOthers) {
+  const FrameReport clean = render_frame(config(4)).report;
+  SystemConfig c = config(4);
+  const Picos kill = first_dispatch(clean, 3, false) + 1000;  // NC 3 holding its first block (step 3)
+  c.kills = {{3, kill}};
+  const FrameReport r = render_frame(c).report;
+  EXPECT_EQ(r.rgb, clean.rgb);
+  expect_complete(r);
+  ASSERT_EQ(r.timeouts.size(), 1u);
+  const rc::Timeout& t = r.timeouts[0];
+  EXPECT_EQ(t.nc, 3u);
+  EXPECT_FALSE(t.list_job);
+  EXPECT_EQ(t.requeued, 1u);
+  EXPECT_EQ(r.rc.reassigned, 1u);
+  // The deadline from the dispatch: base + pixels x (1 + work) x
+  // per_pixel_prim, work = the listed objects' primitives (floor 2, ball 1,
+  // mirror 2 x 4: it reflects).
+  const std::uint32_t per_object[] = {2, 1, 8};
+  std::uint64_t work = 0;
+  for (std::uint16_t o : r.block_lists.at(t.block).objects) work += per_object[o];
+  const TimingParams& tp = c.timing;
+  Picos dispatched = 0;
+  for (const rc::Dispatch& d : r.dispatches)
+    if (!d.list_job && d.block == t.block && d.nc == 3) dispatched = d.time;
+  EXPECT_EQ(t.time - dispatched, 1000 * (tp.rc_timeout_base_ns + 64 * (1 + work) * tp.rc_timeout_ns_per_pixel_prim));
+  // The block went out again, to a live NC, which did it.
+  std::set<unsigned> takers;
+  for (const rc::Dispatch& d : r.dispatches)
+    if (!d.list_job && d.block == t.block) takers.insert(d.nc);
+  EXPECT_EQ(takers.size(), 2u);
+  for (const rc::Completion& x : r.completions)
+    if (x.block == t.block) {
+      EXPECT_NE(x.nc, 3u);
+    }
+  const NcReport& dead = r.ncs[2];
+  EXPECT_TRUE(dead.killed);
+  EXPECT_EQ(dead.killed_at, kill);
+  EXPECT_EQ(dead.dead, r.frame_time - dead.killed_at);
+  EXPECT_EQ(dead.finished_at, 0u);
+  EXPECT_GT(r.frame_time, t.time);
+  EXPECT_LT(clean.frame_time, t.time);
+}
+
+TEST_F(Mc1Render, KilledDuringTheBlockListsOrBeforeAsking) {
+  const FrameReport clean = render_frame(config(4)).report;
+  SystemConfig during_lists = config(4);
+  during_lists.kills = {{2, first_dispatch(clean, 2, true) + 1000}};  // holding a list job (step 2)
+  const FrameReport a = render_frame(during_lists).report;
+  EXPECT_EQ(a.rgb, clean.rgb);
+  expect_complete(a);
+  ASSERT_EQ(a.timeouts.size(), 1u);
+  EXPECT_EQ(a.timeouts[0].nc, 2u);
+  EXPECT_TRUE(a.timeouts[0].list_job);
+
+  SystemConfig before = config(4);
+  before.kills = {{2, milestone_time(clean, "downloaded") / 2}};  // during the download: it never asks
+  const FrameReport b = render_frame(before).report;
+  EXPECT_EQ(b.rgb, clean.rgb);
+  expect_complete(b);
+  ASSERT_EQ(b.timeouts.size(), 1u);
+  EXPECT_EQ(b.timeouts[0].nc, 2u);
+  EXPECT_EQ(b.timeouts[0].block, rc::kNoBlock);
+  // Taken as dead rc_timeout_base_ns after the last block.
+  EXPECT_EQ(b.timeouts[0].time, b.rc.last_completion + 1000 * before.timing.rc_timeout_base_ns);
+  EXPECT_EQ(b.frame_time, b.timeouts[0].time);
+}
+
+// Deadlines tighter than the work: NCs are taken as dead while alive, their
+// blocks go out again, the late copies are ignored by the RC and dropped by
+// the DC's write-once filter; the NCs come back to work; same frame.
+TEST_F(Mc1Render, LateDuplicatesAreIgnored) {
+  const FrameReport clean = render_frame(config(4)).report;
+  // A deadline between the median and the longest block time of the clean
+  // frame (dispatch to report): the slowest blocks miss it.
+  std::vector<Picos> took;
+  for (const rc::Completion& x : clean.completions)
+    for (const rc::Dispatch& d : clean.dispatches)
+      if (!d.list_job && d.block == x.block) took.push_back(x.time - d.time);
+  std::sort(took.begin(), took.end());
+  ASSERT_EQ(took.size(), 16u);
+  ASSERT_LT(took[8], took[15]);
+  const Picos deadline = (took[8] + took[15]) / 2;
+  std::uint64_t work = 0;  // tiny's lists: the same objects in every block
+  const std::uint32_t per_object[] = {2, 1, 8};
+  for (std::uint16_t o : clean.block_lists.at(0).objects) work += per_object[o];
+  SystemConfig c = config(4);
+  c.timing.rc_timeout_base_ns = 1;
+  c.timing.rc_timeout_ns_per_pixel_prim = (deadline / 1000) / (64 * (1 + work));
+  const FrameReport r = render_frame(c).report;
+  EXPECT_EQ(r.rgb, clean.rgb);
+  expect_complete(r);
+  EXPECT_GE(r.timeouts.size(), 1u);
+  EXPECT_GE(r.rc.late_reports, 1u);
+  EXPECT_EQ(r.rc.revived, r.timeouts.size());
+  EXPECT_GE(r.bus.duplicate_runs, 8u);  // at least one block of 8 rows sent twice
+  EXPECT_EQ(r.bus.duplicate_pixels, 8 * r.bus.duplicate_runs);
+  EXPECT_EQ(r.bus.pixels, r.fm_pixels_written + r.bus.duplicate_pixels);
+}
+
+TEST_F(Mc1Render, HdlcBitErrorsLeaveTheImageUnchanged) {
+  const FrameReport clean = render_frame(config(4)).report;
+  SystemConfig c = config(4);
+  c.ber = 1e-4;
+  c.seed = 7;
+  c.dead_links = {{1, 20'000'000'000, 23'000'000'000}};  // NC 1 deaf 3 ms into the download
+  const FrameReport r = render_frame(c).report;
+  EXPECT_EQ(r.rgb, clean.rgb);
+  expect_complete(r);
+  EXPECT_GT(r.hdlc.fcs_errors, 0u);
+  std::uint64_t retx = 0;
+  for (const LineReport& l : r.hdlc.down) retx += l.retransmissions;
+  EXPECT_GT(retx, 0u);
+  EXPECT_TRUE(r.timeouts.empty());
+  EXPECT_GT(r.frame_time, clean.frame_time);
+}
+
+TEST_F(Mc1Render, RtlEngineGivesTheSameFrameAndTimes) {
+  if (!rtl_engine_available()) GTEST_SKIP() << "no verilated APU core in this build";
+  const FrameReport iss = render_frame(config(4)).report;
+  SystemConfig c = config(4);
+  c.engine = EngineKind::Rtl;
+  const FrameReport rtl = render_frame(c).report;
+  EXPECT_EQ(rtl.rgb, iss.rgb);
+  EXPECT_EQ(rtl.frame_time, iss.frame_time);
+  for (std::size_t k = 0; k < iss.ncs.size(); ++k) EXPECT_EQ(rtl.ncs[k].apu_cycles, iss.ncs[k].apu_cycles);
+}
+
+TEST_F(Mc1Render, StatisticsAndChart) {
+  const RenderRun run = render_frame(config(4));
+  const FrameReport& r = run.report;
+  // The broadcast: every download message, byte for byte.
+  scene::Scene s = scene::load_scene(scenes_dir() + "/tiny.json");
+  std::uint64_t bytes = 0;
+  for (const rc::Bytes& d : render_nc::frame_plan(render::make_scene_image(s), 8, 8).downloads) bytes += d.size();
+  EXPECT_EQ(r.rc.download_bytes, bytes);
+  // At 4 Mbps the download cannot be faster than its bits.
+  const Picos downloaded = milestone_time(r, "downloaded");
+  EXPECT_GT(downloaded, bytes * 8 * 250'000);
+  EXPECT_GT(milestone_time(r, "step1"), downloaded);
+  EXPECT_GT(r.rc.lists_done, milestone_time(r, "step1"));
+  EXPECT_LT(r.rc.lists_done, r.frame_time);
+  ASSERT_EQ(r.steps.size(), static_cast<std::size_t>(render::kSteps));
+  // The firmware's APU cycles per step add up to the cycles the NCs clocked,
+  // but for the settle cycles after each HALT (ApuDriver::kSettleCycles),
+  // which the firmware counts and the NC does not.
+  std::uint64_t apu = 0, runs = 0;
+  for (const StepReport& x : r.steps) {
+    apu += x.apu_cycles;
+    runs += x.apu_runs;
+  }
+  std::uint64_t clocked = 0;
+  for (const NcReport& n : r.ncs) clocked += n.apu_cycles;
+  EXPECT_GT(runs, 0u);
+  EXPECT_EQ(apu, clocked + apu::ApuDriver::kSettleCycles * runs);
+  const std::string j = stats_json(r);
+  for (const char* key : {"\"schedule\": \"lpt\"", "\"scene\": ", "\"phases\": {\"download_done_ps\": ",
+                          "\"steps\": [", "\"dead_ps\": ", "\"timeouts\": []", "\"duplicate_runs\": 0",
+                          "\"milestones\": {\"downloaded\": "})
+    EXPECT_NE(j.find(key), std::string::npos) << key;
+  EXPECT_NE(j.find("\"download_bytes\": " + std::to_string(bytes)), std::string::npos);
+  const std::string g = gantt_svg(r);
+  EXPECT_NE(g.find("MC-1 frame tiny.json: 4 NCs (iss, lpt)"), std::string::npos);
+  EXPECT_NE(g.find("scene downloaded"), std::string::npos);
+  EXPECT_NE(g.find("block lists done"), std::string::npos);
+  EXPECT_NE(g.find(">NC 4<"), std::string::npos);
+}
+
+// Every standard scene, small, against the double-precision reference.
+TEST_F(Mc1Render, WithinPsnr35OfTheReferenceOnEveryStandardScene) {
+  const struct {
+    const char* scene;
+    unsigned w, h;
+  } cases[] = {{"tiny", 32, 32}, {"whitted", 48, 36}, {"room", 48, 36}, {"smooth", 32, 24}, {"teapot", 32, 24}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.scene);
+    const FrameReport r = render_frame(config(4, rc::Schedule::Lpt, 16), c.scene, c.w, c.h).report;
+    scene::Scene s = scene::load_scene(scenes_dir() + "/" + c.scene + ".json");
+    const imgcmp::Image ref = refrender::Renderer(s).render(static_cast<int>(c.w), static_cast<int>(c.h));
+    imgcmp::Image got(static_cast<int>(c.w), static_cast<int>(c.h));
+    got.rgb = r.rgb;
+    const double p = imgcmp::psnr(got, ref);
+    if (p < 35.0) {
+      const std::string stem = std::string("mc1_render_") + c.scene;
+      imgcmp::write_png(stem + "_frame.png", got);
+      imgcmp::write_png(stem + "_ref.png", ref);
+      imgcmp::write_png(stem + "_diff.png", imgcmp::difference(got, ref, 8));
+      ADD_FAILURE() << c.scene << " at " << c.w << "x" << c.h << ": PSNR " << p
+                    << " dB against the reference (at least 35); largest difference " << imgcmp::max_abs_diff(got, ref)
+                    << "; wrote " << stem << "_{frame,ref,diff}.png in the test's directory";
+    }
+  }
+}
+
+MC1_SYSTEMC_GTEST_MAIN()
