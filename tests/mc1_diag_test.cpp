@@ -125,7 +125,6 @@ TEST(DiagFrame, SameFrameWhateverTheNodeCount) {
 }
 
 TEST(DiagFrame, RtlEngine) {
-  if (!rtl_engine_available()) GTEST_SKIP() << "no verilated APU core in this build";
   SystemConfig c = config(3, 32, 8);
   c.engine = EngineKind::Rtl;
   const FrameReport rtl = run(c);

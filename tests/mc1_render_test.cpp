@@ -339,7 +339,6 @@ TEST_F(Mc1Render, HdlcBitErrorsLeaveTheImageUnchanged) {
 }
 
 TEST_F(Mc1Render, RtlEngineGivesTheSameFrameAndTimes) {
-  if (!rtl_engine_available()) GTEST_SKIP() << "no verilated APU core in this build";
   const FrameReport iss = render_frame(config(4)).report;
   SystemConfig c = config(4);
   c.engine = EngineKind::Rtl;

@@ -18,9 +18,7 @@
 #include "mc1_cli.hpp"
 #include "mc1_system.hpp"
 #include "png_writer.hpp"
-#ifdef MC1_HAVE_RENDER
 #include "mc1_render_cmd.hpp"
-#endif
 
 namespace {
 
@@ -251,10 +249,8 @@ int sc_main(int argc, char** argv) {
   args.erase(args.begin());
   try {
     if (cmd == "diag") return cmd_diag(args);
-#ifdef MC1_HAVE_RENDER
     if (cmd == "render") return cli::cmd_render(args);
     if (cmd == "bench-render") return cli::cmd_bench_render(args);
-#endif
     if (cmd == "bench") return cmd_bench(args);
     if (cmd == "params") return cmd_params(args);
     std::fprintf(stderr, "mc1: unknown command '%s'\n%s", cmd.c_str(), kUsage);

@@ -10,30 +10,15 @@
 #include "png_writer.hpp"
 #include "rc_protocol.hpp"
 #include "sc_time_conv.hpp"
-#ifdef MC1_HAVE_RTL_ENGINE
 #include "apu_rtl_engine.hpp"
-#endif
 
 namespace mc1 {
 
 const char* engine_name(EngineKind e) { return e == EngineKind::Rtl ? "rtl" : "iss"; }
 
-bool rtl_engine_available() {
-#ifdef MC1_HAVE_RTL_ENGINE
-  return true;
-#else
-  return false;
-#endif
-}
-
 std::unique_ptr<apu::ApuEngine> make_engine(EngineKind e, const std::string& fst_path) {
   if (e == EngineKind::Iss && fst_path.empty()) return std::make_unique<apu::Iss>();
-#ifdef MC1_HAVE_RTL_ENGINE
   return std::make_unique<apu::RtlEngine>(fst_path.empty() ? nullptr : fst_path.c_str());
-#else
-  if (!fst_path.empty()) throw std::runtime_error("--trace: this build has no verilated APU core (apu_rtl_engine)");
-  throw std::runtime_error("--engine rtl: this build has no verilated APU core (apu_rtl_engine)");
-#endif
 }
 
 namespace {

@@ -26,7 +26,6 @@ namespace mc1 {
 
 enum class EngineKind { Iss, Rtl };
 const char* engine_name(EngineKind e);
-bool rtl_engine_available();  // the verilated core was built
 // `fst_path` (RTL only): every cycle of this engine into an FST waveform.
 std::unique_ptr<apu::ApuEngine> make_engine(EngineKind e, const std::string& fst_path = "");
 
