@@ -10,77 +10,14 @@
 #include "apu_driver.hpp"
 #include "apu_iss.hpp"
 #include "apu_profile.hpp"
+#include "apu_test_program.hpp"
 #include "fp24.hpp"
 
 namespace mc1::apu {
 namespace {
 
-constexpr std::uint32_t kOne = 0x3F0000, kTwo = 0x400000, kThree = 0x408000;
-
-// Word builders: one slot each; combine with `|`.
-MicroWord nop() { return {}; }
-MicroWord lif(int d, std::uint16_t imm) { MicroWord w; w.i = {IntOp::Lif, std::uint8_t(d), 0, 0, imm}; return w; }
-MicroWord li(int d, std::uint16_t imm) { MicroWord w; w.i = {IntOp::Li, std::uint8_t(d), 0, 0, imm}; return w; }
-MicroWord ialu(IntOp op, int d, int s, int t, std::uint16_t imm) {
-  MicroWord w; w.i = {op, std::uint8_t(d), std::uint8_t(s), std::uint8_t(t), imm}; return w;
-}
-MicroWord mul(int d, int a, int b) { MicroWord w; w.m = {true, std::uint8_t(d), std::uint8_t(a), std::uint8_t(b)}; return w; }
-MicroWord addu(AddOp op, int d, int a, int b) {
-  MicroWord w; w.a = {true, op, std::uint8_t(d), std::uint8_t(a), std::uint8_t(b)}; return w;
-}
-MicroWord func(FuncOp op, int d, int a) { MicroWord w; w.f = {true, op, std::uint8_t(d), std::uint8_t(a)}; return w; }
-MicroWord mem(MemOp op, int f, int base, int disp) {
-  MicroWord w; w.d = {op, std::uint8_t(f), std::uint8_t(base), std::int8_t(disp)}; return w;
-}
-MicroWord seq(SeqOp op, int r = 0, int target = 0) {
-  MicroWord w; w.s = {op, std::uint8_t(r), std::uint16_t(target)}; return w;
-}
-MicroWord halt() { return seq(SeqOp::Halt); }
-
-// Merges the non-empty slots of b into a.
-MicroWord operator|(MicroWord a, const MicroWord& b) {
-  if (b.m.en) a.m = b.m;
-  if (b.a.en) a.a = b.a;
-  if (b.f.en) a.f = b.f;
-  if (b.d.op != MemOp::None) a.d = b.d;
-  if (b.i.op != IntOp::None) a.i = b.i;
-  if (b.s.op != SeqOp::Next) a.s = b.s;
-  return a;
-}
-
-struct Prog {
-  std::unique_ptr<Iss> iss = std::make_unique<Iss>();
-  std::vector<CycleRecord> recs;
-
-  explicit Prog(const std::vector<MicroWord>& prog) {
-    std::vector<Encoded> words;
-    for (const auto& w : prog) words.push_back(w.encode());
-    ApuDriver drv(*iss);
-    drv.load_program(words);
-    drv.hand_over_program();
-    drv.start(0);
-  }
-  // Steps while running (at most `limit` cycles), then `extra` more.
-  Prog& go(int limit = 1000, int extra = 0) {
-    for (int i = 0; i < limit && iss->state() == RunState::Running; ++i) step();
-    for (int i = 0; i < extra; ++i) step();
-    return *this;
-  }
-  void step() {
-    recs.emplace_back();
-    iss->step(recs.back());
-  }
-  std::vector<Stall> stalls() const {
-    std::vector<Stall> out;
-    for (const auto& r : recs) out.push_back(r.stall);
-    return out;
-  }
-  std::vector<int> pcs() const {
-    std::vector<int> out;
-    for (const auto& r : recs) out.push_back(r.issued ? r.pc : -1);
-    return out;
-  }
-};
+using namespace apu_test;
+using Prog = EngineProgram<Iss>;
 
 using K = Commit::Kind;
 constexpr Stall N = Stall::None;
@@ -88,7 +25,7 @@ constexpr Stall N = Stall::None;
 TEST(ApuIss, RawAtDistanceOneStallsOneCycleAndHaltDrains) {
   Prog r({lif(1, 0x3F00), lif(2, 0x4000), mul(3, 1, 2), addu(AddOp::Add, 4, 3, 1), halt()});
   r.go();
-  ASSERT_EQ(r.iss->state(), RunState::Halted);
+  ASSERT_EQ(r.apu->state(), RunState::Halted);
   EXPECT_EQ(r.recs.size(), 7u);  // 5 words + raw + drain
   EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, Stall::Raw, N, Stall::Drain, N}));
   EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, 2, -1, 3, -1, 4}));
@@ -99,16 +36,16 @@ TEST(ApuIss, RawAtDistanceOneStallsOneCycleAndHaltDrains) {
   EXPECT_TRUE(r.recs[3].commits.empty());
   EXPECT_EQ(r.recs[4].commits, (std::vector<Commit>{{K::FReg, 3, kTwo}}));  // MUL at 2, visible at 4
   EXPECT_EQ(r.recs[6].commits, (std::vector<Commit>{{K::FReg, 4, kThree}}));
-  EXPECT_EQ(r.iss->freg(4), kThree);
-  EXPECT_EQ(r.iss->pc(), 4);
-  EXPECT_EQ(r.iss->cycle(), 7u);
+  EXPECT_EQ(r.apu->freg(4), kThree);
+  EXPECT_EQ(r.apu->pc(), 4);
+  EXPECT_EQ(r.apu->cycle(), 7u);
 }
 
 TEST(ApuIss, RawAtDistanceTwoDoesNotStall) {
   Prog r({lif(1, 0x3F00), mul(2, 1, 1), nop(), addu(AddOp::Add, 3, 2, 2), halt()});
   r.go();
   EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, Stall::Drain, N}));
-  EXPECT_EQ(r.iss->freg(3), kTwo);
+  EXPECT_EQ(r.apu->freg(3), kTwo);
 }
 
 TEST(ApuIss, SinCosOccupyTheFunctionUnitForTwoCycles) {
@@ -121,8 +58,8 @@ TEST(ApuIss, SinCosOccupyTheFunctionUnitForTwoCycles) {
   const auto sin1 = fp24::sin(kOne);
   EXPECT_EQ(r.recs[4].commits, (std::vector<Commit>{{K::FReg, 2, sin1.value}, {K::Flags, 0, sin1.flags}}));
   EXPECT_EQ(r.recs[5].commits, (std::vector<Commit>{{K::FReg, 3, kOne}}));
-  EXPECT_EQ(r.iss->freg(4), fp24::add(sin1.value, sin1.value).value);
-  EXPECT_EQ(r.iss->flags(), sin1.flags | fp24::add(sin1.value, sin1.value).flags);
+  EXPECT_EQ(r.apu->freg(4), fp24::add(sin1.value, sin1.value).value);
+  EXPECT_EQ(r.apu->flags(), sin1.flags | fp24::add(sin1.value, sin1.value).flags);
 }
 
 TEST(ApuIss, SinThenReaderStallsRawTwice) {
@@ -137,7 +74,7 @@ TEST(ApuIss, WriteAfterWriteWaitsForTheFirstResult) {
   EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Waw, N, N}));
   EXPECT_EQ(r.recs[3].commits, (std::vector<Commit>{{K::FReg, 3, kOne}}));
   EXPECT_EQ(r.recs[4].commits, (std::vector<Commit>{{K::FReg, 3, kTwo}}));
-  EXPECT_EQ(r.iss->freg(3), kTwo);
+  EXPECT_EQ(r.apu->freg(3), kTwo);
 }
 
 TEST(ApuIss, RawBeatsWawInPriority) {
@@ -145,7 +82,7 @@ TEST(ApuIss, RawBeatsWawInPriority) {
   Prog r({lif(1, 0x3F00), mul(3, 1, 1), addu(AddOp::Add, 3, 3, 1), halt()});
   r.go();
   EXPECT_EQ(r.stalls()[2], Stall::Raw);
-  EXPECT_EQ(r.iss->freg(3), kTwo);
+  EXPECT_EQ(r.apu->freg(3), kTwo);
 }
 
 TEST(ApuIss, BranchOnCcWaitsForTheCompare) {
@@ -156,16 +93,16 @@ TEST(ApuIss, BranchOnCcWaitsForTheCompare) {
   EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, Stall::Cc, N, N, N}));
   EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, 2, -1, 3, 6, -1}));
   EXPECT_EQ(r.recs[4].commits, (std::vector<Commit>{{K::Cc, 0, fp24::kLT}}));
-  EXPECT_EQ(r.iss->cc(), fp24::kLT);
-  EXPECT_EQ(r.iss->areg(5), 7);  // the HALT word's own LI lands the cycle after
+  EXPECT_EQ(r.apu->cc(), fp24::kLT);
+  EXPECT_EQ(r.apu->areg(5), 7);  // the HALT word's own LI lands the cycle after
 }
 
 TEST(ApuIss, BnccNotTakenFallsThrough) {
   Prog r({lif(1, 0x3F00), addu(AddOp::Cmp, 0, 1, 1), nop(), seq(SeqOp::Bncc, fp24::kEQ, 6), li(4, 1), halt(),
          li(4, 2) | halt()});
   r.go(100, 1);
-  EXPECT_EQ(r.iss->cc(), fp24::kEQ);
-  EXPECT_EQ(r.iss->areg(4), 1);
+  EXPECT_EQ(r.apu->cc(), fp24::kEQ);
+  EXPECT_EQ(r.apu->areg(4), 1);
   EXPECT_EQ(r.recs.size(), 7u);  // no stall: CMP at 1 is visible at 3
 }
 
@@ -228,8 +165,8 @@ TEST(ApuIss, DbnzLoopRunsItsCount) {
   Prog r({li(1, 5), ialu(IntOp::Addi, 2, 2, 0, 3) | seq(SeqOp::Dbnz, 1, 1), halt()});
   r.go(100, 1);
   EXPECT_EQ(r.recs.size(), 8u);  // LI, 5 loop words, HALT, +1
-  EXPECT_EQ(r.iss->areg(2), 15);
-  EXPECT_EQ(r.iss->areg(1), 0);
+  EXPECT_EQ(r.apu->areg(2), 15);
+  EXPECT_EQ(r.apu->areg(1), 0);
   EXPECT_EQ(r.recs[2].commits, (std::vector<Commit>{{K::AReg, 1, 4}, {K::AReg, 2, 3}}));
 }
 
@@ -239,16 +176,16 @@ TEST(ApuIss, IntegerOpsWrapAndShift) {
          ialu(IntOp::Xor, 7, 1, 2, 0), ialu(IntOp::Andi, 8, 1, 0, 0xFF), ialu(IntOp::Ori, 9, 1, 0, 0x10),
          ialu(IntOp::Add, 10, 1, 1, 0), ialu(IntOp::Li, 0, 0, 0, 5), halt()});
   r.go(100, 1);
-  EXPECT_EQ(r.iss->areg(2), 0xF800);
-  EXPECT_EQ(r.iss->areg(3), 0x0800);
-  EXPECT_EQ(r.iss->areg(4), 0x8003);
-  EXPECT_EQ(r.iss->areg(5), 0x0002);
-  EXPECT_EQ(r.iss->areg(6), 0x7FFF);
-  EXPECT_EQ(r.iss->areg(7), 0x8001 ^ 0xF800);
-  EXPECT_EQ(r.iss->areg(8), 0x0001);
-  EXPECT_EQ(r.iss->areg(9), 0x8011);
-  EXPECT_EQ(r.iss->areg(10), 0x0002);
-  EXPECT_EQ(r.iss->areg(0), 0);
+  EXPECT_EQ(r.apu->areg(2), 0xF800);
+  EXPECT_EQ(r.apu->areg(3), 0x0800);
+  EXPECT_EQ(r.apu->areg(4), 0x8003);
+  EXPECT_EQ(r.apu->areg(5), 0x0002);
+  EXPECT_EQ(r.apu->areg(6), 0x7FFF);
+  EXPECT_EQ(r.apu->areg(7), 0x8001 ^ 0xF800);
+  EXPECT_EQ(r.apu->areg(8), 0x0001);
+  EXPECT_EQ(r.apu->areg(9), 0x8011);
+  EXPECT_EQ(r.apu->areg(10), 0x0002);
+  EXPECT_EQ(r.apu->areg(0), 0);
   EXPECT_TRUE(r.recs[11].commits.empty());  // A0 write dropped, not recorded
 }
 
@@ -257,57 +194,57 @@ TEST(ApuIss, FloatFixAndRegisterMoves) {
   Prog r({li(1, 0xFFFD), ialu(IntOp::Movaf, 1, 1, 0, 0), addu(AddOp::Float, 2, 1, 0), lif(3, 0x4040), nop(),
          mul(4, 2, 3), nop(), addu(AddOp::Fix, 5, 4, 0), nop(), ialu(IntOp::Movfa, 6, 0, 0, 5), halt()});
   r.go(100, 1);
-  EXPECT_EQ(r.iss->freg(1), 0xFFFDu);
-  EXPECT_EQ(r.iss->freg(2), 0xC08000u);   // -3.0
-  EXPECT_EQ(r.iss->freg(4), 0xC1E000u);   // -7.5
-  EXPECT_EQ(r.iss->freg(5), 0xFFF9u);     // FIX toward zero: -7, zero-extended
-  EXPECT_EQ(r.iss->areg(6), 0xFFF9);
-  EXPECT_EQ(r.iss->flags(), fp24::kNX);
+  EXPECT_EQ(r.apu->freg(1), 0xFFFDu);
+  EXPECT_EQ(r.apu->freg(2), 0xC08000u);   // -3.0
+  EXPECT_EQ(r.apu->freg(4), 0xC1E000u);   // -7.5
+  EXPECT_EQ(r.apu->freg(5), 0xFFF9u);     // FIX toward zero: -7, zero-extended
+  EXPECT_EQ(r.apu->areg(6), 0xFFF9);
+  EXPECT_EQ(r.apu->flags(), fp24::kNX);
 }
 
 TEST(ApuIss, CallAndReturn) {
   Prog r({seq(SeqOp::Call, 0, 4), li(2, 2), seq(SeqOp::Call, 0, 4), halt(), li(1, 1) | seq(SeqOp::Ret)});
   r.go(100, 1);
   EXPECT_EQ(r.pcs(), (std::vector<int>{0, 4, 1, 2, 4, 3, -1}));
-  EXPECT_EQ(r.iss->areg(1), 1);
-  EXPECT_EQ(r.iss->areg(2), 2);
-  EXPECT_EQ(r.iss->call_depth(), 0);
+  EXPECT_EQ(r.apu->areg(1), 1);
+  EXPECT_EQ(r.apu->areg(2), 2);
+  EXPECT_EQ(r.apu->call_depth(), 0);
 }
 
 TEST(ApuIss, CallStackOverflowFaultsOnTheNinthCall) {
   Prog r({seq(SeqOp::Call, 0, 0)});
   r.go();
-  EXPECT_EQ(r.iss->state(), RunState::Faulted);
-  EXPECT_EQ(r.iss->fault(), Fault::CallOverflow);
+  EXPECT_EQ(r.apu->state(), RunState::Faulted);
+  EXPECT_EQ(r.apu->fault(), Fault::CallOverflow);
   EXPECT_EQ(r.recs.size(), 9u);
   EXPECT_FALSE(r.recs[8].issued);
   EXPECT_EQ(r.recs[8].stall, Stall::None);
-  EXPECT_EQ(r.iss->call_depth(), 8);
+  EXPECT_EQ(r.apu->call_depth(), 8);
 }
 
 TEST(ApuIss, ReturnWithEmptyStackFaults) {
   Prog r({li(1, 1), seq(SeqOp::Ret)});
   r.go();
-  EXPECT_EQ(r.iss->fault(), Fault::CallUnderflow);
+  EXPECT_EQ(r.apu->fault(), Fault::CallUnderflow);
   EXPECT_EQ(r.recs.size(), 2u);
-  EXPECT_EQ(r.iss->pc(), 1);
+  EXPECT_EQ(r.apu->pc(), 1);
 }
 
 TEST(ApuIss, DataAddressFaultHasNoEffectButInFlightResultsLand) {
   // MUL at 1 still completes at 3 although the store at 2 (4000 + 96) faults.
   Prog r({lif(1, 0x4000), li(1, 4000) | mul(2, 1, 1), mem(MemOp::St, 1, 1, 96) | li(3, 3), nop()});
   r.go(100, 3);
-  EXPECT_EQ(r.iss->fault(), Fault::DataAddress);
+  EXPECT_EQ(r.apu->fault(), Fault::DataAddress);
   EXPECT_EQ(r.recs.size(), 6u);
   EXPECT_EQ(r.recs[3].commits, (std::vector<Commit>{{K::FReg, 2, 0x410000}}));
-  EXPECT_EQ(r.iss->areg(3), 0);  // the faulting word's LI did not issue
-  EXPECT_EQ(r.iss->pc(), 2);
+  EXPECT_EQ(r.apu->areg(3), 0);  // the faulting word's LI did not issue
+  EXPECT_EQ(r.apu->pc(), 2);
 }
 
 TEST(ApuIss, DataAddressWrapsModulo16Bits) {
   Prog r({li(1, 0xFFFF), lif(1, 0x3F00), mem(MemOp::St, 1, 1, 5), halt()});
   r.go();
-  EXPECT_EQ(r.iss->state(), RunState::Halted);
+  EXPECT_EQ(r.apu->state(), RunState::Halted);
   EXPECT_EQ(r.recs[2].commits, (std::vector<Commit>{{K::FReg, 1, kOne}, {K::Mem, 4, kOne}}));
 }
 
@@ -340,14 +277,14 @@ TEST(ApuIss, EveryReservedOpFaults) {
   for (const MicroWord& bad : {a, d, i, seq(SeqOp::Reserved13), seq(SeqOp::Reserved14), seq(SeqOp::Reserved15)}) {
     Prog r({li(1, 1), bad, halt()});
     r.go();
-    EXPECT_EQ(r.iss->fault(), Fault::ReservedOp);
+    EXPECT_EQ(r.apu->fault(), Fault::ReservedOp);
     EXPECT_EQ(r.recs.size(), 2u);
   }
   // A disabled A slot with op 7 is no op at all.
   MicroWord off = nop(); off.a = {false, AddOp(7), 1, 2, 3};
   Prog r({off, halt()});
   r.go();
-  EXPECT_EQ(r.iss->state(), RunState::Halted);
+  EXPECT_EQ(r.apu->state(), RunState::Halted);
 }
 
 TEST(ApuIss, StallBeforeFault) {
@@ -356,7 +293,7 @@ TEST(ApuIss, StallBeforeFault) {
   Prog r({lif(1, 0x3F00), mul(2, 1, 1), bad});
   r.go();
   EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Raw, N}));
-  EXPECT_EQ(r.iss->fault(), Fault::ReservedOp);
+  EXPECT_EQ(r.apu->fault(), Fault::ReservedOp);
 }
 
 TEST(ApuIss, CycleLimitThrowsWithTheStall) {
@@ -397,10 +334,10 @@ TEST(ApuIss, StepAndRunAgreeOnCounters) {
   Prog stepped(prog);
   stepped.go();
   Prog fast(prog);
-  EXPECT_EQ(fast.iss->run(10000), stepped.recs.size());
-  EXPECT_EQ(fast.iss->counters().issued, stepped.iss->counters().issued);
-  EXPECT_EQ(fast.iss->counters().unit_ops[2], 20u);
-  EXPECT_EQ(fast.iss->counters().stalls[int(Stall::Raw)], 20u);
+  EXPECT_EQ(fast.apu->run(10000), stepped.recs.size());
+  EXPECT_EQ(fast.apu->counters().issued, stepped.apu->counters().issued);
+  EXPECT_EQ(fast.apu->counters().unit_ops[2], 20u);
+  EXPECT_EQ(fast.apu->counters().stalls[int(Stall::Raw)], 20u);
   EXPECT_EQ(stepped.recs.size(), 2u + 20 * 3 + 2);  // loop: word, raw, word; HALT: drain, word
 }
 

@@ -13,109 +13,20 @@
 #include "Vapu_core.h"
 #include "apu_driver.hpp"
 #include "apu_rtl_engine.hpp"
+#include "apu_test_program.hpp"
 #include "fp24.hpp"
 #include "verilated.h"
 
 namespace mc1::apu {
 namespace {
 
-constexpr std::uint32_t kOne = 0x3F0000, kTwo = 0x400000, kThree = 0x408000;
+using namespace apu_test;
 
-// Word builders: one slot each; combine with `|`.
-MicroWord nop() { return {}; }
-MicroWord lif(int d, std::uint16_t imm) {
-  MicroWord w;
-  w.i = {IntOp::Lif, std::uint8_t(d), 0, 0, imm};
-  return w;
-}
-MicroWord li(int d, std::uint16_t imm) {
-  MicroWord w;
-  w.i = {IntOp::Li, std::uint8_t(d), 0, 0, imm};
-  return w;
-}
-MicroWord ialu(IntOp op, int d, int s, int t, std::uint16_t imm) {
-  MicroWord w;
-  w.i = {op, std::uint8_t(d), std::uint8_t(s), std::uint8_t(t), imm};
-  return w;
-}
-MicroWord mul(int d, int a, int b) {
-  MicroWord w;
-  w.m = {true, std::uint8_t(d), std::uint8_t(a), std::uint8_t(b)};
-  return w;
-}
-MicroWord addu(AddOp op, int d, int a, int b) {
-  MicroWord w;
-  w.a = {true, op, std::uint8_t(d), std::uint8_t(a), std::uint8_t(b)};
-  return w;
-}
-MicroWord func(FuncOp op, int d, int a) {
-  MicroWord w;
-  w.f = {true, op, std::uint8_t(d), std::uint8_t(a)};
-  return w;
-}
-MicroWord mem(MemOp op, int f, int base, int disp) {
-  MicroWord w;
-  w.d = {op, std::uint8_t(f), std::uint8_t(base), std::int8_t(disp)};
-  return w;
-}
-MicroWord seq(SeqOp op, int r = 0, int target = 0) {
-  MicroWord w;
-  w.s = {op, std::uint8_t(r), std::uint16_t(target)};
-  return w;
-}
-MicroWord halt() { return seq(SeqOp::Halt); }
-
-MicroWord operator|(MicroWord a, const MicroWord& b) {
-  if (b.m.en) a.m = b.m;
-  if (b.a.en) a.a = b.a;
-  if (b.f.en) a.f = b.f;
-  if (b.d.op != MemOp::None) a.d = b.d;
-  if (b.i.op != IntOp::None) a.i = b.i;
-  if (b.s.op != SeqOp::Next) a.s = b.s;
-  return a;
-}
-
-std::vector<Encoded> encode(const std::vector<MicroWord>& prog) {
-  std::vector<Encoded> out;
-  for (const auto& w : prog) out.push_back(w.encode());
-  return out;
-}
-
-// A program loaded into bank 1, handed over and started at 0, on the RTL.
-struct Program {
-  std::unique_ptr<RtlEngine> apu;
-  std::unique_ptr<ApuDriver> drv;
-  std::vector<CycleRecord> recs;
-
-  explicit Program(const std::vector<MicroWord>& prog, const char* fst = nullptr)
-      : apu(std::make_unique<RtlEngine>(fst)), drv(std::make_unique<ApuDriver>(*apu)) {
-    drv->load_program(encode(prog));
-    drv->hand_over_program();
-    drv->start(0);
-  }
+// A program on the RTL, which also checks each unit's timing against
+// docs/fp24-rtl.md as it runs.
+struct Program : EngineProgram<RtlEngine> {
+  using EngineProgram::EngineProgram;
   ~Program() { EXPECT_FALSE(apu->unit_mismatch()) << "a unit's timing differs from docs/fp24-rtl.md"; }
-  // Steps while running (at most `limit` cycles), then `extra` more.
-  Program& go(int limit = 1000, int extra = 0) {
-    for (int i = 0; i < limit && apu->state() == RunState::Running; ++i) step();
-    for (int i = 0; i < extra; ++i) step();
-    return *this;
-  }
-  const CycleRecord& step() {
-    recs.emplace_back();
-    apu->step(recs.back());
-    return recs.back();
-  }
-  std::vector<Stall> stalls() const {
-    std::vector<Stall> out;
-    for (const auto& r : recs) out.push_back(r.stall);
-    return out;
-  }
-  // Issued words' pcs, -1 for a cycle that issued nothing.
-  std::vector<int> pcs() const {
-    std::vector<int> out;
-    for (const auto& r : recs) out.push_back(r.issued ? r.pc : -1);
-    return out;
-  }
 };
 
 using K = Commit::Kind;
