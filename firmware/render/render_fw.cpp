@@ -562,7 +562,7 @@ void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<
         rec[R_LISTN] = static_cast<std::uint32_t>(list_n[k]);
         if (c > 0) {  // a later pass: the ray's data as the earlier pass left it
           if (rec[R_KIND] == 1 && rec[R_ID] != kNoHit) rec[R_LISTN] = 0;  // already blocked
-          rec[R_KIND] = rec[R_KIND] == 2 ? 3 : rec[R_KIND] == 1 ? 4 : rec[R_KIND];
+          rec[R_KIND] = rec[R_KIND] == 2 || rec[R_KIND] == 5 ? 3 : rec[R_KIND] == 1 ? 4 : rec[R_KIND];
         }
         write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rec.data(), R_SLOT + 1, step);
         const int from = rays[p.first + j].from;
@@ -584,6 +584,97 @@ void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<
     };
     stream("r_cast", static_cast<int>(items.size()), step, fill, drain);
   }
+}
+
+// ---------------------------------------------------------------- s1: r_scan
+
+// The block in tiles of at most Z_PIXELS pixels (whole rows where they fit);
+// per tile the triangles whose projected rectangle meets it, clipped, in
+// chunks of kPrimSlots. Chunk c + 1 of a tile continues chunk c's Z-buffer,
+// so (as in cast) each chunk level is one stream.
+std::vector<RenderFirmware::ZEntry> RenderFirmware::scan_convert(const Block& b,
+                                                                 const std::vector<int>& triangles) {
+  constexpr Step step = Step::HiddenSurface;
+  auto& cost = stats_.step[static_cast<int>(step)];
+  struct Entry {
+    int prim = 0, i0 = 0, j0 = 0, ncol = 0, nrow = 0;
+  };
+  struct Tile {
+    Block rect;
+    std::vector<std::vector<Entry>> chunks;
+    std::vector<std::uint32_t> zbuf;  // w, id per pixel, row-major
+  };
+  const int tw = std::min(b.w, Z_PIXELS);
+  const int th = std::max(1, std::min(b.h, Z_PIXELS / std::max(tw, 1)));
+  std::vector<Tile> tiles;
+  for (int y = b.y0; y < b.y0 + b.h; y += th)
+    for (int x = b.x0; x < b.x0 + b.w; x += tw) {
+      Tile t;
+      t.rect = Block{x, y, std::min(tw, b.x0 + b.w - x), std::min(th, b.y0 + b.h - y)};
+      std::vector<Entry> chunk;
+      for (int prim : triangles) {
+        cost.list_elements += 1;
+        const ScreenRect& r = prim_rect_.at(prim);
+        if (!r.overlaps(t.rect)) continue;
+        Entry e{prim, t.rect.x0, t.rect.y0, t.rect.x0 + t.rect.w - 1, t.rect.y0 + t.rect.h - 1};
+        if (r.status == ScreenRect::kBounded) {  // clip r_box's rectangle to the tile
+          e.i0 = std::max(e.i0, r.i0);
+          e.j0 = std::max(e.j0, r.j0);
+          e.ncol = std::min(e.ncol, r.i1);
+          e.nrow = std::min(e.nrow, r.j1);
+        }
+        e.ncol = e.ncol - e.i0 + 1;
+        e.nrow = e.nrow - e.j0 + 1;
+        chunk.push_back(e);
+        if (static_cast<int>(chunk.size()) == kPrimSlots) t.chunks.push_back(std::move(chunk)), chunk.clear();
+      }
+      if (!chunk.empty()) t.chunks.push_back(std::move(chunk));
+      t.zbuf.resize(2 * static_cast<std::size_t>(t.rect.w) * t.rect.h);
+      for (std::size_t p = 0; p < t.zbuf.size(); p += 2) t.zbuf[p] = 0, t.zbuf[p + 1] = kNoHit;
+      tiles.push_back(std::move(t));
+    }
+  std::size_t levels = 0;
+  for (const auto& t : tiles) levels = std::max(levels, t.chunks.size());
+  for (std::size_t c = 0; c < levels; ++c) {
+    std::vector<int> items;
+    for (int k = 0; k < static_cast<int>(tiles.size()); ++k)
+      if (tiles[k].chunks.size() > c) items.push_back(k);
+    auto fill = [&](int item) {
+      Tile& t = tiles[items[item]];
+      const auto& chunk = t.chunks[c];
+      ensure_scene(step);
+      std::vector<int> prims;
+      for (const auto& e : chunk) prims.push_back(e.prim);
+      const auto slots = place_prims(prims, step);
+      std::vector<std::uint32_t> words;
+      for (std::size_t k = 0; k < chunk.size(); ++k) {
+        const Entry& e = chunk[k];
+        const int addr = ZBUF + 2 * ((e.j0 - t.rect.y0) * t.rect.w + (e.i0 - t.rect.x0));
+        for (int v : {slots[k], e.i0, e.j0, e.ncol, e.nrow, addr}) words.push_back(static_cast<std::uint32_t>(v));
+      }
+      write(Z_LIST, words.data(), words.size(), step);
+      if (c > 0) write(ZBUF, t.zbuf.data(), t.zbuf.size(), step);
+      const std::uint32_t head[4] = {static_cast<std::uint32_t>(chunk.size()), c > 0 ? 1u : 0u,
+                                     static_cast<std::uint32_t>(2 * t.rect.w),
+                                     static_cast<std::uint32_t>(t.rect.w * t.rect.h)};
+      write(H_MODE, head + 1, 3, step);
+      write(COUNT, head, 1, step);
+    };
+    auto drain = [&](int item) {
+      Tile& t = tiles[items[item]];
+      t.zbuf = read(ZBUF, t.zbuf.size(), step);
+    };
+    stream("r_scan", static_cast<int>(items.size()), step, fill, drain);
+  }
+  std::vector<ZEntry> z(static_cast<std::size_t>(b.w) * b.h);
+  for (const auto& t : tiles)
+    for (int j = 0; j < t.rect.h; ++j)
+      for (int i = 0; i < t.rect.w; ++i) {
+        const std::size_t from = 2 * (static_cast<std::size_t>(j) * t.rect.w + i);
+        z[static_cast<std::size_t>(t.rect.y0 - b.y0 + j) * b.w + (t.rect.x0 - b.x0 + i)] =
+            ZEntry{t.zbuf[from], t.zbuf[from + 1]};
+      }
+  return z;
 }
 
 // ---------------------------------------------------------------- s1: r_surf
@@ -745,31 +836,44 @@ std::vector<int> RenderFirmware::eye_candidates(const BlockList& list) {
   return prims;
 }
 
-std::vector<Rgb8> RenderFirmware::render_block(const BlockList& list) {
+std::vector<RenderFirmware::Ray> RenderFirmware::hidden_surface(const BlockList& list) {
   const Block& b = list.block;
   lists_.at(0) = eye_candidates(list);  // [1] and the shadow lists are the frame's
-
+  std::vector<int> triangles;
+  std::vector<std::vector<int>> regions(1);  // the eye rays' r_cast candidates
+  for (int prim : lists_[0]) {
+    const std::uint32_t type = view_.prims[prim][P_TYPE];
+    (type == kTriangle || type == kPseudoTriangle ? triangles : regions[0]).push_back(prim);
+  }
+  const std::vector<ZEntry> z = scan_convert(b, triangles);
   std::vector<Ray> gen;
   for (int j = 0; j < b.h; ++j)
     for (int i = 0; i < b.w; ++i) {
       Ray r;
-      r.rec[R_KIND] = 2;
+      r.pixel = j * b.w + i;
+      r.rec[R_KIND] = 5;
       r.rec[R_ARG] = static_cast<std::uint32_t>(b.x0 + i);
       r.rec[R_ARG2] = static_cast<std::uint32_t>(b.y0 + j);
-      r.rec[R_ID] = kNoHit;
+      r.rec[R_T] = z[r.pixel].w;
+      r.rec[R_ID] = z[r.pixel].id;
       r.rec[R_W] = r.rec[R_W + 1] = r.rec[R_W + 2] = kOne;
       r.rec[R_CHILD] = view_.max_depth > 0 ? 3 : 0;
-      r.pixel = j * b.w + i;
       r.list = 0;
       gen.push_back(r);
     }
+  cast(gen, regions, Step::HiddenSurface);
+  return gen;
+}
+
+std::vector<Rgb8> RenderFirmware::render_block(const BlockList& list) {
+  std::vector<Ray> gen = hidden_surface(list);
   std::vector<std::vector<std::array<std::uint32_t, 3>>> contrib(gen.size());
   stats_.rays += gen.size();
   const std::uint32_t big = scene_words_[C_BIG - C_D0];
   for (int depth = 0; !gen.empty(); ++depth) {
     const Step s1 = depth == 0 ? Step::HiddenSurface : Step::Secondary;
     const Step s3 = depth == 0 ? Step::Shading : Step::Secondary;
-    cast(gen, lists_, s1);
+    if (depth > 0) cast(gen, lists_, s1);
     surface(gen, s1);
     shadows(gen);
     shade(gen, s3);

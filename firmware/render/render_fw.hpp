@@ -115,6 +115,16 @@ class RenderFirmware {
   // Step 3, s1..s4 for one block: RGB8 pixels, row-major.
   std::vector<Rgb8> render_block(const BlockList& list);
 
+  // s1's Z-buffer for triangles (r_scan): per pixel of `block`, row-major,
+  // the w word (1 / distance along the pixel's unnormalised eye direction)
+  // and the P_ID (kNoHit: none) of the nearest of `triangles` (scan
+  // conversion of each over its projected rectangle; ties keep the earlier
+  // entry).
+  struct ZEntry {
+    std::uint32_t w = 0, id = kNoHit;
+  };
+  std::vector<ZEntry> scan_convert(const Block& block, const std::vector<int>& triangles);
+
   const RenderStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }
   // Another program used the APU: forget what the banks hold.
@@ -129,6 +139,10 @@ class RenderFirmware {
     int depth = 0;   // 0: eye ray
     int from = -1;   // primitive the ray leaves (R_FROM): shadow and secondary rays
   };
+  // s1's eye rays of a block, row-major, with their nearest hits: r_scan's
+  // Z-buffer over the block's triangles, then r_cast (kind 5) against its
+  // ellipsoids and quadrics (per-pixel ray-surface intersection).
+  std::vector<Ray> hidden_surface(const BlockList& list);
   // s1/s2/s4 intersection pass over `rays` (r_cast); public for tests.
   void cast(std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, Step step);
   // s1 (r_surf): hit point, shading normal, material, colour of every hit.

@@ -113,7 +113,7 @@ void NodeComputer::catch_up() {
   }
   stats_.apu_cycles += n;
   apu_time_ += n * cycle_ps_;
-  if (n < k) {  // stopped inside the span
+  if (engine_->state() != apu::RunState::Running) {  // stopped inside the span (maybe in its last cycle)
     check_fault();
     // Let results of the HALT word's own ops land (docs/apu-isa.md, Clarification 7).
     apu::CycleRecord settle;
