@@ -12,6 +12,7 @@
 #include <set>
 #include <string>
 
+#include "apuasm.hpp"
 #include "image.hpp"
 #include "mc1_render.hpp"
 #include "png_writer.hpp"
@@ -346,6 +347,64 @@ TEST_F(Mc1Render, RtlEngineGivesTheSameFrameAndTimes) {
   EXPECT_EQ(rtl.rgb, iss.rgb);
   EXPECT_EQ(rtl.frame_time, iss.frame_time);
   for (std::size_t k = 0; k < iss.ncs.size(); ++k) EXPECT_EQ(rtl.ncs[k].apu_cycles, iss.ncs[k].apu_cycles);
+}
+
+// The NCs run the microcode the RC broadcast, not their firmware library's
+// copy: a broadcast r_sum that writes (10 + i, 20, 30) for pixel i of each
+// batch gives exactly that frame.
+TEST_F(Mc1Render, NodesRunTheKernelsAsBroadcast) {
+  const std::string flat = R"(
+        .include "r_layout.inc"
+        .org 0
+block:  swapd
+        ld f63, [a0+COUNT]
+        movfa a2, f63
+        li a5, OUT            | bz a2, done
+        li a6, 10
+pixel:  movaf f1, a6
+        li a7, 20
+        movaf f2, a7
+        li a7, 30
+        movaf f3, a7
+        st f1, [a5+0]
+        st f2, [a5+1]
+        st f3, [a5+2]         | addi a6, a6, 1
+        addi a5, a5, 3        | dbnz a2, pixel
+        jmp block
+done:   halt
+)";
+  const std::string src = __FILE__;
+  const std::string path = src.substr(0, src.rfind("/tests/")) + "/firmware/kernels/r_flat.apu";
+  const std::vector<apu::Encoded> words = apuasm::assemble(flat, path).words;
+  test::fresh_kernel();
+  scene::Scene s = scene::load_scene(scenes_dir() + "/tiny.json");
+  const render::SceneImage image = render::make_scene_image(s);
+  SystemConfig c = config(4);
+  c.width = static_cast<unsigned>(image.width);
+  c.height = static_cast<unsigned>(image.height);
+  rc::FramePlan plan = render_nc::frame_plan(image, c.block_w, c.block_h);
+  int replaced = 0;
+  for (rc::Bytes& d : plan.downloads) {
+    if (rc::type_of(d) != rc::MsgType::Download) continue;
+    rc::DownloadMsg m = rc::decode_download(d);
+    if (m.tag != static_cast<std::uint8_t>(rc::DownloadTag::Kernel) ||
+        render_nc::decode_kernel(m.payload).name != "r_sum")
+      continue;
+    m.payload = render_nc::encode_kernel("r_sum", words);
+    d = rc::encode(m);
+    ++replaced;
+  }
+  ASSERT_EQ(replaced, 1);
+  const FrameReport r = run_plan(c, plan, [](nc::NcPort& port) { render_nc::nc_main(port, nullptr); });
+  ASSERT_EQ(r.rgb.size(), 3u * c.width * c.height);
+  // r_sum batches are up to 64 pixels of a block, row-major: 8x8 blocks are one batch.
+  for (unsigned y = 0; y < c.height; ++y)
+    for (unsigned x = 0; x < c.width; ++x) {
+      const std::size_t p = 3 * (std::size_t{y} * c.width + x);
+      EXPECT_EQ(r.rgb[p], 10 + (y % 8) * 8 + x % 8) << x << "," << y;
+      EXPECT_EQ(r.rgb[p + 1], 20);
+      EXPECT_EQ(r.rgb[p + 2], 30);
+    }
 }
 
 TEST_F(Mc1Render, StatisticsAndChart) {

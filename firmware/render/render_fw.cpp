@@ -81,6 +81,12 @@ RenderFirmware::RenderFirmware(apu::ApuDriver& drv)
   invalidate_banks();
 }
 
+void RenderFirmware::use_kernels(KernelTable table) {
+  kernels_ = std::make_unique<const KernelTable>(std::move(table));
+  apu_prog_.clear();  // the program banks may hold the library's copy
+  mpu_prog_.clear();
+}
+
 void RenderFirmware::invalidate_banks() {
   for (auto& b : banks_) {
     b.scene_valid = false;
@@ -125,7 +131,15 @@ void RenderFirmware::use_kernel(const std::string& name, Step step) {
   auto& drv = link_.apu();
   if (apu_prog_ == name && !drv.program_ready()) return;
   if (mpu_prog_ != name) {
-    const auto& words = kernel_words(name);
+    const std::vector<apu::Encoded>* table_words = nullptr;
+    if (kernels_) {
+      const auto it = kernels_->find(name);
+      if (it == kernels_->end())
+        throw std::runtime_error("render: no kernel '" + name + "' among the " + std::to_string(kernels_->size()) +
+                                 " the firmware was given");
+      table_words = &it->second;
+    }
+    const auto& words = table_words ? *table_words : kernel_words(name);
     drv.load_program(words);
     link_.copy_words(8 * words.size());
     cost.word_copies += 8 * words.size();

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -87,10 +88,18 @@ struct Rgb8 {
   bool operator==(const Rgb8& o) const { return r == o.r && g == o.g && b == o.b; }
 };
 
+// Kernel images by name (r_xform, r_box, ...), as the RC broadcasts them.
+using KernelTable = std::map<std::string, std::vector<apu::Encoded>>;
+
 class RenderFirmware {
  public:
   explicit RenderFirmware(ApuLink& link);
   explicit RenderFirmware(apu::ApuDriver& drv);  // with its own DirectLink
+
+  // Run these kernel images (an NC: the ones the RC broadcast) instead of
+  // the firmware library's own copy (kernel_words). A kernel the table lacks
+  // is an error (std::runtime_error naming it) when a step first needs it.
+  void use_kernels(KernelTable table);
 
   // Step 1 (fig. 3): the broadcast scene to view coordinates on the APU
   // (r_xform), with the eye-ray constants and each object's view box.
@@ -193,6 +202,7 @@ class RenderFirmware {
   std::array<Bank, 2> banks_;
   int mpu_bank_ = 0;  // which of banks_ the MPU owns (relative naming)
   std::string apu_prog_, mpu_prog_;
+  std::unique_ptr<const KernelTable> kernels_;  // null: the library's copy
   RenderStats stats_;
 };
 

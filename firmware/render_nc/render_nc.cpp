@@ -6,31 +6,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "render_kernels.hpp"
 
 namespace mc1::render_nc {
 namespace {
 
 std::string nc_name(const nc::NcPort& port) { return "NC " + std::to_string(port.id()); }
 
-// The renderer loads its kernels from the firmware library's copy, which
-// must be the words the RC broadcast.
-void check_kernel(const nc::NcPort& port, const KernelDownload& k) {
-  const std::vector<apu::Encoded>* mine = nullptr;
-  try {
-    mine = &render::kernel_words(k.name);
-  } catch (const std::out_of_range&) {
-    throw std::runtime_error(nc_name(port) + ": the RC broadcast kernel '" + k.name + "', which the firmware lacks");
-  }
-  bool same = mine->size() == k.words.size();
-  for (std::size_t i = 0; same && i < k.words.size(); ++i)
-    same = (*mine)[i].lo == k.words[i].lo && (*mine)[i].hi == k.words[i].hi;
-  if (!same)
-    throw std::runtime_error(nc_name(port) + ": kernel '" + k.name + "' as broadcast (" +
-                             std::to_string(k.words.size()) + " words) differs from the firmware's");
-}
-
 struct Download {
+  render::KernelTable kernels;  // the firmware runs these, as broadcast
   render::SceneImage scene;
   rc::RenderSetupMsg setup;
 };
@@ -38,14 +21,17 @@ struct Download {
 // s2: the broadcast, up to RenderSetup.
 Download receive_download(nc::NcPort& port) {
   std::optional<render::SceneImage> scene;
+  render::KernelTable kernels;
   for (;;) {
     const rc::Bytes m = port.receive_from_rc();
     switch (rc::type_of(m)) {
       case rc::MsgType::Download: {
         const rc::DownloadMsg d = rc::decode_download(m);
-        if (d.tag == static_cast<std::uint8_t>(rc::DownloadTag::Kernel))
-          check_kernel(port, decode_kernel(d.payload));
-        else if (d.tag == static_cast<std::uint8_t>(rc::DownloadTag::Scene))
+        if (d.tag == static_cast<std::uint8_t>(rc::DownloadTag::Kernel)) {
+          KernelDownload k = decode_kernel(d.payload);
+          if (!kernels.emplace(k.name, std::move(k.words)).second)
+            throw rc::ProtocolError(nc_name(port) + ": kernel '" + k.name + "' broadcast twice");
+        } else if (d.tag == static_cast<std::uint8_t>(rc::DownloadTag::Scene))
           scene = decode_scene(d.payload);
         else
           throw rc::ProtocolError(nc_name(port) + ": download tag " + std::to_string(d.tag));
@@ -58,7 +44,7 @@ Download receive_download(nc::NcPort& port) {
           throw rc::ProtocolError(nc_name(port) + ": frame " + std::to_string(setup.width) + "x" +
                                   std::to_string(setup.height) + " for a scene of " + std::to_string(scene->width) +
                                   "x" + std::to_string(scene->height));
-        return Download{std::move(*scene), setup};
+        return Download{std::move(kernels), std::move(*scene), setup};
       }
       default:
         throw rc::ProtocolError(nc_name(port) + ": message type " + std::to_string(m[0]) + " during the download");
@@ -125,8 +111,9 @@ void nc_main(nc::NcPort& port, NcResult* result) {
   NcResult local;
   ResultGuard guard{fw, local, result};
 
-  const Download d = receive_download(port);
+  Download d = receive_download(port);
   port.milestone("downloaded");
+  fw.use_kernels(std::move(d.kernels));  // the microcode as broadcast, not the library's copy
   fw.load_scene(d.scene);  // step 1: to view coordinates on the APU
   port.milestone("step1");
   const std::vector<rc::Block> blocks = rc::split_screen(d.setup.width, d.setup.height, d.setup.block_w,
