@@ -654,6 +654,69 @@ TEST(RenderScan, PseudoPolygonsInTilesOfAWholeFrameBlock) {
   // where both the plane equation w and r_cast's N.D lose bits.
   EXPECT_LT(a.max_rel_t, 1e-3);
 }
+
+// s2's candidates per batch of hits (shadow_candidates): fig. 6's list of
+// (object, light), less the triangles whose padded box misses the box of the
+// batch's hits on that object and the light. Every shadow flag is the one the
+// whole lists give, for fewer APU cycles.
+void expect_narrowed_shadow_lists_keep_flags(const std::string& name, int w, int h, int bs) {
+  scene::Scene sc = scene::load_scene(scene_path(name));
+  sc.camera.width = w;
+  sc.camera.height = h;
+  Rig rig;
+  rig.fw.load_scene(make_scene_image(sc));
+  const auto& v = rig.fw.view();
+  const int lights = static_cast<int>(sc.lights.size());
+  std::uint64_t narrowed_cycles = 0, whole_cycles = 0;
+  int flags_set = 0, hits = 0;
+  for (int y0 = 0; y0 < h; y0 += bs)
+    for (int x0 = 0; x0 < w; x0 += bs) {
+      auto rays = rig.fw.hidden_surface(rig.fw.build_block_list({x0, y0, std::min(bs, w - x0), std::min(bs, h - y0)}));
+      rig.fw.surface(rays, Step::HiddenSurface);
+      auto& s2 = rig.fw.stats().step[static_cast<int>(Step::Shadows)];
+      std::uint64_t c0 = s2.apu_cycles;
+      rig.fw.shadows(rays);
+      narrowed_cycles += s2.apu_cycles - c0;
+      // The same shadow rays against the whole lists.
+      std::vector<std::vector<int>> lists;
+      std::vector<RenderFirmware::Ray> probes;
+      for (const auto& r : rays) {
+        if (r.rec[R_ID] == kNoHit) continue;
+        for (int l = 0; l < lights; ++l) {
+          RenderFirmware::Ray p;
+          std::copy(r.rec.begin() + R_P, r.rec.begin() + R_P + 3, p.rec.begin() + R_O);
+          p.rec[R_KIND] = 1;
+          p.rec[R_ARG] = static_cast<Word>(l);
+          p.rec[R_ID] = kNoHit;
+          p.from = static_cast<int>(r.rec[R_ID]);
+          lists.emplace_back();
+          for (int b : rig.fw.shadow_list(v.prim_object[p.from], l))
+            for (int q = 0; q < v.objects[b].prim_count; ++q) lists.back().push_back(v.objects[b].first_prim + q);
+          p.list = static_cast<int>(lists.size()) - 1;
+          probes.push_back(p);
+        }
+      }
+      c0 = s2.apu_cycles;
+      rig.fw.cast(probes, lists, Step::Shadows);
+      whole_cycles += s2.apu_cycles - c0;
+      std::size_t k = 0;
+      for (const auto& r : rays) {
+        if (r.rec[R_ID] == kNoHit) continue;
+        ++hits;
+        Word whole = 0;
+        for (int l = 0; l < lights; ++l, ++k) whole |= Word{probes[k].rec[R_ID] != kNoHit} << l;
+        EXPECT_EQ(r.rec[R_SHADOW], whole) << name << " block " << x0 << "," << y0;
+        flags_set += whole != 0;
+      }
+    }
+  std::printf("%s %dx%d: %d hits, %d shadowed; s2 APU cycles narrowed %.3g M, whole lists %.3g M\n", name.c_str(),
+              w, h, hits, flags_set, narrowed_cycles / 1e6, whole_cycles / 1e6);
+  EXPECT_GT(flags_set, hits / 20);
+  EXPECT_LT(narrowed_cycles, whole_cycles);
+}
+
+TEST(RenderShadows, NarrowedListsKeepEveryFlagOnTheTeapot) { expect_narrowed_shadow_lists_keep_flags("teapot", 32, 24, 16); }
+TEST(RenderShadows, NarrowedListsKeepEveryFlagInTheRoom) { expect_narrowed_shadow_lists_keep_flags("room", 64, 48, 16); }
 #endif
 
 }  // namespace

@@ -13,6 +13,13 @@ namespace mc1::render {
 
 using namespace layout;
 
+// An FP24 number as an integer of the same order (sign and magnitude to two's
+// complement; both zeros are 0): how the MPU compares FP24 values.
+std::int32_t order_key(std::uint32_t fp24) {
+  const auto magnitude = static_cast<std::int32_t>(fp24 & 0x7FFFFF);
+  return (fp24 & 0x800000) ? -magnitude : magnitude;
+}
+
 // ---------------------------------------------------------------- kernels
 
 const std::vector<apu::Encoded>& kernel_words(const std::string& name) {
@@ -380,9 +387,11 @@ void RenderFirmware::project_boxes() {
   struct Item {
     std::array<std::uint32_t, 13> w{};
     ScreenRect* out = nullptr;
+    int triangle = -1;
   };
   object_rect_.assign(view_.objects.size(), ScreenRect{});
   prim_rect_.assign(view_.prims.size(), ScreenRect{});
+  prim_box_.assign(view_.prims.size(), {});
   std::vector<Item> items;
   for (std::size_t o = 0; o < view_.objects.size(); ++o) {
     const auto& b = view_.objects[o].box;  // min xyz, max xyz
@@ -400,6 +409,7 @@ void RenderFirmware::project_boxes() {
     it.w[0] = 1;
     std::copy(p.begin() + P_P0, p.begin() + P_P0 + 9, it.w.begin() + 1);  // v0, E1, E2
     it.out = &prim_rect_[k];
+    it.triangle = static_cast<int>(k);
     items.push_back(it);
   }
   const int batches = (static_cast<int>(items.size()) + kPerBatch - 1) / kPerBatch;
@@ -414,8 +424,11 @@ void RenderFirmware::project_boxes() {
          },
          [&](int b) {
            for (int i = 0; i < count_of(b); ++i) {
-             const auto v = read(static_cast<std::uint16_t>(LISTS + kSize * i), 5, step);
-             ScreenRect& r = *items[b * kPerBatch + i].out;
+             const Item& it = items[b * kPerBatch + i];
+             const auto v = read(static_cast<std::uint16_t>(LISTS + kSize * i), it.triangle >= 0 ? 11 : 5, step);
+             if (it.triangle >= 0)
+               for (int c = 0; c < 6; ++c) prim_box_[it.triangle][c] = order_key(v[5 + c]);
+             ScreenRect& r = *it.out;
              r.status = static_cast<int>(v[0]);
              r.i0 = static_cast<std::int16_t>(v[1]);
              r.i1 = static_cast<std::int16_t>(v[2]);
@@ -466,14 +479,8 @@ void RenderFirmware::build_shadow_lists() {
                shadow_objects_[static_cast<std::size_t>(it.a) * nlights + it.l].push_back(it.b);
            }
          });
-  lists_.assign(2 + shadow_objects_.size(), {});
+  lists_.assign(2, {});
   for (int p = 0; p < static_cast<int>(view_.prims.size()); ++p) lists_[1].push_back(p);
-  for (std::size_t k = 0; k < shadow_objects_.size(); ++k)
-    for (int b : shadow_objects_[k]) {
-      const auto& obj = view_.objects[b];
-      for (int q = 0; q < obj.prim_count; ++q) lists_[2 + k].push_back(obj.first_prim + q);
-      stats_.step[static_cast<int>(step)].list_elements += obj.prim_count;
-    }
 }
 
 BlockList RenderFirmware::build_block_list(const Block& block) {
@@ -737,8 +744,55 @@ void RenderFirmware::surface(std::vector<Ray>& rays, Step step) {
 
 // ---------------------------------------------------------------- s2: shadow rays
 
+// fig. 6's shadow list of (object A, light L), narrowed to these rays: a
+// shadow ray from a hit point p of A stays in box(hits on A u {L}) = H, so a
+// triangle of a listed object whose padded view box (r_box) misses H cannot
+// block it. MPU work: FP24 order keys compared as integers.
+std::vector<int> RenderFirmware::shadow_candidates(int object, int light, const Box& hits) {
+  Box h = hits;
+  for (int c = 0; c < 3; ++c) {
+    const std::int32_t l = order_key(view_.lights[light][L_POS + c]);
+    h[c] = std::min(h[c], l);
+    h[3 + c] = std::max(h[3 + c], l);
+  }
+  std::vector<int> out;
+  for (int b : shadow_list(object, light)) {
+    const auto& obj = view_.objects[b];
+    for (int q = obj.first_prim; q < obj.first_prim + obj.prim_count; ++q) {
+      const std::uint32_t type = view_.prims[q][P_TYPE];
+      if (type == kTriangle || type == kPseudoTriangle) {
+        const Box& p = prim_box_[q];
+        if (p[0] > h[3] || p[1] > h[4] || p[2] > h[5] || p[3] < h[0] || p[4] < h[1] || p[5] < h[2]) continue;
+      }
+      out.push_back(q);
+    }
+    stats_.step[static_cast<int>(Step::Shadows)].list_elements += obj.prim_count;
+  }
+  return out;
+}
+
 void RenderFirmware::shadows(std::vector<Ray>& rays) {
   const int lights = static_cast<int>(view_.lights.size());
+  // The box of the hit points on each object (FP24 order keys).
+  std::map<int, Box> hit_box;
+  for (const Ray& r : rays) {
+    if (!is_hit(r)) continue;
+    const int o = view_.prim_object.at(r.rec[R_ID]);
+    Box p;
+    for (int c = 0; c < 3; ++c) p[c] = p[3 + c] = order_key(r.rec[R_P + c]);
+    auto [it, fresh] = hit_box.emplace(o, p);
+    for (int c = 0; c < 3 && !fresh; ++c) {
+      it->second[c] = std::min(it->second[c], p[c]);
+      it->second[3 + c] = std::max(it->second[3 + c], p[3 + c]);
+    }
+  }
+  std::vector<std::vector<int>> lists;
+  std::map<int, int> list_of;  // object * lights + light -> index in lists
+  for (const auto& [o, box] : hit_box)
+    for (int l = 0; l < lights; ++l) {
+      list_of[o * lights + l] = static_cast<int>(lists.size());
+      lists.push_back(shadow_candidates(o, l, box));
+    }
   std::vector<Ray> probes;
   std::vector<std::pair<int, int>> owner;  // (ray, light)
   for (int i = 0; i < static_cast<int>(rays.size()); ++i) {
@@ -751,14 +805,13 @@ void RenderFirmware::shadows(std::vector<Ray>& rays) {
       s.rec[R_ARG] = static_cast<std::uint32_t>(l);
       s.rec[R_ID] = kNoHit;
       s.from = static_cast<int>(rays[i].rec[R_ID]);
-      // fig. 6: the shadow list of (object hit, light l).
-      s.list = 2 + view_.prim_object.at(s.from) * lights + l;
+      s.list = list_of.at(view_.prim_object.at(s.from) * lights + l);
       probes.push_back(s);
       owner.emplace_back(i, l);
     }
   }
   stats_.shadow_rays += probes.size();
-  cast(probes, lists_, Step::Shadows);
+  cast(probes, lists, Step::Shadows);
   for (std::size_t k = 0; k < probes.size(); ++k)
     if (is_hit(probes[k])) rays[owner[k].first].rec[R_SHADOW] |= 1u << owner[k].second;
   stats_.step[static_cast<int>(Step::Shadows)].list_elements += probes.size();

@@ -88,6 +88,9 @@ struct Rgb8 {
   bool operator==(const Rgb8& o) const { return r == o.r && g == o.g && b == o.b; }
 };
 
+// An FP24 number as an integer that orders like the number (both zeros 0).
+std::int32_t order_key(std::uint32_t fp24);
+
 // Kernel images by name (r_xform, r_box, ...), as the RC broadcasts them.
 using KernelTable = std::map<std::string, std::vector<apu::Encoded>>;
 
@@ -186,6 +189,8 @@ class RenderFirmware {
     bool overlaps(const Block& b) const;
   };
   void project_boxes();  // r_box over every object box and triangle
+  using Box = std::array<std::int32_t, 6>;  // min xyz, max xyz as order_key()s
+  std::vector<int> shadow_candidates(int object, int light, const Box& hits);
   void build_shadow_lists();  // r_slist over every (object, light, object)
 
   std::unique_ptr<DirectLink> own_link_;  // before link_: it may refer to it
@@ -193,10 +198,11 @@ class RenderFirmware {
   ViewScene view_;
   std::vector<ScreenRect> object_rect_;     // per object: its view box on the screen
   std::vector<ScreenRect> prim_rect_;       // per primitive: triangles' own, regions kWholeScreen
+  std::vector<Box> prim_box_;               // per triangle: its padded view box (r_box)
   std::vector<std::vector<int>> shadow_objects_;  // [object * lights + light]
   // Candidate lists of primitives: [0] the block's eye rays (s1), [1] every
-  // primitive in file order (s4), [2 + object * lights + light] the shadow
-  // list's primitives (s2).
+  // primitive in file order (s4). s2 makes its own per batch of rays
+  // (shadow_candidates).
   std::vector<std::vector<int>> lists_;
   std::vector<std::uint32_t> scene_words_;  // words C_D0 .. PRIMS-1 of every bank
   std::array<Bank, 2> banks_;
