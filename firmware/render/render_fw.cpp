@@ -213,6 +213,7 @@ void RenderFirmware::load_view_scene(const ViewScene& view) {
   }
   project_boxes();
   build_shadow_lists();
+  build_solid_regions();
 }
 
 // ---------------------------------------------------------------- step 1: r_xform
@@ -587,8 +588,9 @@ void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<
         }
         write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rec.data(), R_SLOT + 1, step);
         const int from = rays[p.first + j].from;
-        const std::uint32_t from_word = from < 0 ? kNoHit : static_cast<std::uint32_t>(from);
-        write(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_FROM), &from_word, 1, step);
+        static_assert(R_TMIN == R_FROM + 1, "R_FROM, R_TMIN are written together");
+        const std::uint32_t tail[2] = {from < 0 ? kNoHit : static_cast<std::uint32_t>(from), rec[R_TMIN]};
+        write(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_FROM), tail, 2, step);
       }
       const std::uint32_t count = static_cast<std::uint32_t>(p.n);
       write(COUNT, &count, 1, step);
@@ -817,6 +819,162 @@ void RenderFirmware::shadows(std::vector<Ray>& rays) {
   stats_.step[static_cast<int>(Step::Shadows)].list_elements += probes.size();
 }
 
+// ---------------------------------------------------------------- the solid rule: r_inside
+
+// Per object, the region primitives (ellipsoids, quadrics) against which a
+// hit on one of its primitives must be tested: a solid with at least one
+// region and another primitive (docs/scene-format.md: only regions hide).
+void RenderFirmware::build_solid_regions() {
+  solid_regions_.assign(view_.objects.size(), {});
+  for (std::size_t o = 0; o < view_.objects.size(); ++o) {
+    const auto& obj = view_.objects[o];
+    if (!obj.solid || obj.prim_count < 2) continue;
+    std::vector<int> regions;
+    for (int k = 0; k < obj.prim_count; ++k) {
+      const std::uint32_t type = view_.prims.at(obj.first_prim + k)[P_TYPE];
+      if (type == kEllipsoid || type == kQuadric) regions.push_back(obj.first_prim + k);
+    }
+    stats_.step[static_cast<int>(Step::Transform)].list_elements += obj.prim_count;
+    solid_regions_[o] = std::move(regions);
+  }
+}
+
+// A hit that another region of its solid may hold (not a shadow ray).
+bool RenderFirmware::may_be_hidden(const Ray& r) const {
+  const std::uint32_t kind = r.rec[R_KIND], id = r.rec[R_ID];
+  if (id == kNoHit || kind == 1 || kind == 4) return false;
+  const auto& regions = solid_regions_.at(view_.prim_object.at(id));
+  return regions.size() >= 2 || (regions.size() == 1 && regions[0] != static_cast<int>(id));
+}
+
+std::vector<int> RenderFirmware::hidden_hits(std::vector<Ray>& rays, const std::vector<int>& which, Step step) {
+  constexpr int kListsPerBatch = 8;
+  constexpr int kListWords = 48;
+  auto& cost = stats_.step[static_cast<int>(step)];
+  // Batches of at most 32 rays whose hits lie on at most 8 objects; the
+  // objects' regions in chunks of 48 slots (a later chunk skips rays already
+  // found hidden), as in cast().
+  struct Plan {
+    int first = 0, n = 0;                  // which[first .. first + n)
+    std::vector<int> objects;              // one list each: the object's regions
+    std::vector<std::vector<int>> chunks;  // their primitives, <= 48 per chunk
+  };
+  auto object_of = [&](int k) { return view_.prim_object.at(rays[which[k]].rec[R_ID]); };
+  std::vector<Plan> plans;
+  for (int i = 0; i < static_cast<int>(which.size());) {
+    Plan p;
+    p.first = i;
+    while (i < static_cast<int>(which.size()) && p.n < kRaysPerBatch) {
+      const int o = object_of(i);
+      if (std::find(p.objects.begin(), p.objects.end(), o) == p.objects.end()) {
+        if (static_cast<int>(p.objects.size()) == kListsPerBatch) break;
+        p.objects.push_back(o);
+      }
+      ++p.n;
+      ++i;
+    }
+    std::set<int> all;
+    for (int o : p.objects) {
+      all.insert(solid_regions_[o].begin(), solid_regions_[o].end());
+      cost.list_elements += solid_regions_[o].size();
+    }
+    std::vector<int> chunk;
+    for (int prim : all) {
+      chunk.push_back(prim);
+      if (static_cast<int>(chunk.size()) == kPrimSlots) p.chunks.push_back(std::move(chunk)), chunk.clear();
+    }
+    if (!chunk.empty()) p.chunks.push_back(chunk);
+    plans.push_back(std::move(p));
+  }
+  std::vector<char> hidden(which.size(), 0);
+  std::size_t levels = 0;
+  for (const auto& p : plans) levels = std::max(levels, p.chunks.size());
+  for (std::size_t c = 0; c < levels; ++c) {
+    std::vector<int> items;
+    for (int b = 0; b < static_cast<int>(plans.size()); ++b)
+      if (plans[b].chunks.size() > c) items.push_back(b);
+    auto fill = [&](int item) {
+      const Plan& p = plans[items[item]];
+      ensure_scene(step);
+      const auto& chunk = p.chunks[c];
+      const auto slots = place_prims(chunk, step);
+      std::vector<std::uint32_t> list_words(kListWords);
+      std::vector<int> list_n(p.objects.size());
+      for (std::size_t k = 0; k < p.objects.size(); ++k) {
+        int n = 0;
+        for (std::size_t s = 0; s < chunk.size(); ++s)
+          if (view_.prim_object[chunk[s]] == p.objects[k]) list_words[n++] = static_cast<std::uint32_t>(slots[s]);
+        cost.list_elements += chunk.size();
+        list_n[k] = n;
+        if (n) write(static_cast<std::uint16_t>(LISTS + kListWords * k), list_words.data(), n, step);
+      }
+      for (int j = 0; j < p.n; ++j) {
+        auto rec = rays[which[p.first + j]].rec;
+        const int k = static_cast<int>(std::find(p.objects.begin(), p.objects.end(), object_of(p.first + j)) -
+                                       p.objects.begin());
+        rec[R_LIST] = static_cast<std::uint32_t>(LISTS + kListWords * k);
+        rec[R_LISTN] = hidden[p.first + j] ? 0 : static_cast<std::uint32_t>(list_n[k]);
+        write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rec.data(), R_LISTN + 1, step);
+      }
+      const std::uint32_t count = static_cast<std::uint32_t>(p.n);
+      write(COUNT, &count, 1, step);
+    };
+    auto drain = [&](int item) {
+      const Plan& p = plans[items[item]];
+      for (int j = 0; j < p.n; ++j) {
+        const std::uint32_t tmin = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_TMIN), 1, step)[0];
+        if (tmin == 0) continue;
+        hidden[p.first + j] = 1;
+        rays[which[p.first + j]].rec[R_TMIN] = tmin;
+      }
+    };
+    stream("r_inside", static_cast<int>(items.size()), step, fill, drain);
+  }
+  std::vector<int> out;
+  for (std::size_t k = 0; k < which.size(); ++k)
+    if (hidden[k]) out.push_back(which[k]);
+  return out;
+}
+
+void RenderFirmware::solid_rule(std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, Step step) {
+  auto& cost = stats_.step[static_cast<int>(step)];
+  std::vector<int> pending;
+  for (int i = 0; i < static_cast<int>(rays.size()); ++i)
+    if (may_be_hidden(rays[i])) pending.push_back(i);
+  cost.list_elements += rays.size();
+  const std::uint32_t big = scene_words_[C_BIG - C_D0];
+  // Every round moves each pending ray past one more crossing of its list's
+  // primitives (at most two each): a bound that cannot be reached.
+  std::size_t rounds = 0, bound = 2;
+  for (const auto& l : lists) bound = std::max(bound, 2 * l.size() + 2);
+  while (!pending.empty()) {
+    if (++rounds > bound) throw std::logic_error("solid_rule: no end");
+    const std::vector<int> hidden = hidden_hits(rays, pending, step);
+    stats_.hidden_hits += hidden.size();
+    if (hidden.empty()) break;
+    // Cast again from the same origin and direction (an eye ray as a given
+    // ray: r_cast wrote its O and D back), ignoring t <= R_TMIN.
+    std::vector<Ray> again;
+    for (int k : hidden) {
+      Ray r = rays[k];
+      r.rec[R_T] = big;
+      r.rec[R_ID] = kNoHit;
+      if (r.rec[R_KIND] == 2 || r.rec[R_KIND] == 5) r.rec[R_KIND] = 3;  // eye rays: as given rays
+      again.push_back(r);
+    }
+    cast(again, lists, step);
+    pending.clear();
+    for (std::size_t k = 0; k < hidden.size(); ++k) {
+      auto& rec = rays[hidden[k]].rec;
+      for (int w = R_O; w <= R_T; ++w) rec[w] = again[k].rec[w];
+      rec[R_ID] = again[k].rec[R_ID];
+      rec[R_SLOT] = again[k].rec[R_SLOT];
+      if (may_be_hidden(rays[hidden[k]])) pending.push_back(hidden[k]);
+    }
+    cost.list_elements += hidden.size();
+  }
+}
+
 // ---------------------------------------------------------------- s3/s4: r_shade
 
 void RenderFirmware::shade(std::vector<Ray>& rays, Step step) {
@@ -940,7 +1098,8 @@ std::vector<Rgb8> RenderFirmware::render_block(const BlockList& list) {
   for (int depth = 0; !gen.empty(); ++depth) {
     const Step s1 = depth == 0 ? Step::HiddenSurface : Step::Secondary;
     const Step s3 = depth == 0 ? Step::Shading : Step::Secondary;
-    if (depth > 0) cast(gen, lists_, s1);
+    if (depth > 0) cast(gen, lists_, s1);  // depth 0: hidden_surface did s1
+    solid_rule(gen, lists_, s1);            // eye rays: list 0, every candidate
     surface(gen, s1);
     shadows(gen);
     shade(gen, s3);

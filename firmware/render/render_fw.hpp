@@ -68,6 +68,7 @@ const char* step_name(Step s);
 struct RenderStats {
   std::array<StepCost, kSteps> step{};
   std::uint64_t rays = 0, shadow_rays = 0, secondary_rays = 0;
+  std::uint64_t hidden_hits = 0;  // solid rule: hits found inside a sibling region (each re-cast once)
   StepCost total() const;
 };
 
@@ -157,6 +158,15 @@ class RenderFirmware {
   std::vector<Ray> hidden_surface(const BlockList& list);
   // s1/s2/s4 intersection pass over `rays` (r_cast); public for tests.
   void cast(std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, Step step);
+  // The solid rule (docs/scene-format.md "Objects"), after a cast of eye or
+  // secondary rays: a hit on a primitive of a solid that lies strictly
+  // inside another region primitive of that solid (r_inside) is not on the
+  // solid's boundary; the ray is cast again (against lists[ray.list]) past
+  // it, ignoring t <= the hidden hit's t (R_TMIN), until its hit is visible
+  // or it has none. Shadow rays (kinds 1, 4) are left alone: the reference's
+  // s2 counts every crossing. R_TMIN of a ray that went on keeps the t of its
+  // last hidden hit.
+  void solid_rule(std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, Step step);
   // s1 (r_surf): hit point, shading normal, material, colour of every hit.
   void surface(std::vector<Ray>& rays, Step step);
   // s2: shadow rays to every light (r_cast), R_SHADOW bits.
@@ -192,6 +202,13 @@ class RenderFirmware {
   using Box = std::array<std::int32_t, 6>;  // min xyz, max xyz as order_key()s
   std::vector<int> shadow_candidates(int object, int light, const Box& hits);
   void build_shadow_lists();  // r_slist over every (object, light, object)
+  // The solid rule: per object, the region primitives a hit on it must be
+  // tested against (empty unless a solid with a region and another primitive).
+  void build_solid_regions();
+  bool may_be_hidden(const Ray& r) const;
+  // r_inside over rays[which[k]]: the hits strictly inside another region of
+  // their solid get R_TMIN = R_T; returns them (indices into rays).
+  std::vector<int> hidden_hits(std::vector<Ray>& rays, const std::vector<int>& which, Step step);
 
   std::unique_ptr<DirectLink> own_link_;  // before link_: it may refer to it
   ApuLink& link_;
@@ -200,6 +217,7 @@ class RenderFirmware {
   std::vector<ScreenRect> prim_rect_;       // per primitive: triangles' own, regions kWholeScreen
   std::vector<Box> prim_box_;               // per triangle: its padded view box (r_box)
   std::vector<std::vector<int>> shadow_objects_;  // [object * lights + light]
+  std::vector<std::vector<int>> solid_regions_;   // [object]: build_solid_regions
   // Candidate lists of primitives: [0] the block's eye rays (s1), [1] every
   // primitive in file order (s4). s2 makes its own per batch of rays
   // (shadow_candidates).
