@@ -266,3 +266,162 @@ TEST(HdlcLink, RejectsBadAddresses) {
   EXPECT_THROW(net.send(0, 1, 2, {}), std::invalid_argument);
   EXPECT_THROW(net.send(0, 0, kAddrRc, {}), std::invalid_argument);
 }
+
+// ---------------------------------------------------------------- supervision
+
+// A silent station (its processor stopped) with a frame outstanding: T1
+// expires, the RC retries N2 times, and at the next expiry gives the link
+// up: the message is lost, the other NC's link is untouched.
+TEST(HdlcSupervision, SilentStationIsDownAfterN2Retries) {
+  TimingParams t;
+  Network net(t, 2);
+  net.silence(2, 1 * kMs);
+  const MessageId lost = net.send(2 * kMs, 0, 2, Bytes{0xAB});
+  EXPECT_FALSE(net.run_until_complete(lost, 1000 * kMs));
+  EXPECT_TRUE(net.status(lost).lost);
+  EXPECT_FALSE(net.status(lost).complete);
+  // Every try is the same 2-octet I-frame on an idle line: the link goes
+  // down N2 + 1 periods of (frame + T1) after the first one started.
+  Frame f;
+  f.address = 2;
+  f.control = Control::info(0, 0).octet();
+  f.info = {1, 0xAB};
+  const Picos frame = wire_time_ps(f, t.hdlc_bit_rate_bps);
+  const Picos t1 = t.hdlc_t1_timeout_ns * 1000;
+  ASSERT_EQ(net.link_downs().size(), 1u);
+  const LinkDown& d = net.link_downs()[0];
+  EXPECT_EQ(d.nc, 2u);
+  EXPECT_EQ(d.reason, LinkDownReason::RetryLimit);
+  EXPECT_EQ(d.time, 2 * kMs + (t.hdlc_n2_retries + 1) * (frame + t1));
+  EXPECT_EQ(net.sender_to_nc(2).retransmissions, t.hdlc_n2_retries);
+  EXPECT_EQ(net.sender_to_nc(2).timeouts, t.hdlc_n2_retries + 1);
+  EXPECT_EQ(net.supervision(2).max_retries, t.hdlc_n2_retries);
+  EXPECT_EQ(net.receiver_at_nc(2).accepted, 0u);  // a silent station takes nothing
+  EXPECT_EQ(net.up_line(2).frames, 0u);           // and answers nothing
+  EXPECT_FALSE(net.link_up(2));
+  EXPECT_TRUE(net.link_up(1));
+  // Down for good: a later message to NC 2 is dropped at once; NC 1 works.
+  const MessageId later = net.send(net.now(), 0, 2, Bytes{1});
+  const MessageId fine = net.send(net.now(), 0, 1, Bytes{2});
+  EXPECT_TRUE(net.run_until_complete(fine));
+  EXPECT_TRUE(net.status(later).lost);
+  EXPECT_EQ(net.take_link_downs().size(), 1u);
+  EXPECT_TRUE(net.take_link_downs().empty());
+}
+
+// A silent NC holds the broadcast window only until its link goes down;
+// then the others get the rest of the broadcast.
+TEST(HdlcSupervision, BroadcastGoesOnWithoutASilentNc) {
+  TimingParams t;
+  Network net(t, 3);
+  net.silence(2, 0);
+  const Bytes program(20 * (t.hdlc_max_info_bytes - 1), 0x5A);  // 20 frames: three windows
+  const MessageId id = net.send(0, 0, kAddrBroadcast, program);
+  ASSERT_TRUE(net.run_until_complete(id, 1000 * kMs));
+  ASSERT_EQ(net.link_downs().size(), 1u);
+  EXPECT_EQ(net.link_downs()[0].nc, 2u);
+  EXPECT_EQ(net.link_downs()[0].reason, LinkDownReason::RetryLimit);
+  const auto all = net.take_deliveries();
+  for (unsigned k : {1u, 3u}) EXPECT_EQ(received(all, k, 0, kAddrBroadcast), std::vector<Bytes>{program}) << k;
+  EXPECT_TRUE(received(all, 2, 0, kAddrBroadcast).empty());
+  EXPECT_GT(net.status(id).completed, net.link_downs()[0].time);
+  EXPECT_EQ(net.sender_broadcast().timeouts, t.hdlc_n2_retries + 1);
+}
+
+// An idle link: nothing outstanding, so only the poll can find the silent
+// station. Before it falls silent every poll is answered (RR F = 1); after,
+// the RC polls N2 + 1 times, T1 apart, and gives the link up.
+TEST(HdlcSupervision, PollFindsASilentStationOnAnIdleLink) {
+  TimingParams t;
+  Network net(t, 3);
+  std::vector<std::pair<Picos, Frame>> polls_to_3;
+  net.set_trace([&](Picos at, unsigned line, const Frame& f) {
+    if (line == 0 && f.address == 3 && Control::parse(f.control)->pf) polls_to_3.emplace_back(at, f);
+  });
+  const Picos kill = 250 * kMs, interval = t.hdlc_poll_interval_ns * 1000, t1 = t.hdlc_t1_timeout_ns * 1000;
+  net.supervise(true, 0);
+  net.silence(3, kill);
+  net.run_until(1000 * kMs);
+  ASSERT_EQ(net.link_downs().size(), 1u);
+  const LinkDown& d = net.link_downs()[0];
+  EXPECT_EQ(d.nc, 3u);
+  EXPECT_EQ(d.reason, LinkDownReason::PollUnanswered);
+  // Polled at 100 and 200 ms (answered), then the first unanswered poll one
+  // interval after the last answer, its N2 repeats T1 after each other.
+  std::vector<Picos> after;
+  for (const auto& [at, f] : polls_to_3)
+    if (at > kill) after.push_back(at);
+  ASSERT_EQ(after.size(), t.hdlc_n2_retries + 1);
+  EXPECT_EQ(polls_to_3.size(), 2 + after.size());
+  EXPECT_GE(polls_to_3[0].first, interval);
+  EXPECT_LT(polls_to_3[0].first, interval + 100 * kUs);
+  EXPECT_LT(after[0], kill + interval);
+  const Picos poll = wire_time_ps(polls_to_3[0].second, t.hdlc_bit_rate_bps);
+  for (std::size_t i = 1; i < after.size(); ++i) EXPECT_EQ(after[i] - after[i - 1], poll + t1) << i;
+  EXPECT_EQ(d.time, after.back() + poll + t1);
+  EXPECT_LE(d.time, kill + interval + (t.hdlc_n2_retries + 1) * (poll + t1));
+  EXPECT_EQ(net.supervision(3).polls, 2 + after.size());
+  EXPECT_EQ(net.supervision(3).poll_answers, 2u);
+  // The live NCs were polled every interval and answered every time; polls
+  // and answers cost line time like any frame.
+  for (unsigned k : {1u, 2u}) {
+    EXPECT_TRUE(net.link_up(k));
+    EXPECT_EQ(net.supervision(k).polls, 9u) << k;  // at 100, 200, ..., 900 ms
+    EXPECT_EQ(net.supervision(k).poll_answers, 9u) << k;
+    EXPECT_EQ(net.up_line(k).poll_frames, 9u) << k;
+    EXPECT_EQ(net.up_line(k).s_frames, 9u) << k;
+  }
+  EXPECT_EQ(net.down_line().poll_frames, 18 + polls_to_3.size());
+  EXPECT_EQ(net.down_line().s_frames, net.down_line().poll_frames);
+  EXPECT_GE(net.down_line().busy_ps, net.down_line().poll_frames * poll);
+  // Off: no more polls.
+  net.supervise(false, net.now());
+  const std::uint64_t sent = net.down_line().frames;
+  net.run_until(2000 * kMs);
+  EXPECT_EQ(net.down_line().frames, sent);
+}
+
+// The defaults never take a working link down at BER 1e-4: a long exchange
+// both ways, with idle gaps longer than the poll interval so that polls
+// meet bit errors too, over several seeds: every message arrives exactly
+// once, in order, and the retry count stays well below N2.
+TEST(HdlcSupervision, NoFalseLinkDownAtBer1e4) {
+  TimingParams t;
+  for (std::uint64_t seed : {11u, 12u, 13u, 14u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Network net(t, 2);
+    for (unsigned k = 1; k <= 2; ++k)
+      for (Direction d : {Direction::Down, Direction::Up}) {
+        LinkFaults f;
+        f.bit_error_rate = 1e-4;
+        f.seed = seed * 10 + k * 2 + (d == Direction::Up);
+        net.set_faults(d, k, f);
+      }
+    net.supervise(true, 0);
+    std::map<unsigned, std::vector<Bytes>> down, up;
+    Picos at = 0;
+    for (std::uint32_t n = 0; n < 300; ++n) {
+      const unsigned k = 1 + n % 2;
+      at += n % 50 == 49 ? 150 * kMs : 300 * kUs;  // now and then an idle link
+      down[k].push_back(make_message(n, 5));
+      net.send(at, 0, static_cast<std::uint8_t>(k), down[k].back());
+      up[k].push_back(make_message(n, 6));
+      net.send(at + 7 * kUs, k, kAddrRc, up[k].back());
+    }
+    net.run_until(at + 2000 * kMs);
+    EXPECT_TRUE(net.all_complete());
+    EXPECT_TRUE(net.link_downs().empty());
+    const auto all = net.take_deliveries();
+    std::uint64_t polls = 0, timeouts = 0;
+    for (unsigned k = 1; k <= 2; ++k) {
+      EXPECT_TRUE(same_sequence(received(all, k, 0, static_cast<std::uint8_t>(k)), down[k])) << "RC -> NC " << k;
+      EXPECT_TRUE(same_sequence(received(all, 0, k, kAddrRc), up[k])) << "NC " << k << " -> RC";
+      EXPECT_LE(net.supervision(k).max_retries, t.hdlc_n2_retries / 2) << "NC " << k;  // margin
+      EXPECT_FALSE(net.supervision(k).station_gave_up);
+      polls += net.supervision(k).polls;
+      timeouts += net.sender_to_nc(k).timeouts + net.sender_to_rc(k).timeouts;
+    }
+    EXPECT_GT(polls, 10u);
+    EXPECT_GT(timeouts, 0u);  // the errors did cost retries
+  }
+}

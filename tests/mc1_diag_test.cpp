@@ -143,6 +143,7 @@ TEST(DiagFrame, WithBitErrorsAndADeadLink) {
   EXPECT_EQ(r.rgb, diag::expected_image(64, 64));
   expect_dispatch_exact(r);
   expect_stats_add_up(r);
+  EXPECT_TRUE(r.link_downs.empty());  // 3.5 ms dead and BER 1e-4: no false link-down
   EXPECT_GT(r.hdlc.fcs_errors, 0u);
   EXPECT_GT(r.hdlc.bits_dead, 0u);
   std::uint64_t retx = 0;
@@ -154,6 +155,39 @@ TEST(DiagFrame, WithBitErrorsAndADeadLink) {
   EXPECT_GT(r.frame_time, clean.frame_time);
 }
 
+// The same link supervision as the rendered frame: a killed NC (silent
+// station) and an NC behind a cut line, each rendering a block, are found
+// by unanswered polls; their blocks go to the others (who wait for them
+// instead of taking Finish); the frame is still exact.
+TEST(DiagFrame, KilledNcAndCutLineFoundByLinkSupervision) {
+  SystemConfig c = config(16, 64, 8);
+  c.kills = {{3, 3'500'000'000}};        // 3.5 ms: inside one of its blocks
+  c.cut_lines = {{7, 4'500'000'000}};    // 4.5 ms
+  const FrameReport r = run(c);
+  EXPECT_EQ(r.rgb, diag::expected_image(64, 64));
+  EXPECT_EQ(r.fm_pixels_written, 64u * 64u);
+  std::map<std::uint32_t, int> done;
+  for (const rc::Completion& x : r.completions) ++done[x.block];
+  ASSERT_EQ(done.size(), r.blocks);
+  for (const auto& d : done) EXPECT_EQ(d.second, 1) << "block " << d.first;
+  EXPECT_TRUE(r.timeouts.empty());
+  ASSERT_EQ(r.link_downs.size(), 2u);
+  const TimingParams& tp = c.timing;
+  const Picos bound = 1000 * tp.hdlc_poll_interval_ns + (tp.hdlc_n2_retries + 1) * (1000 * tp.hdlc_t1_timeout_ns + 1'000'000'000);
+  for (const rc::LinkDown& d : r.link_downs) {
+    const Picos fault = d.nc == 3 ? c.kills[0].time : c.cut_lines[0].time;
+    EXPECT_TRUE(d.nc == 3 || d.nc == 7) << d.nc;
+    EXPECT_EQ(d.reason, hdlc::LinkDownReason::PollUnanswered) << "NC " << d.nc;
+    EXPECT_EQ(d.requeued, 1u) << "NC " << d.nc;
+    EXPECT_GT(d.time, fault);
+    EXPECT_LE(d.time, fault + bound) << "NC " << d.nc;
+  }
+  for (const NcReport& n : r.ncs) {
+    EXPECT_EQ(n.busy + n.wait_rc + n.wait_bus + n.idle + n.dead, r.frame_time) << "NC " << n.id;
+    EXPECT_EQ(n.link_down != 0, n.id == 3 || n.id == 7) << "NC " << n.id;
+  }
+}
+
 TEST(DiagFrame, TwoHundredFiftySixNcsWithFaults) {
   SystemConfig c = config(256, 64, 4);
   c.ber = 1e-4;
@@ -162,6 +196,7 @@ TEST(DiagFrame, TwoHundredFiftySixNcsWithFaults) {
   EXPECT_EQ(r.rgb, diag::expected_image(64, 64));
   expect_dispatch_exact(r);
   expect_stats_add_up(r);
+  EXPECT_TRUE(r.link_downs.empty());
 }
 
 TEST(DiagFrame, Deterministic) {

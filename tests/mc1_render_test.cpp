@@ -213,8 +213,6 @@ TEST_F(Mc1Render, SchedulesHandOutBlocksAsDocumented) {
   EXPECT_EQ(lpt.block_loads, st.block_loads);  // step 2 does not depend on the schedule
 }
 
-// --kill-node: the NC stops; the RC's deadline finds it; its block goes to
-// another NC; the frame is the fault-free one, every pixel written once.
 // The first time the RC handed NC `nc` a piece (a list job or a block).
 Picos first_dispatch(const FrameReport& r, unsigned nc, bool list_job) {
   for (const rc::Dispatch& d : r.dispatches)
@@ -223,71 +221,223 @@ Picos first_dispatch(const FrameReport& r, unsigned nc, bool list_job) {
   return 0;
 }
 
-TEST_F(Mc1Render, KilledNodeIsDetectedAndItsBlocksGoToOthers) {
+// The latest the RC's link supervision may find a station that fell silent
+// at `t`: one poll interval, then N2 + 1 tries T1 apart (each plus a frame
+// on the line, at most 1 ms). With the defaults: t + 166 ms.
+Picos detection_bound(const TimingParams& tp, Picos t) {
+  return t + 1000 * tp.hdlc_poll_interval_ns + (tp.hdlc_n2_retries + 1) * (1000 * tp.hdlc_t1_timeout_ns + 1'000'000'000);
+}
+
+// When the RC handed block `block` to NC `nc`.
+Picos dispatch_time(const FrameReport& r, std::uint32_t block, unsigned nc) {
+  for (const rc::Dispatch& d : r.dispatches)
+    if (!d.list_job && d.block == block && d.nc == nc) return d.time;
+  ADD_FAILURE() << "block " << block << " never went to NC " << nc;
+  return 0;
+}
+
+// Halfway through the first block NC `nc` rendered (the assignment long
+// acknowledged: nothing outstanding on its link).
+Picos mid_first_block(const FrameReport& r, unsigned nc) {
+  for (const rc::Dispatch& d : r.dispatches)
+    if (d.nc == nc && !d.list_job && d.block != rc::kNoBlock)
+      for (const rc::Completion& x : r.completions)
+        if (x.block == d.block) return d.time + (x.time - d.time) / 2;
+  ADD_FAILURE() << "NC " << nc << " rendered no block";
+  return 0;
+}
+
+// The block NC `nc` held and someone else completed.
+std::uint32_t block_taken_from(const FrameReport& r, unsigned nc) {
+  for (const rc::Completion& x : r.completions)
+    if (x.nc != nc)
+      for (const rc::Dispatch& d : r.dispatches)
+        if (!d.list_job && d.block == x.block && d.nc == nc) return x.block;
+  ADD_FAILURE() << "no block of NC " << nc << " was done by another";
+  return rc::kNoBlock;
+}
+
+// --kill-node: the NC's processor stops, and with it its HDLC station. It
+// was rendering a block (nothing outstanding on its link), so the RC's
+// poll goes unanswered and the link goes down within a poll interval plus
+// N2 + 1 T1 periods, far sooner than the block's deadline; its block goes
+// to another NC; the frame is the fault-free one, every pixel written once.
+TEST_F(Mc1Render, KilledNodeIsFoundByLinkSupervision) {
   const FrameReport clean = render_frame(config(4)).report;
   SystemConfig c = config(4);
-  const Picos kill = first_dispatch(clean, 3, false) + 1000;  // NC 3 holding its first block (step 3)
+  const Picos kill = mid_first_block(clean, 3);  // NC 3 rendering its first block (step 3)
   c.kills = {{3, kill}};
   const FrameReport r = render_frame(c).report;
   EXPECT_EQ(r.rgb, clean.rgb);
   expect_complete(r);
+  EXPECT_TRUE(r.timeouts.empty());  // no deadline needed
+  ASSERT_EQ(r.link_downs.size(), 1u);
+  const rc::LinkDown& d = r.link_downs[0];
+  EXPECT_EQ(d.nc, 3u);
+  EXPECT_EQ(d.reason, hdlc::LinkDownReason::PollUnanswered);
+  EXPECT_EQ(d.requeued, 1u);
+  EXPECT_EQ(r.rc.reassigned, 1u);
+  EXPECT_GT(d.time, kill);
+  EXPECT_LE(d.time, detection_bound(c.timing, kill));
+  EXPECT_GE(d.taken, d.time);
+  EXPECT_LE(d.taken, d.time + 100'000'000);  // within 100 us: a pump step and the RC's interrupt
+  const std::uint32_t block = block_taken_from(r, 3);
+  EXPECT_LT(d.time, dispatch_time(r, block, 3) + 1000 * c.timing.rc_timeout_base_ns);  // before any deadline
+  std::set<unsigned> takers;
+  for (const rc::Dispatch& x : r.dispatches)
+    if (!x.list_job && x.block == block) takers.insert(x.nc);
+  EXPECT_EQ(takers.size(), 2u);
+  const NcReport& dead = r.ncs[2];
+  EXPECT_TRUE(dead.killed);
+  EXPECT_EQ(dead.killed_at, kill);
+  EXPECT_EQ(dead.link_down, d.time);
+  EXPECT_EQ(dead.dead, r.frame_time - dead.killed_at);
+  EXPECT_EQ(dead.finished_at, 0u);
+  EXPECT_GT(r.frame_time, d.time);
+  EXPECT_GT(r.hdlc.polls, r.hdlc.poll_answers);  // the unanswered ones
+}
+
+// Without polling (hdlc_poll_interval_ns = 0) nothing is outstanding on
+// the killed NC's link, so only the RC's deadlines, the last resort, find
+// it: base + pixels x (1 + work) x per_pixel_prim after the block's
+// dispatch; for an NC that never asked, base after the last block.
+TEST_F(Mc1Render, DeadlineIsTheLastResortWithoutPolls) {
+  SystemConfig c = config(4);
+  c.timing.hdlc_poll_interval_ns = 0;
+  const FrameReport clean = render_frame(c).report;
+  const Picos kill = mid_first_block(clean, 3);
+  c.kills = {{3, kill}};
+  const FrameReport r = render_frame(c).report;
+  EXPECT_EQ(r.rgb, clean.rgb);
+  expect_complete(r);
+  EXPECT_TRUE(r.link_downs.empty());
+  EXPECT_EQ(r.hdlc.polls, 0u);
   ASSERT_EQ(r.timeouts.size(), 1u);
   const rc::Timeout& t = r.timeouts[0];
   EXPECT_EQ(t.nc, 3u);
   EXPECT_FALSE(t.list_job);
   EXPECT_EQ(t.requeued, 1u);
-  EXPECT_EQ(r.rc.reassigned, 1u);
-  // The deadline from the dispatch: base + pixels x (1 + work) x
-  // per_pixel_prim, work = the listed objects' primitives (floor 2, ball 1,
-  // mirror 2 x 4: it reflects).
+  // work = the listed objects' primitives (floor 2, ball 1, mirror 2 x 4: it reflects).
   const std::uint32_t per_object[] = {2, 1, 8};
   std::uint64_t work = 0;
   for (std::uint16_t o : r.block_lists.at(t.block).objects) work += per_object[o];
   const TimingParams& tp = c.timing;
-  Picos dispatched = 0;
-  for (const rc::Dispatch& d : r.dispatches)
-    if (!d.list_job && d.block == t.block && d.nc == 3) dispatched = d.time;
-  EXPECT_EQ(t.time - dispatched, 1000 * (tp.rc_timeout_base_ns + 64 * (1 + work) * tp.rc_timeout_ns_per_pixel_prim));
-  // The block went out again, to a live NC, which did it.
-  std::set<unsigned> takers;
-  for (const rc::Dispatch& d : r.dispatches)
-    if (!d.list_job && d.block == t.block) takers.insert(d.nc);
-  EXPECT_EQ(takers.size(), 2u);
-  for (const rc::Completion& x : r.completions)
-    if (x.block == t.block) {
-      EXPECT_NE(x.nc, 3u);
-    }
-  const NcReport& dead = r.ncs[2];
-  EXPECT_TRUE(dead.killed);
-  EXPECT_EQ(dead.killed_at, kill);
-  EXPECT_EQ(dead.dead, r.frame_time - dead.killed_at);
-  EXPECT_EQ(dead.finished_at, 0u);
+  EXPECT_EQ(t.time - dispatch_time(r, t.block, 3),
+            1000 * (tp.rc_timeout_base_ns + 64 * (1 + work) * tp.rc_timeout_ns_per_pixel_prim));
   EXPECT_GT(r.frame_time, t.time);
   EXPECT_LT(clean.frame_time, t.time);
-}
 
-TEST_F(Mc1Render, KilledDuringTheBlockListsOrBeforeAsking) {
-  const FrameReport clean = render_frame(config(4)).report;
-  SystemConfig during_lists = config(4);
-  during_lists.kills = {{2, first_dispatch(clean, 2, true) + 1000}};  // holding a list job (step 2)
-  const FrameReport a = render_frame(during_lists).report;
-  EXPECT_EQ(a.rgb, clean.rgb);
-  expect_complete(a);
-  ASSERT_EQ(a.timeouts.size(), 1u);
-  EXPECT_EQ(a.timeouts[0].nc, 2u);
-  EXPECT_TRUE(a.timeouts[0].list_job);
-
-  SystemConfig before = config(4);
-  before.kills = {{2, milestone_time(clean, "downloaded") / 2}};  // during the download: it never asks
-  const FrameReport b = render_frame(before).report;
+  // Killed in step 1, after the download, before it ever asked: taken as
+  // dead rc_timeout_base_ns after the last block (the straggler deadline).
+  SystemConfig quiet = config(4);
+  quiet.timing.hdlc_poll_interval_ns = 0;
+  Picos downloaded = 0, step1 = 0;
+  for (const auto& m : clean.ncs[1].milestones) {
+    if (m.first == "downloaded") downloaded = m.second;
+    if (m.first == "step1") step1 = m.second;
+  }
+  ASSERT_LT(downloaded, step1);
+  quiet.kills = {{2, (downloaded + step1) / 2}};
+  const FrameReport b = render_frame(quiet).report;
   EXPECT_EQ(b.rgb, clean.rgb);
   expect_complete(b);
+  EXPECT_TRUE(b.link_downs.empty());
   ASSERT_EQ(b.timeouts.size(), 1u);
   EXPECT_EQ(b.timeouts[0].nc, 2u);
   EXPECT_EQ(b.timeouts[0].block, rc::kNoBlock);
-  // Taken as dead rc_timeout_base_ns after the last block.
-  EXPECT_EQ(b.timeouts[0].time, b.rc.last_completion + 1000 * before.timing.rc_timeout_base_ns);
+  EXPECT_EQ(b.timeouts[0].time, b.rc.last_completion + 1000 * tp.rc_timeout_base_ns);
   EXPECT_EQ(b.frame_time, b.timeouts[0].time);
+}
+
+TEST_F(Mc1Render, KilledDuringTheBlockListsOrTheDownload) {
+  const FrameReport clean = render_frame(config(4)).report;
+  SystemConfig during_lists = config(4);
+  const Picos kill = first_dispatch(clean, 2, true) + 1000;  // holding a list job (step 2)
+  during_lists.kills = {{2, kill}};
+  const FrameReport a = render_frame(during_lists).report;
+  EXPECT_EQ(a.rgb, clean.rgb);
+  expect_complete(a);
+  EXPECT_TRUE(a.timeouts.empty());
+  ASSERT_EQ(a.link_downs.size(), 1u);
+  EXPECT_EQ(a.link_downs[0].nc, 2u);
+  EXPECT_EQ(a.link_downs[0].requeued, 1u);  // the list job
+  EXPECT_LE(a.link_downs[0].time, detection_bound(during_lists.timing, kill));
+
+  // During the download the broadcast is outstanding to it: T1 expires N2 + 1
+  // times (no poll needed) and the others get the rest of the download.
+  SystemConfig before = config(4);
+  const Picos early = milestone_time(clean, "downloaded") / 2;
+  before.kills = {{2, early}};
+  const FrameReport b = render_frame(before).report;
+  EXPECT_EQ(b.rgb, clean.rgb);
+  expect_complete(b);
+  EXPECT_TRUE(b.timeouts.empty());
+  ASSERT_EQ(b.link_downs.size(), 1u);
+  EXPECT_EQ(b.link_downs[0].nc, 2u);
+  EXPECT_EQ(b.link_downs[0].reason, hdlc::LinkDownReason::RetryLimit);
+  EXPECT_EQ(b.link_downs[0].requeued, 0u);
+  const TimingParams& tp = before.timing;
+  EXPECT_LE(b.link_downs[0].time, early + (tp.hdlc_n2_retries + 2) * (1000 * tp.hdlc_t1_timeout_ns + 1'000'000'000));
+  EXPECT_GT(milestone_time(b, "downloaded"), b.link_downs[0].time);  // the broadcast waited for it
+}
+
+// --cut-line: NC 3's line carries nothing either way from the cut on. The
+// NC itself goes on: it finishes its block (the image bus is not cut), its
+// report is lost, it waits for an answer that never comes. The RC finds
+// the link down as for a kill; the block goes to another NC; same frame.
+TEST_F(Mc1Render, CutLineLosesTheNcButNotTheImage) {
+  const FrameReport clean = render_frame(config(4)).report;
+  SystemConfig c = config(4);
+  const Picos cut = mid_first_block(clean, 3);
+  c.cut_lines = {{3, cut}};
+  const FrameReport r = render_frame(c).report;
+  EXPECT_EQ(r.rgb, clean.rgb);
+  expect_complete(r);
+  EXPECT_TRUE(r.timeouts.empty());
+  ASSERT_EQ(r.link_downs.size(), 1u);
+  const rc::LinkDown& d = r.link_downs[0];
+  EXPECT_EQ(d.nc, 3u);
+  EXPECT_EQ(d.requeued, 1u);
+  EXPECT_GT(d.time, cut);
+  EXPECT_LE(d.time, detection_bound(c.timing, cut));
+  const NcReport& n = r.ncs[2];
+  EXPECT_FALSE(n.killed);
+  EXPECT_EQ(n.finished_at, 0u);  // never told Finish
+  EXPECT_EQ(n.link_down, d.time);
+  EXPECT_EQ(n.blocks, 1u);       // it did finish the block it held
+  EXPECT_GT(r.hdlc.bits_dead, 0u);
+  // Its block was rendered twice; the second copy's 8 rows were dropped.
+  EXPECT_EQ(r.bus.duplicate_runs, 8u);
+  EXPECT_EQ(r.bus.pixels, r.fm_pixels_written + r.bus.duplicate_pixels);
+  ASSERT_EQ(r.cut_lines.size(), 1u);
+  const std::string j = stats_json(r);
+  EXPECT_NE(j.find("\"cut_lines\": [{\"nc\": 3, \"time_ps\": " + std::to_string(cut) + "}]"), std::string::npos);
+  EXPECT_NE(j.find("\"link_downs\": [{\"time_ps\": " + std::to_string(d.time)), std::string::npos);
+  EXPECT_NE(j.find("\"link_down_ps\": " + std::to_string(d.time)), std::string::npos);
+  const std::string g = gantt_svg(r);
+  EXPECT_NE(g.find("link of NC 3 down ("), std::string::npos);
+}
+
+// Nothing waits forever: with every NC lost the frame cannot complete, and
+// the RC says so instead of waiting (and polling) for ever.
+std::string g_sc_error;
+void capture_error(const sc_core::sc_report& r, const sc_core::sc_actions&) {
+  if (r.get_severity() >= sc_core::SC_ERROR) g_sc_error = r.get_msg();
+}
+
+TEST_F(Mc1Render, EveryNcLostIsAnErrorNotAHang) {
+  const FrameReport clean = render_frame(config(2)).report;
+  SystemConfig c = config(2);
+  c.kills = {{1, first_dispatch(clean, 1, false) + 1000}};
+  c.cut_lines = {{2, first_dispatch(clean, 2, false) + 1000}};
+  test::fresh_kernel();
+  g_sc_error.clear();
+  sc_core::sc_report_handler::set_handler(capture_error);
+  EXPECT_THROW(run_render(RenderJob{scenes_dir() + "/tiny.json", 0, 0}, c), std::runtime_error);
+  sc_core::sc_report_handler::set_handler(test::report_to_gtest);
+  EXPECT_NE(g_sc_error.find("the frame cannot complete: every NC has finished or lost its link"), std::string::npos)
+      << g_sc_error;
+  EXPECT_NE(g_sc_error.find("2 links down"), std::string::npos) << g_sc_error;
 }
 
 // Deadlines tighter than the work: NCs are taken as dead while alive, their
@@ -336,6 +486,8 @@ TEST_F(Mc1Render, HdlcBitErrorsLeaveTheImageUnchanged) {
   for (const LineReport& l : r.hdlc.down) retx += l.retransmissions;
   EXPECT_GT(retx, 0u);
   EXPECT_TRUE(r.timeouts.empty());
+  EXPECT_TRUE(r.link_downs.empty());  // a 3 ms dead window and BER 1e-4 are no link-down
+  EXPECT_LT(r.hdlc.max_retries, c.timing.hdlc_n2_retries);
   EXPECT_GT(r.frame_time, clean.frame_time);
 }
 

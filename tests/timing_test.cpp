@@ -30,6 +30,9 @@ TEST(Timing, DefaultsAndDerivedDurations) {
   EXPECT_EQ(t.apu_clock_hz, 4'000'000u);
   EXPECT_EQ(t.hdlc_bit_rate_bps, 4'000'000u);
   EXPECT_EQ(t.hdlc_window, 7u);
+  EXPECT_EQ(t.hdlc_t1_timeout_ns, 5'000'000u);    // T1
+  EXPECT_EQ(t.hdlc_n2_retries, 10u);               // N2
+  EXPECT_EQ(t.hdlc_poll_interval_ns, 100'000'000u);  // idle links polled every 100 ms
   EXPECT_EQ(t.apu_cycle_ps(), 250'000u);       // 4 MHz
   EXPECT_EQ(t.mpu_cycle_ps(), 125'000u);       // 8 MHz
   EXPECT_EQ(t.mpu_cycles_ps(17), 2'125'000u);  // one word copied
@@ -43,7 +46,7 @@ TEST(Timing, DefaultsAndDerivedDurations) {
 
 TEST(Timing, TableListsEveryKeyOnceAndTextRoundTrips) {
   const auto& table = timing_param_table();
-  EXPECT_EQ(table.size(), 20u);
+  EXPECT_EQ(table.size(), 22u);
   TimingParams t;
   for (const ParamInfo& p : table) {
     EXPECT_GE(t.get(p.key), p.min) << p.key;
@@ -92,6 +95,8 @@ TEST(Timing, FileErrorsNameFileLineKeyAndValue) {
             "non-negative integer in Hz)");
   EXPECT_EQ(error_of([&] { load_params_text(t, "apu_clock_hz = 0\n", "g"); }),
             "g:1: bad value '0' for key 'apu_clock_hz' (allowed 1..1000000000000 Hz)");
+  EXPECT_EQ(error_of([&] { load_params_text(t, "hdlc_n2_retries = 0\n", "h"); }),
+            "h:1: bad value '0' for key 'hdlc_n2_retries' (allowed 1..1000 retries)");
   EXPECT_EQ(error_of([&] { load_params_file(t, "/nonexistent/x.params"); }),
             "/nonexistent/x.params: cannot open parameter file");
   // A failed line leaves the earlier lines applied and the table otherwise intact.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 
@@ -127,6 +128,29 @@ NodeKill parse_kill(const std::string& text) {
   return k;
 }
 
+CutLine parse_cut_line(const std::string& text) {
+  const std::string opt = "--cut-line";
+  const auto at = text.find('@');
+  if (at == std::string::npos) throw CliError(opt + ": bad value '" + text + "' (expected K@TIME, e.g. 3@20ms)");
+  CutLine c;
+  c.nc = parse_unsigned(opt + " (NC)", text.substr(0, at), 1, 1u << 20);
+  c.time = parse_time(opt, text.substr(at + 1));
+  return c;
+}
+
+void fault_options(const std::vector<std::string>& kills, const std::vector<std::string>& cuts, SystemConfig& cfg) {
+  for (const std::string& k : kills) {
+    cfg.kills.push_back(parse_kill(k));
+    if (cfg.kills.back().nc > cfg.nodes)
+      throw CliError("--kill-node " + k + ": the machine has NC 1.." + std::to_string(cfg.nodes));
+  }
+  for (const std::string& c : cuts) {
+    cfg.cut_lines.push_back(parse_cut_line(c));
+    if (cfg.cut_lines.back().nc > cfg.nodes)
+      throw CliError("--cut-line " + c + ": the machine has NC 1.." + std::to_string(cfg.nodes));
+  }
+}
+
 EngineKind parse_engine(const std::string& s) {
   if (s == "iss") return EngineKind::Iss;
   if (s == "rtl") return EngineKind::Rtl;
@@ -152,6 +176,15 @@ void write_text(const std::string& path, const std::string& text) {
   if (!out) throw std::runtime_error(path + ": cannot open for writing");
   out << text;
   if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+void print_faults(const FrameReport& r) {
+  auto ms = [](Picos t) { return t * 1e-9; };
+  for (const KillReport& k : r.kills) std::printf("  NC %u killed at %.3f ms\n", k.nc, ms(k.time));
+  for (const CutLineReport& c : r.cut_lines) std::printf("  NC %u's line cut at %.3f ms\n", c.nc, ms(c.time));
+  for (const rc::LinkDown& d : r.link_downs)
+    std::printf("  %.3f ms: NC %u's link is down (%s); %u pieces handed out again\n", ms(d.time), d.nc,
+                hdlc::link_down_reason_name(d.reason), d.requeued);
 }
 
 }  // namespace mc1::cli

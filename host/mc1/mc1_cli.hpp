@@ -44,6 +44,10 @@ DeadLink parse_dead_link(const std::string& text);
 std::vector<unsigned> parse_list(const std::string& opt, const std::string& text, unsigned min, unsigned max);
 // "K@TIME", e.g. "3@20ms": NC K's processor stops at TIME.
 NodeKill parse_kill(const std::string& text);
+// "K@TIME", e.g. "3@20ms": both directions of NC K's line carry nothing from TIME on.
+CutLine parse_cut_line(const std::string& text);
+// The --kill-node and --cut-line options of a frame command, checked against cfg.nodes.
+void fault_options(const std::vector<std::string>& kills, const std::vector<std::string>& cuts, SystemConfig& cfg);
 // "iss" or "rtl" (an error if this build has no RTL engine).
 EngineKind parse_engine(const std::string& text);
 
@@ -52,5 +56,7 @@ bool wants_help(const std::vector<std::string>& args);
 // The timing table first (it consumes --param/--params); returns the rest.
 std::vector<std::string> take_params(TimingParams& t, const std::vector<std::string>& args);
 void write_text(const std::string& path, const std::string& text);
+// The summary's lines on injected faults and the links the RC found down.
+void print_faults(const FrameReport& r);
 
 }  // namespace mc1::cli

@@ -59,6 +59,11 @@ const char* kDiagUsage =
     "  --seed S             seed of the bit-error streams (default 1)\n"
     "  --dead-link NC@T0-T1 NC's link dead in both directions from T0 to T1 (e.g. 3@1ms-4ms;\n"
     "                       units ps ns us ms s, bare numbers are ms); repeatable\n"
+    "  --kill-node K@TIME   NC K's processor, and with it its HDLC station, stops at TIME;\n"
+    "                       repeatable\n"
+    "  --cut-line K@TIME    NC K's HDLC line carries nothing either way from TIME on; repeatable.\n"
+    "                       With either, the RC's link supervision finds the NC lost and hands\n"
+    "                       its blocks to the others\n"
     "  --params FILE        timing table file (docs/timing.md); repeatable, in order\n"
     "  --param key=value    one timing figure; repeatable, in order\n"
     "  --kernel FILE        APU image to broadcast instead of the built-in diag.bin\n"
@@ -139,8 +144,8 @@ int cmd_diag(const std::vector<std::string>& argv) {
   }
   SystemConfig cfg;
   const cli::Args a(take_params(cfg.timing, argv),
-                    {"nodes", "engine", "size", "block", "ber", "seed", "dead-link", "kernel", "out", "stats",
-                     "gantt", "vcd"},
+                    {"nodes", "engine", "size", "block", "ber", "seed", "dead-link", "kill-node", "cut-line", "kernel",
+                     "out", "stats", "gantt", "vcd"},
                     {"quiet"});
   if (a.has("nodes")) cfg.nodes = cli::parse_unsigned("--nodes", a.get("nodes"), 1, 4096);
   frame_options(a, cfg);
@@ -151,6 +156,7 @@ int cmd_diag(const std::vector<std::string>& argv) {
     if (cfg.dead_links.back().nc > cfg.nodes)
       throw CliError("--dead-link " + d + ": the machine has NC 1.." + std::to_string(cfg.nodes));
   }
+  cli::fault_options(a.all("kill-node"), a.all("cut-line"), cfg);
   const bool quiet = a.has("quiet");
   const std::vector<apu::Encoded> program =
       a.has("kernel") ? apuasm::load_image(a.get("kernel")) : diag::kernel();
@@ -175,6 +181,7 @@ int cmd_diag(const std::vector<std::string>& argv) {
                 }()),
                 static_cast<unsigned long long>(r.hdlc.timeouts), static_cast<unsigned long long>(r.hdlc.fcs_errors),
                 r.frame_time ? 100.0 * r.bus.busy / r.frame_time : 0.0);
+    cli::print_faults(r);
     if (c.mismatches == 0)
       std::printf("  frame OK: equal bit for bit to the FP24 model\n");
   }

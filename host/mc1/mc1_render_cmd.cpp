@@ -38,8 +38,11 @@ const char* kRenderUsage =
     "  --engine iss|rtl     APU engine: C++ ISS or verilated RTL core (default iss)\n"
     "  --schedule S         lpt: heaviest predicted load first (the paper's, default);\n"
     "                       fifo: screen order as NCs ask; static: block i to NC (i mod N) + 1\n"
-    "  --kill-node K@TIME   NC K's processor stops at TIME (e.g. 3@20ms); the RC's deadline\n"
-    "                       finds it and hands its blocks to the others; repeatable\n"
+    "  --kill-node K@TIME   NC K's processor, and with it its HDLC station, stops at TIME (e.g.\n"
+    "                       3@20ms); the RC's link supervision finds it and hands its work to\n"
+    "                       the others; repeatable\n"
+    "  --cut-line K@TIME    NC K's HDLC line carries nothing either way from TIME on; the NC is\n"
+    "                       lost to the frame like a killed one; repeatable\n"
     "  --ber X              HDLC bit error rate on every line end, both directions (default 0)\n"
     "  --seed S             seed of the bit-error streams (default 1)\n"
     "  --dead-link NC@T0-T1 NC's link dead in both directions from T0 to T1; repeatable\n"
@@ -153,7 +156,7 @@ void print_summary(const RenderRun& run) {
               pct(apu_utilization_mean(r)).c_str(), static_cast<unsigned long long>(r.rc.download_bytes),
               static_cast<unsigned long long>(retx), static_cast<unsigned long long>(r.hdlc.fcs_errors),
               pct(T ? static_cast<double>(r.bus.busy) / T : 0).c_str());
-  for (const KillReport& k : r.kills) std::printf("  NC %u killed at %s\n", k.nc, ms(k.time).c_str());
+  print_faults(r);
   for (const rc::Timeout& x : r.timeouts)
     std::printf("  %s: NC %u missed its deadline (%s %u); %u pieces handed out again\n", ms(x.time).c_str(), x.nc,
                 x.list_job ? "list job" : "block", x.block, x.requeued);
@@ -179,7 +182,7 @@ int cmd_render(const std::vector<std::string>& argv_in) {
   SystemConfig cfg;
   cfg.nodes = 16;
   const Args a(take_params(cfg.timing, argv),
-               {"nodes", "size", "block", "engine", "schedule", "kill-node", "ber", "seed", "dead-link", "out",
+               {"nodes", "size", "block", "engine", "schedule", "kill-node", "cut-line", "ber", "seed", "dead-link", "out",
                 "stats", "gantt", "trace", "trace-node", "vcd", "diff", "scene", "min-psnr"},
                {"quiet", "ref"});
   if (a.has("scene")) job.scene = a.get("scene");
@@ -192,11 +195,7 @@ int cmd_render(const std::vector<std::string>& argv_in) {
     if (cfg.dead_links.back().nc > cfg.nodes)
       throw CliError("--dead-link " + d + ": the machine has NC 1.." + std::to_string(cfg.nodes));
   }
-  for (const std::string& k : a.all("kill-node")) {
-    cfg.kills.push_back(parse_kill(k));
-    if (cfg.kills.back().nc > cfg.nodes)
-      throw CliError("--kill-node " + k + ": the machine has NC 1.." + std::to_string(cfg.nodes));
-  }
+  fault_options(a.all("kill-node"), a.all("cut-line"), cfg);
   if (a.has("trace")) {
     cfg.trace_path = a.get("trace");
     cfg.trace_node = a.has("trace-node") ? parse_unsigned("--trace-node", a.get("trace-node"), 1, cfg.nodes) : 1;

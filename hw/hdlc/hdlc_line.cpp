@@ -50,7 +50,7 @@ void HdlcLine::carry(unsigned from, tlm::tlm_generic_payload& p, sc_core::sc_tim
   Bytes data(p.get_data_ptr(), p.get_data_ptr() + p.get_data_length());
   const MessageId id =
       net_.send(stamp + to_picos(delay), from, static_cast<std::uint8_t>(addr), std::move(data));
-  net_.run_until_complete(id);
+  const bool complete = net_.run_until_complete(id);
 
   for (Delivery& d : net_.take_deliveries()) {
     tlm::tlm_generic_payload q;
@@ -69,6 +69,10 @@ void HdlcLine::carry(unsigned from, tlm::tlm_generic_payload& p, sc_core::sc_tim
       SC_REPORT_WARNING(name(), ("station " + std::to_string(d.to_station) +
                                  " refused a message: " + q.get_response_string())
                                     .c_str());
+  }
+  if (!complete) {  // the link went down (retry limit N2): the message is lost
+    p.set_response_status(tlm::TLM_GENERIC_ERROR_RESPONSE);
+    return;
   }
   delay = to_sc_time(net_.status(id).completed - stamp);
   p.set_response_status(tlm::TLM_OK_RESPONSE);

@@ -8,7 +8,9 @@
 // advanced to that moment: the wire time of its frames, retransmissions and
 // acknowledgements. Each destination gets the message through its own target
 // socket with delay = the moment its last frame's closing flag arrived; in
-// messages to the RC the address is the sending NC's id.
+// messages to the RC the address is the sending NC's id. A message whose link
+// goes down (retry limit N2, docs/hdlc.md) ends with
+// TLM_GENERIC_ERROR_RESPONSE. No polling: the line does not supervise().
 //
 // Initiators use temporal decoupling (tlm_utils::tlm_quantumkeeper). The
 // network's clock only moves forward: a message whose local time is earlier

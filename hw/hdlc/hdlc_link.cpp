@@ -9,6 +9,14 @@
 
 namespace mc1::hdlc {
 
+const char* link_down_reason_name(LinkDownReason r) {
+  switch (r) {
+    case LinkDownReason::RetryLimit: return "retry limit";
+    case LinkDownReason::PollUnanswered: return "poll unanswered";
+  }
+  return "?";
+}
+
 // ---------------------------------------------------------------- faults
 
 FaultyWire::FaultyWire(LinkFaults f) : f_(std::move(f)), rng_(f_.seed) {
@@ -82,6 +90,9 @@ struct Network::Sender {
   std::vector<std::uint64_t> acked;               // per peer
   bool timer_running = false;
   std::uint64_t timer_gen = 0;
+  unsigned retries = 0;          // T1 expiries in a row without a frame from the far station
+  std::vector<bool> gone;        // per peer: its link is down (it no longer holds the window)
+  std::vector<unsigned> peer_retries;  // broadcast: per peer, as `retries`
   std::deque<std::pair<MessageId, std::uint64_t>> open;  // message, last sequence number
   SenderStats stats;
 };
@@ -97,6 +108,7 @@ struct Network::Receiver {
   Bytes assembly;
   bool ack_pending = false;
   Supervisory ack_kind = Supervisory::RR;
+  bool ack_final = false;  // the answer to a poll: F = 1
   Picos ack_due = 0;
   ReceiverStats stats;
 };
@@ -118,6 +130,19 @@ struct Network::Line {
   bool busy = false;
   Picos wake_at = ~Picos{0};
   LineStats stats;
+};
+
+// NC k's link as the RC supervises it, and whether the station still talks.
+struct Network::Station {
+  bool up = true;
+  Picos silent_from = kNever;  // the station sends, answers and takes nothing from here on
+  Picos heard = 0;             // the RC last heard a good frame from it
+  Picos idle_check_at = kNever;  // a scheduled idle check
+  bool poll_queued = false;    // a poll waits for the downstream line
+  bool poll_out = false;       // a poll was sent and not answered yet
+  unsigned poll_retries = 0;
+  std::uint64_t poll_gen = 0;
+  SupervisionStats stats;
 };
 
 // ---------------------------------------------------------------- set-up
@@ -143,6 +168,8 @@ Network::Network(const TimingParams& t, unsigned nc_count) : t_(t), nc_count_(nc
     s->line = line;
     s->from_station = from;
     s->acked.assign(peers.size(), 0);
+    s->gone.assign(peers.size(), false);
+    s->peer_retries.assign(peers.size(), 0);
     s->peers = std::move(peers);
     return s;
   };
@@ -175,6 +202,7 @@ Network::Network(const TimingParams& t, unsigned nc_count) : t_(t), nc_count_(nc
     lines_[k]->ackers.push_back(bcast_at_nc_.back().get());
   }
   lines_[0]->senders.push_back(broadcast_.get());
+  stations_.resize(nc_count);
 }
 
 Network::~Network() = default;
@@ -183,6 +211,34 @@ void Network::set_faults(Direction d, unsigned nc, const LinkFaults& f) {
   if (nc < 1 || nc > nc_count_) throw std::out_of_range("hdlc::Network::set_faults: bad NC");
   Endpoint& ep = d == Direction::Down ? lines_[0]->rx[nc - 1] : lines_[nc]->rx[0];
   ep.wire = FaultyWire(f);
+}
+
+void Network::silence(unsigned nc, Picos from) {
+  if (nc < 1 || nc > nc_count_) throw std::out_of_range("hdlc::Network::silence: no NC " + std::to_string(nc));
+  Station& st = stations_[nc - 1];
+  st.silent_from = std::min(st.silent_from, from);
+}
+
+void Network::supervise(bool on, Picos when) {
+  at(when, [this, on] {
+    supervising_ = on;
+    if (!on || t_.hdlc_poll_interval_ns == 0) return;
+    // Idle from now on: the first poll goes out one interval later.
+    for (unsigned k = 1; k <= nc_count_; ++k) {
+      stations_[k - 1].heard = std::max(stations_[k - 1].heard, now_);
+      schedule_idle_check(k, now_ + t_.hdlc_poll_interval_ns * 1000);
+    }
+  });
+}
+
+bool Network::silent(unsigned nc) const { return now_ >= stations_[nc - 1].silent_from; }
+
+bool Network::link_up(unsigned nc) const { return stations_.at(nc - 1).up; }
+
+std::vector<LinkDown> Network::take_link_downs() {
+  std::vector<LinkDown> d(link_downs_.begin() + static_cast<long>(link_downs_taken_), link_downs_.end());
+  link_downs_taken_ = link_downs_.size();
+  return d;
 }
 
 // ---------------------------------------------------------------- events
@@ -204,11 +260,11 @@ void Network::run_until(Picos t) {
 }
 
 bool Network::run_until_complete(MessageId id, Picos limit) {
-  while (!messages_.at(id).complete) {
+  while (!settled(id)) {
     if (events_.empty() || events_.top().t > limit) return false;
     step();
   }
-  return true;
+  return messages_[id].complete;
 }
 
 bool Network::all_complete() const {
@@ -217,11 +273,20 @@ bool Network::all_complete() const {
 }
 
 bool Network::run_until_all_complete(Picos limit) {
-  while (!all_complete()) {
+  auto all_settled = [this] {
+    return std::all_of(messages_.begin(), messages_.end(),
+                       [](const MessageStatus& m) { return m.complete || m.lost; });
+  };
+  while (!all_settled()) {
     if (events_.empty() || events_.top().t > limit) return false;
     step();
   }
-  return true;
+  return all_complete();
+}
+
+std::optional<Picos> Network::next_event() const {
+  if (events_.empty()) return std::nullopt;
+  return events_.top().t;
 }
 
 // ---------------------------------------------------------------- sending
@@ -248,6 +313,11 @@ MessageId Network::send(Picos when, unsigned from, std::uint8_t address, Bytes d
   messages_.push_back(st);
   at(when, [this, s, id, data = std::move(data), chunk] {
     messages_[id].submitted = now_;
+    // A link that is down takes nothing (for a broadcast: when every NC's is).
+    if (std::all_of(s->gone.begin(), s->gone.end(), [](bool g) { return g; })) {
+      messages_[id].lost = true;
+      return;
+    }
     const std::size_t n = messages_[id].frames;
     for (std::size_t i = 0; i < n; ++i) {
       Segment seg;
@@ -270,25 +340,10 @@ bool Network::sendable(const Sender& s) const {
 
 void Network::try_transmit(Line& l) {
   if (l.busy) return;
-  // Acknowledgements first: they free the far end's window.
+  if (l.index != 0 && silent(l.index)) return;  // a stopped station sends nothing
   Picos earliest = ~Picos{0};
-  const std::size_t na = l.ackers.size();
-  for (std::size_t i = 0; i < na; ++i) {
-    Receiver& r = *l.ackers[(l.rr_acker + i) % na];
-    if (!r.ack_pending) continue;
-    if (r.ack_due > now_) {
-      earliest = std::min(earliest, r.ack_due);
-      continue;
-    }
-    l.rr_acker = (l.rr_acker + i + 1) % na;
-    r.ack_pending = false;
-    (r.ack_kind == Supervisory::REJ ? r.stats.rej_sent : r.stats.rr_sent)++;
-    Frame f;
-    f.address = r.ack_address;
-    f.control = Control::super(r.ack_kind, static_cast<std::uint8_t>(r.vr & 7)).octet();
-    transmit(l, f, nullptr);
-    return;
-  }
+  // Acknowledgements first: they free the far end's window; then polls.
+  if (transmit_ack(l, earliest) || transmit_poll(l)) return;
   const std::size_t ns = l.senders.size();
   for (std::size_t i = 0; i < ns; ++i) {
     Sender& s = *l.senders[(l.rr_sender + i) % ns];
@@ -305,8 +360,8 @@ void Network::try_transmit(Line& l) {
     std::uint8_t nr = 0;
     if (s.reverse) {
       nr = static_cast<std::uint8_t>(s.reverse->vr & 7);
-      // The piggybacked N(R) is as good as a pending RR.
-      if (s.reverse->ack_pending && s.reverse->ack_kind == Supervisory::RR) {
+      // The piggybacked N(R) is as good as a pending RR (not as the answer to a poll).
+      if (s.reverse->ack_pending && s.reverse->ack_kind == Supervisory::RR && !s.reverse->ack_final) {
         s.reverse->ack_pending = false;
       }
     }
@@ -326,7 +381,52 @@ void Network::try_transmit(Line& l) {
   }
 }
 
-void Network::transmit(Line& l, const Frame& f, Sender* s) {
+// The next due RR/REJ of the line, if any; `earliest`: when one falls due.
+bool Network::transmit_ack(Line& l, Picos& earliest) {
+  const std::size_t na = l.ackers.size();
+  for (std::size_t i = 0; i < na; ++i) {
+    Receiver& r = *l.ackers[(l.rr_acker + i) % na];
+    if (!r.ack_pending) continue;
+    if (r.ack_due > now_) {
+      earliest = std::min(earliest, r.ack_due);
+      continue;
+    }
+    l.rr_acker = (l.rr_acker + i + 1) % na;
+    r.ack_pending = false;
+    (r.ack_kind == Supervisory::REJ ? r.stats.rej_sent : r.stats.rr_sent)++;
+    Frame f;
+    f.address = r.ack_address;
+    f.control = Control::super(r.ack_kind, static_cast<std::uint8_t>(r.vr & 7), r.ack_final).octet();
+    r.ack_final = false;
+    transmit(l, f, nullptr);
+    return true;
+  }
+  return false;
+}
+
+// The RC's next queued poll (downstream only): RR with P = 1 to the NC. Its
+// N(R) acknowledges the NC's frames like any RR.
+bool Network::transmit_poll(Line& l) {
+  if (l.index != 0) return false;
+  for (unsigned i = 0; i < nc_count_; ++i) {
+    const unsigned k = static_cast<unsigned>((rr_poll_ + i) % nc_count_) + 1;
+    Station& st = stations_[k - 1];
+    if (!st.poll_queued) continue;
+    rr_poll_ = k % nc_count_;
+    st.poll_queued = false;
+    ++st.stats.polls;
+    Receiver& r = *at_rc_[k - 1];
+    if (r.ack_pending && r.ack_kind == Supervisory::RR) r.ack_pending = false;
+    Frame f;
+    f.address = static_cast<std::uint8_t>(k);
+    f.control = Control::super(Supervisory::RR, static_cast<std::uint8_t>(r.vr & 7), true).octet();
+    transmit(l, f, nullptr, k);
+    return true;
+  }
+  return false;
+}
+
+void Network::transmit(Line& l, const Frame& f, Sender* s, unsigned poll_nc) {
   if (trace_) trace_(now_, l.index, f);
   Bits bits = encode(f);
   const Picos start = now_;
@@ -334,9 +434,10 @@ void Network::transmit(Line& l, const Frame& f, Sender* s) {
   l.busy = true;
   ++l.stats.frames;
   (s ? l.stats.i_frames : l.stats.s_frames)++;
+  if (!s && (f.control & 0x10)) ++l.stats.poll_frames;
   if (s) l.stats.info_bytes += f.info.size();
   l.stats.wire_bits += bits.size();
-  at(start + dur, [this, &l, bits = std::move(bits), start, s] { frame_end(l, bits, start, s); });
+  at(start + dur, [this, &l, bits = std::move(bits), start, s, poll_nc] { frame_end(l, bits, start, s, poll_nc); });
 }
 
 void Network::start_timer(Sender& s, Picos from) {
@@ -345,19 +446,147 @@ void Network::start_timer(Sender& s, Picos from) {
   at(from + t_.hdlc_t1_timeout_ns * 1000, [this, &s, gen] {
     if (!s.timer_running || gen != s.timer_gen) return;
     s.timer_running = false;
-    if (s.base < s.highest) {
-      // T1 expired: go back to the oldest unacknowledged frame (for a broadcast,
-      // the slowest NC's) and send everything again.
-      ++s.stats.timeouts;
-      s.next = s.base;
-      try_transmit(*lines_[s.line]);
-    }
+    if (s.base < s.highest) t1_expired(s);
   });
+}
+
+// One more T1 expiry without a frame from station `nc`'s end: false once
+// N2 retries were counted already (the link has failed).
+bool Network::count_retry(unsigned& retries, unsigned nc) {
+  if (retries >= t_.hdlc_n2_retries) return false;
+  ++retries;
+  SupervisionStats& st = stations_[nc - 1].stats;
+  st.max_retries = std::max(st.max_retries, retries);
+  return true;
+}
+
+// T1 expired with frames outstanding: count a retry against every far end
+// that stayed silent (N2 reached: the link is down), then go back to the
+// oldest unacknowledged frame (for a broadcast, the slowest NC's) and send
+// everything again.
+void Network::t1_expired(Sender& s) {
+  ++s.stats.timeouts;
+  if (s.from_station != 0) {
+    // The NC's own sender: at N2 the station gives up and falls silent,
+    // waiting for a link set-up from the RC (not modelled).
+    const unsigned k = s.from_station;
+    if (!count_retry(s.retries, k)) {
+      stations_[k - 1].stats.station_gave_up = true;
+      silence(k, now_);
+      return;
+    }
+  } else if (&s == broadcast_.get()) {
+    for (std::size_t i = 0; i < s.peers.size(); ++i)
+      if (!s.gone[i] && s.acked[i] < s.highest && !count_retry(s.peer_retries[i], s.peers[i]))
+        link_down(s.peers[i], LinkDownReason::RetryLimit);
+    if (s.base >= s.highest) return;  // only NCs now gone were behind
+  } else if (!count_retry(s.retries, s.peers[0])) {
+    link_down(s.peers[0], LinkDownReason::RetryLimit);
+    return;
+  }
+  s.next = s.base;
+  try_transmit(*lines_[s.line]);
+}
+
+// ---------------------------------------------------------------- supervision
+
+bool Network::outstanding_to(unsigned nc) const {
+  const Sender& b = *broadcast_;
+  return !to_nc_[nc - 1]->frames.empty() || b.acked[nc - 1] < b.base + b.frames.size();
+}
+
+// The RC heard a good frame from NC `nc`: the station is alive.
+void Network::heard_from(unsigned nc) {
+  Station& st = stations_[nc - 1];
+  st.heard = now_;
+  st.poll_queued = st.poll_out = false;
+  st.poll_retries = 0;
+  ++st.poll_gen;
+  to_nc_[nc - 1]->retries = 0;
+  broadcast_->peer_retries[nc - 1] = 0;
+  if (supervising_) schedule_idle_check(nc, now_ + t_.hdlc_poll_interval_ns * 1000);
+}
+
+// NC `nc` heard a good frame from the RC for itself or for all.
+void Network::heard_by(unsigned nc) { to_rc_[nc - 1]->retries = 0; }
+
+// One check per station at a time: when it runs early it moves itself to
+// the interval's end after the last frame heard.
+void Network::schedule_idle_check(unsigned nc, Picos t) {
+  Station& st = stations_[nc - 1];
+  if (t_.hdlc_poll_interval_ns == 0 || st.idle_check_at != kNever) return;
+  st.idle_check_at = t;
+  at(t, [this, nc] { idle_check(nc); });
+}
+
+void Network::idle_check(unsigned nc) {
+  Station& st = stations_[nc - 1];
+  st.idle_check_at = kNever;
+  if (!supervising_ || !st.up || st.poll_queued || st.poll_out) return;
+  const Picos due = st.heard + t_.hdlc_poll_interval_ns * 1000;
+  if (due > now_) {
+    schedule_idle_check(nc, due);
+    return;
+  }
+  if (outstanding_to(nc)) {  // T1 and N2 watch the link meanwhile
+    schedule_idle_check(nc, now_ + t_.hdlc_poll_interval_ns * 1000);
+    return;
+  }
+  st.poll_queued = true;
+  try_transmit(*lines_[0]);
+}
+
+void Network::poll_expired(unsigned nc, std::uint64_t gen) {
+  Station& st = stations_[nc - 1];
+  if (gen != st.poll_gen || !st.poll_out || !st.up) return;
+  st.poll_out = false;
+  if (!supervising_) return;
+  if (!count_retry(st.poll_retries, nc)) {
+    link_down(nc, LinkDownReason::PollUnanswered);
+    return;
+  }
+  st.poll_queued = true;
+  try_transmit(*lines_[0]);
+}
+
+// The RC gives NC `nc`'s link up: everything queued on it either way is
+// dropped and the NC stops holding the broadcast window. The model ends the
+// station's side at once too (with no link set-up modelled it would only
+// retry into the void until its own N2 ran out).
+void Network::link_down(unsigned nc, LinkDownReason why) {
+  Station& st = stations_[nc - 1];
+  if (!st.up) return;
+  st.up = false;
+  st.poll_queued = st.poll_out = false;
+  st.silent_from = std::min(st.silent_from, now_);
+  link_downs_.push_back(LinkDown{now_, nc, why});
+  at_rc_[nc - 1]->ack_pending = false;
+  at_nc_[nc - 1]->ack_pending = false;
+  bcast_at_nc_[nc - 1]->ack_pending = false;
+  drop(*to_nc_[nc - 1]);
+  drop(*to_rc_[nc - 1]);
+  Sender& b = *broadcast_;
+  b.gone[nc - 1] = true;
+  if (std::all_of(b.gone.begin(), b.gone.end(), [](bool g) { return g; }))
+    drop(b);
+  else
+    advance_base(b);
+  try_transmit(*lines_[0]);
+}
+
+void Network::drop(Sender& s) {
+  for (const auto& m : s.open) messages_[m.first].lost = true;
+  s.open.clear();
+  s.frames.clear();
+  s.gone.assign(s.gone.size(), true);
+  s.base = s.next = s.highest = std::max(s.highest, s.base);
+  s.timer_running = false;
+  ++s.timer_gen;
 }
 
 // ---------------------------------------------------------------- receiving
 
-void Network::frame_end(Line& l, const Bits& bits, Picos start, Sender* s) {
+void Network::frame_end(Line& l, const Bits& bits, Picos start, Sender* s, unsigned poll_nc) {
   l.stats.busy_ps += now_ - start;
   for (Endpoint& ep : l.rx) {
     const Bits got = ep.wire.receive(bits, start, t_.hdlc_bit_rate_bps);
@@ -368,6 +597,12 @@ void Network::frame_end(Line& l, const Bits& bits, Picos start, Sender* s) {
     for (const Frame& f : frames) dispatch(l, ep, f);
   }
   if (s && !s->timer_running && s->base < s->highest) start_timer(*s, now_);
+  if (poll_nc && stations_[poll_nc - 1].up) {  // the poll's answer is due within T1
+    Station& st = stations_[poll_nc - 1];
+    st.poll_out = true;
+    const std::uint64_t gen = ++st.poll_gen;
+    at(now_ + t_.hdlc_t1_timeout_ns * 1000, [this, poll_nc, gen] { poll_expired(poll_nc, gen); });
+  }
   l.busy = false;
   try_transmit(l);
 }
@@ -377,15 +612,25 @@ void Network::dispatch(Line& l, Endpoint& ep, const Frame& f) {
   if (!c || c->type == FrameType::U) return;  // links are up from time 0; no U traffic
   if (l.index == 0) {  // an NC hears the RC
     const unsigned k = ep.station;
+    if (silent(k) || !stations_[k - 1].up) return;  // a stopped station takes nothing
     if (f.address == k) {
+      heard_by(k);
       if (c->type == FrameType::I) on_info(*at_nc_[k - 1], f, *c);
       on_ack(*to_rc_[k - 1], 0, c->nr, c->type == FrameType::S && c->s == Supervisory::REJ);
+      if (c->type == FrameType::S && c->pf) {  // a poll: answer RR F = 1
+        at_nc_[k - 1]->ack_final = true;
+        schedule_ack(*at_nc_[k - 1], Supervisory::RR);
+      }
     } else if (f.address == kAddrBroadcast && c->type == FrameType::I) {
+      heard_by(k);
       on_info(*bcast_at_nc_[k - 1], f, *c);
     }
     return;
   }
   const unsigned k = l.index;  // the RC hears NC k
+  if (!stations_[k - 1].up) return;  // given up: the RC no longer listens to it
+  heard_from(k);
+  if (c->type == FrameType::S && c->pf) ++stations_[k - 1].stats.poll_answers;
   const bool rej = c->type == FrameType::S && c->s == Supervisory::REJ;
   if (f.address == kAddrRc) {
     if (c->type == FrameType::I) on_info(*at_rc_[k - 1], f, *c);
@@ -433,6 +678,7 @@ void Network::on_info(Receiver& r, const Frame& f, const Control& c) {
 }
 
 void Network::on_ack(Sender& s, std::size_t peer, std::uint8_t nr, bool rej) {
+  if (s.gone[peer]) return;
   std::uint64_t& a = s.acked[peer];
   const std::uint64_t d = (nr - a) & 7;
   if (d > s.highest - a) return;  // N(R) outside the window: stale, ignore
@@ -441,24 +687,32 @@ void Network::on_ack(Sender& s, std::size_t peer, std::uint8_t nr, bool rej) {
     ++s.stats.rej_received;
     s.next = std::min(s.next, a);
   }
-  const std::uint64_t base = *std::min_element(s.acked.begin(), s.acked.end());
-  if (base > s.base) {
-    s.frames.erase(s.frames.begin(), s.frames.begin() + static_cast<long>(base - s.base));
-    s.base = base;
-    while (!s.open.empty() && s.open.front().second < base) {
-      MessageStatus& m = messages_[s.open.front().first];
-      m.complete = true;
-      m.completed = now_;
-      ++s.stats.messages_completed;
-      s.open.pop_front();
-    }
-    if (s.base < s.highest)
-      start_timer(s, now_);
-    else
-      s.timer_running = false;
-  }
+  advance_base(s);
   s.next = std::max(s.next, s.base);
   try_transmit(*lines_[s.line]);
+}
+
+// The window base is the slowest peer's acknowledgement (NCs whose link is
+// down no longer count): frames below it are done, so are their messages.
+void Network::advance_base(Sender& s) {
+  std::uint64_t base = ~std::uint64_t{0};
+  for (std::size_t i = 0; i < s.acked.size(); ++i)
+    if (!s.gone[i]) base = std::min(base, s.acked[i]);
+  if (base == ~std::uint64_t{0} || base <= s.base) return;
+  s.frames.erase(s.frames.begin(), s.frames.begin() + static_cast<long>(base - s.base));
+  s.base = base;
+  while (!s.open.empty() && s.open.front().second < base) {
+    MessageStatus& m = messages_[s.open.front().first];
+    m.complete = true;
+    m.completed = now_;
+    ++s.stats.messages_completed;
+    s.open.pop_front();
+  }
+  if (s.base < s.highest)
+    start_timer(s, now_);
+  else
+    s.timer_running = false;
+  s.next = std::max(s.next, s.base);
 }
 
 // ---------------------------------------------------------------- results
@@ -491,5 +745,6 @@ const ReceiverStats& Network::broadcast_receiver_at_nc(unsigned nc) const {
 const ReceiverStats& Network::receiver_at_rc(unsigned nc) const {
   return at_rc_.at(nc - 1)->stats;
 }
+const SupervisionStats& Network::supervision(unsigned nc) const { return stations_.at(nc - 1).stats; }
 
 }  // namespace mc1::hdlc

@@ -16,14 +16,25 @@
 // A message is cut into I-frames whose information field starts with one
 // segment octet (bit 0 = last segment of the message).
 //
-// Nothing is lost: there is no retry limit (N2 is infinite), so every message
-// arrives exactly once and in order once the line works again.
+// Link supervision (docs/hdlc.md "Supervision"): every T1 expiry that finds
+// the far station silent since the last one counts a retry; after
+// hdlc_n2_retries of them the RC declares NC k's link down. While
+// supervise() is on, the RC also polls (RR with P = 1) a station it has not
+// heard from for hdlc_poll_interval_ns when nothing is outstanding to it; a
+// poll unanswered N2 + 1 times in a row takes the link down too. A link that
+// is down stays down (no link set-up is modelled): the messages queued on
+// it in either direction are dropped (MessageStatus::lost) and the NC no
+// longer holds the broadcast window. A station can be stopped (silence(): its
+// link protocol runs on the NC's processor): from then on it sends, answers
+// and takes nothing. While a link is up, every message arrives exactly once
+// and in order once the line works again.
 #pragma once
 
 #include <cstdint>
 #include <deque>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <queue>
 #include <vector>
 
@@ -32,9 +43,11 @@
 
 namespace mc1::hdlc {
 
+constexpr Picos kNever = ~Picos{0};
+
 struct DeadWindow {
   Picos begin = 0;  // [begin, end): bits sent in this span arrive as idle 1s
-  Picos end = 0;
+  Picos end = 0;    // kNever: the line is cut for good
 };
 
 // Faults of one receiving end of a line.
@@ -73,6 +86,7 @@ struct LineStats {
   std::uint64_t wire_bits = 0;   // flags and inserted zeros included
   Picos busy_ps = 0;
   std::uint64_t retransmissions = 0;  // I-frames sent again
+  std::uint64_t poll_frames = 0;      // RR with P/F set: polls (down), their answers (up)
 };
 
 struct ReceiveStats {
@@ -87,6 +101,26 @@ struct SenderStats {
 
 struct ReceiverStats {
   std::uint64_t accepted = 0, out_of_sequence = 0, messages = 0, rr_sent = 0, rej_sent = 0;
+};
+
+enum class LinkDownReason : std::uint8_t {
+  RetryLimit,      // N2 retransmissions after T1 without a frame from the station
+  PollUnanswered,  // an idle link's poll unanswered N2 + 1 times in a row
+};
+const char* link_down_reason_name(LinkDownReason r);  // "retry limit", "poll unanswered"
+
+struct LinkDown {
+  Picos time = 0;  // the RC declared it
+  unsigned nc = 0;
+  LinkDownReason reason = LinkDownReason::RetryLimit;
+};
+
+// The RC's supervision of one NC's link, and that station's side.
+struct SupervisionStats {
+  std::uint64_t polls = 0;         // polls the RC sent it
+  std::uint64_t poll_answers = 0;  // RR with F = 1 heard from it
+  unsigned max_retries = 0;        // most retries counted in a row on any of its links (margin to N2)
+  bool station_gave_up = false;    // the NC's own sender reached N2 (it then fell silent)
 };
 
 using MessageId = std::uint64_t;
@@ -106,6 +140,7 @@ struct MessageStatus {
   Picos submitted = 0;  // when it entered the send queue
   bool complete = false;
   Picos completed = 0;  // the last acknowledgement (of every NC, for a broadcast)
+  bool lost = false;    // dropped: its link went down (never complete)
   std::size_t frames = 0;
   std::vector<Picos> delivered;  // per destination station, in station order
 };
@@ -119,6 +154,11 @@ class Network {
 
   unsigned nc_count() const { return nc_count_; }
   void set_faults(Direction d, unsigned nc, const LinkFaults& f);
+  // NC `nc`'s station falls silent at `from`: a frame it is sending completes,
+  // nothing more is sent, answered or taken (its processor ran the protocol).
+  void silence(unsigned nc, Picos from);
+  // From `at` on, the RC polls idle links (on) or stops polling (off).
+  void supervise(bool on, Picos at);
 
   // Queues a message at time `at` (or now, if `at` is already past).
   // From the RC (station 0): address = NC id or kAddrBroadcast; from NC k: kAddrRc.
@@ -126,10 +166,18 @@ class Network {
 
   Picos now() const { return now_; }
   void run_until(Picos t);
-  // Runs until message `id` is complete; false if `limit` passes first.
+  // Runs until message `id` is complete or lost; true if complete, false if
+  // lost or `limit` passes first. (With supervise() on, events never run out.)
   bool run_until_complete(MessageId id, Picos limit = ~Picos{0});
+  // Runs until every message is complete or lost; true if every one is complete.
   bool run_until_all_complete(Picos limit = ~Picos{0});
   bool all_complete() const;
+  bool settled(MessageId id) const { return messages_.at(id).complete || messages_.at(id).lost; }
+  std::optional<Picos> next_event() const;  // time of the earliest scheduled event
+
+  bool link_up(unsigned nc) const;
+  std::vector<LinkDown> take_link_downs();  // declared since the last call, in order
+  const std::vector<LinkDown>& link_downs() const { return link_downs_; }
 
   const MessageStatus& status(MessageId id) const;
   std::vector<Delivery> take_deliveries();
@@ -143,6 +191,7 @@ class Network {
   const ReceiverStats& receiver_at_nc(unsigned nc) const;  // RC -> NC link
   const ReceiverStats& broadcast_receiver_at_nc(unsigned nc) const;
   const ReceiverStats& receiver_at_rc(unsigned nc) const;  // NC -> RC link
+  const SupervisionStats& supervision(unsigned nc) const;
   // Every frame put on any line, for tracing: (start time, line, frame); line 0 = down.
   void set_trace(std::function<void(Picos, unsigned, const Frame&)> fn) { trace_ = std::move(fn); }
 
@@ -152,18 +201,33 @@ class Network {
   struct Receiver;
   struct Endpoint;
   struct Line;
+  struct Station;
 
   void at(Picos t, std::function<void()> fn);
   void step();
   void try_transmit(Line& l);
-  void transmit(Line& l, const Frame& f, Sender* s);
-  void frame_end(Line& l, const Bits& bits, Picos start, Sender* s);
+  bool transmit_ack(Line& l, Picos& earliest);
+  bool transmit_poll(Line& l);
+  void transmit(Line& l, const Frame& f, Sender* s, unsigned poll_nc = 0);
+  void frame_end(Line& l, const Bits& bits, Picos start, Sender* s, unsigned poll_nc);
   void dispatch(Line& l, Endpoint& ep, const Frame& f);
   void on_info(Receiver& r, const Frame& f, const Control& c);
   void on_ack(Sender& s, std::size_t peer, std::uint8_t nr, bool rej);
+  void advance_base(Sender& s);
   void schedule_ack(Receiver& r, Supervisory kind);
   bool sendable(const Sender& s) const;
   void start_timer(Sender& s, Picos from);
+  void t1_expired(Sender& s);
+  bool count_retry(unsigned& retries, unsigned nc);  // false: N2 reached
+  bool silent(unsigned nc) const;
+  bool outstanding_to(unsigned nc) const;
+  void heard_from(unsigned nc);
+  void heard_by(unsigned nc);
+  void schedule_idle_check(unsigned nc, Picos t);
+  void idle_check(unsigned nc);
+  void poll_expired(unsigned nc, std::uint64_t gen);
+  void link_down(unsigned nc, LinkDownReason why);
+  void drop(Sender& s);
 
   TimingParams t_;
   unsigned nc_count_;
@@ -183,6 +247,11 @@ class Network {
   std::vector<std::unique_ptr<Receiver>> at_nc_, bcast_at_nc_, at_rc_;  // index k-1
   std::vector<MessageStatus> messages_;
   std::vector<Delivery> deliveries_;
+  std::vector<Station> stations_;  // index k-1
+  bool supervising_ = false;
+  std::size_t rr_poll_ = 0;
+  std::vector<LinkDown> link_downs_;
+  std::size_t link_downs_taken_ = 0;
   std::function<void(Picos, unsigned, const Frame&)> trace_;
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "hdlc_link_event.hpp"
 #include "sc_time_conv.hpp"
 
 namespace mc1 {
@@ -41,6 +42,11 @@ void HdlcChannel::set_faults(hdlc::Direction d, unsigned nc, const hdlc::LinkFau
   nets_[port_of(nc)]->set_faults(d, address_of(nc), f);
 }
 
+void HdlcChannel::stop_station(unsigned nc, Picos from) {
+  if (nc < 1 || nc > nc_count_) throw std::out_of_range("HdlcChannel::stop_station: no NC " + std::to_string(nc));
+  nets_[port_of(nc)]->silence(address_of(nc), from);
+}
+
 bool HdlcChannel::check(tlm::tlm_generic_payload& p) {
   if (p.get_command() != tlm::TLM_WRITE_COMMAND) {
     p.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
@@ -53,9 +59,11 @@ bool HdlcChannel::check(tlm::tlm_generic_payload& p) {
   return true;
 }
 
-void HdlcChannel::queue(Picos at, unsigned from, sc_dt::uint64 address, const tlm::tlm_generic_payload& p) {
-  pending_.push_back(Pending{at, from, address, pending_seq_++,
-                             hdlc::Bytes(p.get_data_ptr(), p.get_data_ptr() + p.get_data_length())});
+void HdlcChannel::queue(Picos at, unsigned from, sc_dt::uint64 address, const tlm::tlm_generic_payload& p,
+                        Control control) {
+  hdlc::Bytes data;
+  if (p.get_data_length()) data.assign(p.get_data_ptr(), p.get_data_ptr() + p.get_data_length());
+  pending_.push_back(Pending{at, from, address, pending_seq_++, std::move(data), control});
   sent_.notify(sc_core::SC_ZERO_TIME);
 }
 
@@ -68,7 +76,10 @@ void HdlcChannel::submit() {
     return a.seq < b.seq;
   });
   for (Pending& m : pending_) {
-    if (m.from == 0 && m.address == kHdlcBroadcast) {
+    if (m.control != Control::None) {
+      supervising_ = m.control == Control::SuperviseOn;
+      for (unsigned port = 0; port < ports(); ++port) nets_[port]->supervise(supervising_, m.at);
+    } else if (m.from == 0 && m.address == kHdlcBroadcast) {
       for (unsigned port = 0; port < ports(); ++port)
         open_[port].push_back(nets_[port]->send(m.at, 0, hdlc::kAddrBroadcast, m.data));
     } else if (m.from == 0) {
@@ -85,6 +96,16 @@ void HdlcChannel::submit() {
 
 void HdlcChannel::from_rc(tlm::tlm_generic_payload& p, sc_core::sc_time& delay) {
   if (!check(p)) return;
+  if (const auto* ev = p.get_extension<HdlcLinkEvent>()) {
+    if (ev->kind == HdlcLinkEvent::Kind::LinkDown) {
+      p.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
+      return;
+    }
+    queue(to_picos(sc_core::sc_time_stamp() + delay), 0, kHdlcBroadcast, p,
+          ev->kind == HdlcLinkEvent::Kind::SuperviseOn ? Control::SuperviseOn : Control::SuperviseOff);
+    p.set_response_status(tlm::TLM_OK_RESPONSE);
+    return;
+  }
   const sc_dt::uint64 addr = p.get_address();
   if (addr != kHdlcBroadcast && (addr < 1 || addr > nc_count_)) {
     p.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
@@ -104,10 +125,25 @@ void HdlcChannel::from_nc(int index, tlm::tlm_generic_payload& p, sc_core::sc_ti
   p.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
+// Nothing open: sleep until the next send or, while the links are
+// supervised, the networks' next timer (a poll, T1 of a poll).
+void HdlcChannel::idle_wait() {
+  std::optional<Picos> next;
+  if (supervising_)
+    for (const auto& net : nets_)
+      if (const std::optional<Picos> t = net->next_event(); t && (!next || *t < *next)) next = t;
+  const Picos now = to_picos(sc_core::sc_time_stamp());
+  if (next && *next > now)
+    sc_core::wait(to_sc_time(*next - now), sent_);
+  else
+    sc_core::wait(sent_);
+}
+
 void HdlcChannel::pump() {
   struct Due {
     unsigned to, from;  // global stations: 0 = RC, k = NC k
     hdlc::Delivery d;
+    std::optional<hdlc::LinkDown> down;  // not a message: NC `from`'s link is down
   };
   std::vector<Due> due;
   for (;;) {
@@ -115,13 +151,12 @@ void HdlcChannel::pump() {
     for (unsigned port = 0; port < ports(); ++port) {
       auto& open = open_[port];
       const hdlc::Network& net = *nets_[port];
-      open.erase(std::remove_if(open.begin(), open.end(),
-                                [&](hdlc::MessageId id) { return net.status(id).complete; }),
+      open.erase(std::remove_if(open.begin(), open.end(), [&](hdlc::MessageId id) { return net.settled(id); }),
                  open.end());
       idle = idle && open.empty();
     }
     if (idle)
-      sc_core::wait(sent_);
+      idle_wait();
     else
       sc_core::wait(to_sc_time(step_));
 
@@ -133,13 +168,19 @@ void HdlcChannel::pump() {
       for (hdlc::Delivery& d : nets_[port]->take_deliveries()) {
         const unsigned to = d.to_station == 0 ? 0 : first_nc(port) + d.to_station - 1;
         const unsigned from = d.from_station == 0 ? 0 : first_nc(port) + d.from_station - 1;
-        due.push_back({to, from, std::move(d)});
+        due.push_back({to, from, std::move(d), std::nullopt});
+      }
+      for (const hdlc::LinkDown& x : nets_[port]->take_link_downs()) {
+        hdlc::Delivery d;
+        d.time = x.time;
+        due.push_back({0, first_nc(port) + x.nc - 1, std::move(d), x});
       }
     }
     std::sort(due.begin(), due.end(), [](const Due& a, const Due& b) {
       if (a.d.time != b.d.time) return a.d.time < b.d.time;
       if (a.to != b.to) return a.to < b.to;
       if (a.from != b.from) return a.from < b.from;
+      if (a.down.has_value() != b.down.has_value()) return !a.down;  // its messages before its link-down
       return a.d.id < b.d.id;
     });
     for (Due& x : due) {
@@ -150,9 +191,16 @@ void HdlcChannel::pump() {
       q.set_streaming_width(static_cast<unsigned>(x.d.data.size()));
       q.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
       sc_core::sc_time at = sc_core::SC_ZERO_TIME;
+      HdlcLinkEvent ev(HdlcLinkEvent::Kind::LinkDown);
+      if (x.down) {
+        ev.reason = x.down->reason;
+        ev.declared = x.down->time;
+        q.set_extension(&ev);
+      }
       if (x.to == 0) {
         q.set_address(x.from);
         hdlc2rc->b_transport(q, at);
+        if (x.down) q.clear_extension(&ev);
       } else {
         q.set_address(x.d.address == hdlc::kAddrBroadcast ? kHdlcBroadcast : x.to);
         hdlc2nc[static_cast<int>(x.to) - 1]->b_transport(q, at);

@@ -20,6 +20,13 @@
 // destination, source), so the simulation does not depend on the order in
 // which SystemC runs processes of one instant (tracing adds processes).
 //
+// Supervision (docs/hdlc.md): the RC switches polling of idle links on and
+// off with an HdlcLinkEvent on rc2nc_hdlc; while it is on, the pump also
+// wakes for the networks' timers when no message is open. A link that goes
+// down is reported to the RC through hdlc2rc as an HdlcLinkEvent (address =
+// the NC, no data), in time order with the messages. stop_station() makes an
+// NC's station silent from a given time (its processor stopped).
+//
 // Sockets: rc2nc_hdlc (address = NC id 1..N or kHdlcBroadcast), nc2rc_hdlc
 // (NC k is the k-th binder, address 0), hdlc2nc (bound to NC 1..N in order;
 // address = NC id or kHdlcBroadcast), hdlc2rc (address = the sending NC).
@@ -63,6 +70,9 @@ class HdlcChannel : public sc_core::sc_module {
   // Faults of NC `nc`'s end of a line (Down: its drop of the downstream line;
   // Up: the RC's end of its upstream line).
   void set_faults(hdlc::Direction d, unsigned nc, const hdlc::LinkFaults& f);
+  // NC `nc`'s station sends, answers and takes nothing from `from` on (its
+  // link protocol runs on the NC's processor, stopped then: --kill-node).
+  void stop_station(unsigned nc, Picos from);
 
   // Adds "line busy" signals to `tf`: hdlc_down<p> per port, hdlc_up<k> per NC.
   void trace(sc_core::sc_trace_file* tf);
@@ -83,14 +93,18 @@ class HdlcChannel : public sc_core::sc_module {
   void from_rc(tlm::tlm_generic_payload& p, sc_core::sc_time& delay);
   void from_nc(int index, tlm::tlm_generic_payload& p, sc_core::sc_time& delay);
   bool check(tlm::tlm_generic_payload& p);
+  enum class Control : std::uint8_t { None, SuperviseOn, SuperviseOff };
   struct Pending {
     Picos at;
     unsigned from;           // 0 = RC, k = NC k
     sc_dt::uint64 address;   // kHdlcBroadcast or NC id (from the RC); 0 (from an NC)
     std::uint64_t seq;
     hdlc::Bytes data;
+    Control control = Control::None;  // not a message: a command of the RC
   };
-  void queue(Picos at, unsigned from, sc_dt::uint64 address, const tlm::tlm_generic_payload& p);
+  void queue(Picos at, unsigned from, sc_dt::uint64 address, const tlm::tlm_generic_payload& p,
+             Control control = Control::None);
+  void idle_wait();
   void submit();  // pending sends into the networks, in canonical order
   void pump();
   void tracer();
@@ -105,6 +119,7 @@ class HdlcChannel : public sc_core::sc_module {
   std::vector<Pending> pending_;
   std::uint64_t pending_seq_ = 0;
   sc_core::sc_event sent_;
+  bool supervising_ = false;
 
   bool tracing_ = false;
   std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> down_busy_, up_busy_;

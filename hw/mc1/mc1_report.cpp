@@ -60,6 +60,15 @@ std::string stats_json(const FrameReport& r) {
   o << "], \"kills\": [";
   for (std::size_t i = 0; i < r.kills.size(); ++i)
     o << (i ? ", " : "") << "{\"nc\": " << r.kills[i].nc << ", \"time_ps\": " << r.kills[i].time << "}";
+  o << "], \"cut_lines\": [";
+  for (std::size_t i = 0; i < r.cut_lines.size(); ++i)
+    o << (i ? ", " : "") << "{\"nc\": " << r.cut_lines[i].nc << ", \"time_ps\": " << r.cut_lines[i].time << "}";
+  o << "], \"link_downs\": [";
+  for (std::size_t i = 0; i < r.link_downs.size(); ++i) {
+    const rc::LinkDown& x = r.link_downs[i];
+    o << (i ? ", " : "") << "{\"time_ps\": " << x.time << ", \"taken_ps\": " << x.taken << ", \"nc\": " << x.nc
+      << ", \"reason\": " << quoted(hdlc::link_down_reason_name(x.reason)) << ", \"requeued\": " << x.requeued << "}";
+  }
   o << "], \"timeouts\": [";
   for (std::size_t i = 0; i < r.timeouts.size(); ++i) {
     const rc::Timeout& x = r.timeouts[i];
@@ -129,6 +138,7 @@ std::string stats_json(const FrameReport& r) {
       << ", \"blocks\": " << n.blocks << ", \"pixels\": " << n.pixels << ", \"runs\": " << n.runs
       << ", \"finished_ps\": " << n.finished_at;
     if (n.killed) o << ", \"killed_ps\": " << n.killed_at;
+    if (n.link_down) o << ", \"link_down_ps\": " << n.link_down;
     if (!n.milestones.empty()) {
       o << ", \"milestones\": {";
       for (std::size_t m = 0; m < n.milestones.size(); ++m)
@@ -151,7 +161,7 @@ std::string stats_json(const FrameReport& r) {
     s << "{\"" << key << "\": " << id << ", \"frames\": " << l.frames << ", \"i_frames\": " << l.i_frames
       << ", \"s_frames\": " << l.s_frames << ", \"info_bytes\": " << l.info_bytes << ", \"wire_bits\": " << l.wire_bits
       << ", \"busy_ps\": " << l.busy << ", \"utilization\": " << num(ratio(l.busy, T))
-      << ", \"retransmissions\": " << l.retransmissions << "}";
+      << ", \"retransmissions\": " << l.retransmissions << ", \"poll_frames\": " << l.poll_frames << "}";
     return s.str();
   };
   std::string down, up;
@@ -167,6 +177,7 @@ std::string stats_json(const FrameReport& r) {
     << ", \"frames\": " << frames << ", \"retransmissions\": " << retx << ", \"timeouts\": " << h.timeouts
     << ", \"rej_received\": " << h.rej_received << ", \"fcs_errors\": " << h.fcs_errors
     << ", \"aborts\": " << h.aborts << ", \"bits_flipped\": " << h.bits_flipped << ", \"bits_dead\": " << h.bits_dead
+    << ", \"polls\": " << h.polls << ", \"poll_answers\": " << h.poll_answers << ", \"max_retries\": " << h.max_retries
     << ",\n    \"down_utilization\": " << num(ratio(down_busy, T * std::max<std::size_t>(1, h.down.size())))
     << ", \"up_utilization_mean\": " << num(ratio(up_busy, T * std::max<std::size_t>(1, h.up.size())))
     << ",\n    \"down\": [\n      " << down << "],\n    \"up\": [\n      " << up << "]},\n";
@@ -308,7 +319,8 @@ std::string gantt_svg(const FrameReport& r) {
   o << buf;
   std::snprintf(buf, sizeof buf,
                 "<text x=\"%.0f\" y=\"34\" fill=\"#555\">rows: NC activity; dark band: APU running; black "
-                "ticks: the RC's dispatches (blue: block-list jobs); red: missed deadlines</text>\n",
+                "ticks: the RC's dispatches (blue: block-list jobs); red: missed deadlines; purple: links "
+                "down</text>\n",
                 left);
   o << buf;
 
@@ -342,6 +354,15 @@ std::string gantt_svg(const FrameReport& r) {
                   "<path d=\"M %.2f %.2f l -5 -8 l 10 0 z\" fill=\"#d50000\"><title>deadline of NC %u passed: %u "
                   "pieces handed out again</title></path>\n",
                   X(x.time), rc_y + rc_h, x.nc, x.requeued);
+    o << buf;
+  }
+  // Links the RC's controller gave up: the NC is lost, its pieces go to others.
+  for (const rc::LinkDown& x : r.link_downs) {
+    if (x.time > r.frame_time) continue;  // found after the frame (a Finish unanswered)
+    std::snprintf(buf, sizeof buf,
+                  "<path d=\"M %.2f %.2f l -5 -8 l 10 0 z\" fill=\"#8e24aa\"><title>link of NC %u down (%s): %u "
+                  "pieces handed out again</title></path>\n",
+                  X(x.time), rc_y + rc_h, x.nc, hdlc::link_down_reason_name(x.reason), x.requeued);
     o << buf;
   }
   // Phase boundaries: every NC has the scene; the RC has every block list.
@@ -384,6 +405,14 @@ std::string gantt_svg(const FrameReport& r) {
         o << buf;
       }
     }
+  }
+  for (const rc::LinkDown& x : r.link_downs) {  // on the NC's row too
+    if (x.time > r.frame_time) continue;
+    const double y = rows_y + (x.nc - 1) * row_h;
+    std::snprintf(buf, sizeof buf,
+                  "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#8e24aa\" stroke-width=\"2\"/>\n",
+                  X(x.time), y, X(x.time), y + row_h);
+    o << buf;
   }
   for (const rc::Dispatch& d : r.dispatches) {
     if (d.block == rc::kNoBlock) continue;

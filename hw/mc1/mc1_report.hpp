@@ -18,6 +18,7 @@ struct NcReport {
   Picos busy = 0, wait_rc = 0, wait_bus = 0, idle = 0, dead = 0;  // sum = frame time
   bool killed = false;
   Picos killed_at = 0;
+  Picos link_down = 0;  // the RC's controller gave its link up (0: never)
   std::vector<std::pair<std::string, Picos>> milestones;
   Picos apu_busy = 0;                                   // APU started, not halted
   std::uint64_t apu_cycles = 0, blocks = 0, pixels = 0, runs = 0;
@@ -33,6 +34,7 @@ struct NcReport {
 struct LineReport {
   std::string name;  // "down0", "up17"
   std::uint64_t frames = 0, i_frames = 0, s_frames = 0, info_bytes = 0, wire_bits = 0, retransmissions = 0;
+  std::uint64_t poll_frames = 0;  // polls (down), their answers (up); counted in s_frames too
   Picos busy = 0;
 };
 
@@ -41,6 +43,8 @@ struct HdlcReport {
   std::vector<LineReport> down, up;  // per RC port; per NC
   std::uint64_t fcs_errors = 0, aborts = 0, bits_flipped = 0, bits_dead = 0;
   std::uint64_t timeouts = 0, rej_received = 0;
+  std::uint64_t polls = 0, poll_answers = 0;  // link supervision (docs/hdlc.md)
+  unsigned max_retries = 0;                   // most unanswered T1 expiries in a row on any link
 };
 
 struct BusReport {
@@ -66,6 +70,11 @@ struct DeadLinkReport {
   Picos begin = 0, end = 0;
 };
 
+struct CutLineReport {
+  unsigned nc = 0;
+  Picos time = 0;
+};
+
 struct FrameReport {
   std::string engine;
   std::string schedule;
@@ -74,7 +83,9 @@ struct FrameReport {
   double ber = 0;
   std::vector<DeadLinkReport> dead_links;
   std::vector<KillReport> kills;
+  std::vector<CutLineReport> cut_lines;
   std::vector<rc::Timeout> timeouts;
+  std::vector<rc::LinkDown> link_downs;
   std::vector<std::uint32_t> block_loads;     // step 2's predicted load by block id (rendered frame)
   std::vector<rc::BlockListMsg> block_lists;  // step 2's block lists by block id (rendered frame)
   Picos frame_time = 0;

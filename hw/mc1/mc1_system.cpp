@@ -29,6 +29,9 @@ rc::FramePlan diag_plan(const SystemConfig& cfg, std::vector<apu::Encoded> progr
                  rc::encode(rc::SetupMsg{static_cast<std::uint16_t>(cfg.width),
                                          static_cast<std::uint16_t>(cfg.height)})};
   p.blocks = rc::split_screen(cfg.width, cfg.height, cfg.block_w, cfg.block_h);
+  // An NC lost to the frame: the others wait for its blocks instead of
+  // taking Finish early (and a deadline backs the link supervision up).
+  p.fault_tolerant = !cfg.kills.empty() || !cfg.cut_lines.empty();
   return p;
 }
 
@@ -77,16 +80,24 @@ Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::
       throw std::invalid_argument("kill of NC " + std::to_string(x.nc) + ": the machine has NC 1.." +
                                   std::to_string(cfg.nodes));
     ncs_[x.nc - 1]->kill_at(x.time);
+    // The NC's MPU runs its link protocol: its station falls silent with it.
+    hdlc_->stop_station(x.nc, x.time);
   }
   for (const DeadLink& d : cfg.dead_links)
     if (d.nc < 1 || d.nc > cfg.nodes)
       throw std::invalid_argument("dead link of NC " + std::to_string(d.nc) + ": the machine has NC 1.." +
+                                  std::to_string(cfg.nodes));
+  for (const CutLine& c : cfg.cut_lines)
+    if (c.nc < 1 || c.nc > cfg.nodes)
+      throw std::invalid_argument("cut line of NC " + std::to_string(c.nc) + ": the machine has NC 1.." +
                                   std::to_string(cfg.nodes));
   for (unsigned k = 1; k <= cfg.nodes; ++k) {
     hdlc::LinkFaults f;
     f.bit_error_rate = cfg.ber;
     for (const DeadLink& d : cfg.dead_links)
       if (d.nc == k) f.dead.push_back(hdlc::DeadWindow{d.begin, d.end});
+    for (const CutLine& c : cfg.cut_lines)
+      if (c.nc == k) f.dead.push_back(hdlc::DeadWindow{c.time, hdlc::kNever});
     if (f.bit_error_rate == 0 && f.dead.empty()) continue;
     f.seed = cfg.seed + 2 * k;
     hdlc_->set_faults(hdlc::Direction::Down, k, f);
@@ -111,6 +122,7 @@ LineReport line_report(std::string name, const hdlc::LineStats& s) {
   l.info_bytes = s.info_bytes;
   l.wire_bits = s.wire_bits;
   l.retransmissions = s.retransmissions;
+  l.poll_frames = s.poll_frames;
   l.busy = s.busy_ps;
   return l;
 }
@@ -142,6 +154,7 @@ FrameReport Mc1System::report(double host_seconds) {
   r.ber = cfg_.ber;
   for (const NodeKill& x : cfg_.kills) r.kills.push_back({x.nc, x.time});
   for (const DeadLink& d : cfg_.dead_links) r.dead_links.push_back({d.nc, d.begin, d.end});
+  for (const CutLine& c : cfg_.cut_lines) r.cut_lines.push_back({c.nc, c.time});
   r.host_seconds = host_seconds;
 
   // The frame ends when the RC has every block back and every live NC is
@@ -195,6 +208,10 @@ FrameReport Mc1System::report(double host_seconds) {
     add_receive(h, net.receive_stats(hdlc::Direction::Up, a));
     add_sender(h, net.sender_to_nc(a));
     add_sender(h, net.sender_to_rc(a));
+    const hdlc::SupervisionStats& sv = net.supervision(a);
+    h.polls += sv.polls;
+    h.poll_answers += sv.poll_answers;
+    h.max_retries = std::max(h.max_retries, sv.max_retries);
   }
 
   const ImageBus::Stats& b = bus_->stats();
@@ -210,6 +227,11 @@ FrameReport Mc1System::report(double host_seconds) {
   r.dispatches = rc_->dispatches();
   r.completions = rc_->completions();
   r.timeouts = rc_->timeouts();
+  r.link_downs = rc_->link_downs();
+  for (const rc::LinkDown& d : r.link_downs) {
+    NcReport& n = r.ncs.at(d.nc - 1);
+    if (!n.link_down) n.link_down = d.time;
+  }
   r.block_lists = rc_->block_lists();
   for (const rc::BlockListMsg& l : r.block_lists) r.block_loads.push_back(l.load);
   r.fm_pixels_written = fm_->pixels_written();

@@ -35,7 +35,12 @@ struct DeadLink {
 };
 
 struct NodeKill {
-  unsigned nc = 0;  // this NC's processor stops at `time` (NodeComputer::kill_at)
+  unsigned nc = 0;  // this NC's processor stops at `time` (NodeComputer::kill_at), and
+  Picos time = 0;   // with it its HDLC station (HdlcChannel::stop_station)
+};
+
+struct CutLine {
+  unsigned nc = 0;  // both directions of this NC's line carry nothing from `time` on
   Picos time = 0;
 };
 
@@ -48,6 +53,7 @@ struct SystemConfig {
   std::uint64_t seed = 1;  // fault streams: seed + 2k (down to NC k), seed + 2k + 1 (up)
   std::vector<DeadLink> dead_links;
   std::vector<NodeKill> kills;
+  std::vector<CutLine> cut_lines;
   rc::Schedule schedule = rc::Schedule::Lpt;
   // The APU of NC trace_node (0: none) runs on the RTL engine with an FST
   // waveform (whatever `engine` is: both engines are cycle- and bit-exact).

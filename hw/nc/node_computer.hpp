@@ -16,11 +16,14 @@
 //
 // Fault injection (--kill-node): kill_at(T) stops the NC's processor at
 // simulated time T: the MPU firmware and the APU stop where they are (the
-// first time the NC's local time reaches T), nothing more is sent; the
-// HDLC controller keeps acknowledging frames at link level, so the lines
-// stay usable, and the RC finds out only by its own deadline. (A kill
-// inside apu_wait_halt() stops the NC's time at T, but the APU run in
-// progress is clocked to its HALT: its cycles count in apu_cycles.)
+// first time the NC's local time reaches T), nothing more is handed to the
+// HDLC controller. The MPU runs the link protocol, so the NC's HDLC station
+// falls silent at T too (the machine stops it with the NC:
+// HdlcChannel::stop_station): no acknowledgement, no answer to a poll, and
+// a message still in its controller is not finished; the RC's link
+// supervision finds it (docs/hdlc.md). (A kill inside apu_wait_halt() stops
+// the NC's time at T, but the APU run in progress is clocked to its HALT:
+// its cycles count in apu_cycles.)
 #pragma once
 
 #include <cstdint>

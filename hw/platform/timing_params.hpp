@@ -35,6 +35,8 @@ struct TimingParams {
   std::uint64_t hdlc_bit_rate_bps = 4'000'000;
   std::uint64_t hdlc_turnaround_ns = 10'000;     // end of I-frame -> start of its ack
   std::uint64_t hdlc_t1_timeout_ns = 5'000'000;  // retransmission timer T1
+  std::uint64_t hdlc_n2_retries = 10;            // retry limit N2: then the link is down
+  std::uint64_t hdlc_poll_interval_ns = 100'000'000;  // RC polls a link idle this long (0: never)
   std::uint64_t hdlc_window = 7;                 // go-back-N window, modulo 8
   std::uint64_t hdlc_max_info_bytes = 256;       // information field per I-frame
 

@@ -9,6 +9,7 @@
 #include <systemc>
 #include <vector>
 
+#include "hdlc_link.hpp"
 #include "sc_time_conv.hpp"
 #include "timing_params.hpp"
 
@@ -20,6 +21,10 @@ class HdlcMailbox {
     Picos arrived = 0;   // simulated time of delivery
     unsigned from = 0;   // 0 = RC, k = NC k
     std::vector<std::uint8_t> data;
+    // Not a message: the controller reports NC `from`'s link down (at the RC).
+    bool link_down = false;
+    hdlc::LinkDownReason reason = hdlc::LinkDownReason::RetryLimit;
+    Picos declared = 0;  // when the controller gave the link up
   };
 
   void put(Message m) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 
 #include "sc_time_conv.hpp"
@@ -65,6 +66,7 @@ RootComputer::RootComputer(sc_core::sc_module_name name, const TimingParams& t, 
   parked_.assign(nc_count_ + 1, false);
   finished_.assign(nc_count_ + 1, false);
   asked_.assign(nc_count_ + 1, false);
+  lost_.assign(nc_count_ + 1, false);
   own_.resize(nc_count_ + 1);
   if (plan_.block_lists) {
     lists_phase_ = true;
@@ -170,6 +172,24 @@ void RootComputer::post(sc_dt::uint64 address, const rc::Bytes& msg) {
   stats_.bytes_sent += msg.size();
 }
 
+// Tells the HDLC controller to poll idle links from now on, or to stop.
+void RootComputer::supervise_links(bool on) {
+  HdlcLinkEvent ev(on ? HdlcLinkEvent::Kind::SuperviseOn : HdlcLinkEvent::Kind::SuperviseOff);
+  tlm::tlm_generic_payload p;
+  p.set_command(tlm::TLM_WRITE_COMMAND);
+  p.set_address(kHdlcBroadcast);
+  p.set_data_ptr(nullptr);
+  p.set_data_length(0);
+  p.set_streaming_width(0);
+  p.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  p.set_extension(&ev);
+  sc_core::sc_time delay = qk_.get_local_time();
+  rc2nc_hdlc->b_transport(p, delay);
+  p.clear_extension(&ev);
+  if (!p.is_response_ok())
+    SC_REPORT_ERROR(name(), ("HDLC refused the supervision command: " + p.get_response_string()).c_str());
+}
+
 std::optional<HdlcMailbox::Message> RootComputer::receive(std::optional<Picos> deadline) {
   if (inbox_.empty()) qk_.sync();  // everything due up to our local time has arrived
   std::optional<HdlcMailbox::Message> m;
@@ -179,6 +199,10 @@ std::optional<HdlcMailbox::Message> RootComputer::receive(std::optional<Picos> d
     if (!m) return std::nullopt;
   } else {
     m = inbox_.take();
+  }
+  if (m->link_down) {  // the controller's interrupt; no message to copy
+    work(t_.mpu_cycles_per_interrupt);
+    return m;
   }
   receipts_.push_back({m->arrived, now(), m->from});
   ++stats_.messages_received;
@@ -198,8 +222,18 @@ void RootComputer::b_transport(tlm::tlm_generic_payload& p, sc_core::sc_time& de
     p.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
     return;
   }
-  inbox_.put({to_picos(sc_core::sc_time_stamp() + delay), from,
-              rc::Bytes(p.get_data_ptr(), p.get_data_ptr() + p.get_data_length())});
+  HdlcMailbox::Message m{to_picos(sc_core::sc_time_stamp() + delay), from,
+                         rc::Bytes(p.get_data_ptr(), p.get_data_ptr() + p.get_data_length())};
+  if (const auto* ev = p.get_extension<HdlcLinkEvent>()) {
+    if (ev->kind != HdlcLinkEvent::Kind::LinkDown) {
+      p.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
+      return;
+    }
+    m.link_down = true;
+    m.reason = ev->reason;
+    m.declared = ev->declared;
+  }
+  inbox_.put(std::move(m));
   p.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
@@ -304,7 +338,7 @@ void RootComputer::serve(unsigned nc) {
   work(t_.mpu_cycles_per_list_element);  // look at the head of the block list
   const std::optional<std::size_t> rank = next_rank(nc);
   if (!rank) {
-    if (plan_.fault_tolerant && !all_blocks_done())
+    if (waits_for_pieces_out() && !all_blocks_done())
       parked_[nc] = true;  // blocks are still out: one may come back
     else
       finish(nc);
@@ -367,22 +401,7 @@ void RootComputer::expire(Picos t) {
     for (std::uint32_t b = 0; b < blocks_.size(); ++b) check(blocks_[b], b, false);
     if (!late) continue;
     dead_[k] = true;
-    for (std::uint32_t j = 0; j < jobs_.size(); ++j)
-      if (jobs_[j].owner == static_cast<int>(k) && !jobs_[j].done) {
-        jobs_[j].owner = 0;
-        jobs_ready_.insert(j);
-        ++stats_.reassigned;
-        ++to.requeued;
-      }
-    for (std::uint32_t b = 0; b < blocks_.size(); ++b)
-      if (blocks_[b].owner == static_cast<int>(k) && !blocks_[b].done) {
-        requeue_block(b);
-        ++to.requeued;
-      }
-    while (!own_[k].empty()) {  // static: its remaining share goes to the others
-      ready_.insert(*own_[k].begin());
-      own_[k].erase(own_[k].begin());
-    }
+    to.requeued = take_back(k);
     timeouts_.push_back(to);
   }
   if (const std::optional<Picos> s = straggler_deadline(); s && *s <= t)
@@ -391,6 +410,50 @@ void RootComputer::expire(Picos t) {
         dead_[k] = true;
         timeouts_.push_back(rc::Timeout{t, k, rc::kNoBlock, false, 0});
       }
+}
+
+// NC `nc`'s unfinished pieces go back to the queue (in schedule order) for
+// the others; static: its remaining share goes to the common queue.
+std::uint32_t RootComputer::take_back(unsigned nc) {
+  std::uint32_t n = 0;
+  for (std::uint32_t j = 0; j < jobs_.size(); ++j)
+    if (jobs_[j].owner == static_cast<int>(nc) && !jobs_[j].done) {
+      jobs_[j].owner = 0;
+      jobs_ready_.insert(j);
+      ++stats_.reassigned;
+      ++n;
+    }
+  for (std::uint32_t b = 0; b < blocks_.size(); ++b)
+    if (blocks_[b].owner == static_cast<int>(nc) && !blocks_[b].done) {
+      requeue_block(b);
+      ++n;
+    }
+  while (!own_[nc].empty()) {
+    ready_.insert(*own_[nc].begin());
+    own_[nc].erase(own_[nc].begin());
+  }
+  return n;
+}
+
+// The controller gave NC k's link up: the NC is lost for the frame at once
+// (it cannot report, so it is never revived); its work goes to the others.
+void RootComputer::link_down(const HdlcMailbox::Message& m) {
+  const unsigned k = m.from;
+  rc::LinkDown d{m.declared, now(), k, m.reason, 0};
+  if (!lost_[k]) {
+    lost_[k] = true;
+    dead_[k] = true;
+    parked_[k] = false;
+    d.requeued = take_back(k);
+  }
+  link_downs_.push_back(d);
+}
+
+// Work left that no NC can ever take is an error, not a wait forever.
+void RootComputer::check_progress_possible() const {
+  for (unsigned k = 1; k <= nc_count_; ++k)
+    if (!lost_[k] && !finished_[k]) return;
+  throw std::runtime_error("the frame cannot complete: every NC has finished or lost its link (" + status() + ")");
 }
 
 // An NC that never asked for work (it stopped before its first request)
@@ -411,7 +474,8 @@ std::string RootComputer::status() const {
   return std::to_string(blocks_done_) + " of " + std::to_string(blocks_.size()) + " blocks done" +
          (lists_phase_ ? " (block lists not complete)" : "") + ", " + std::to_string(finished) + " of " +
          std::to_string(nc_count_) + " NCs finished, " + std::to_string(dead) + " taken as dead, " +
-         std::to_string(timeouts_.size()) + " deadlines missed";
+         std::to_string(timeouts_.size()) + " deadlines missed, " + std::to_string(link_downs_.size()) +
+         " links down";
 }
 
 bool RootComputer::frame_complete() const {
@@ -422,7 +486,12 @@ bool RootComputer::frame_complete() const {
 }
 
 void RootComputer::handle(const HdlcMailbox::Message& m) {
+  if (m.link_down) {
+    link_down(m);
+    return;
+  }
   const unsigned k = m.from;
+  if (lost_[k]) return;  // its controller dropped the link: nothing more from it counts
   asked_[k] = true;
   if (dead_[k] && !finished_[k]) {  // it missed a deadline but is alive: back to work
     dead_[k] = false;
@@ -450,6 +519,7 @@ void RootComputer::handle(const HdlcMailbox::Message& m) {
 
 void RootComputer::run() {
   try {
+    supervise_links(true);
     // s2: download by broadcast, then start.
     for (const rc::Bytes& d : plan_.downloads) {
       post(kHdlcBroadcast, d);
@@ -458,6 +528,7 @@ void RootComputer::run() {
     stats_.setup_done = now();
 
     while (!frame_complete()) {
+      check_progress_possible();
       const std::optional<Picos> deadline = next_deadline();
       const std::optional<HdlcMailbox::Message> m = receive(deadline);
       if (m)
@@ -468,10 +539,16 @@ void RootComputer::run() {
     }
     done_ = true;
     stats_.done_at = now();
+    supervise_links(false);  // nothing to watch for any more: the simulation can end
     qk_.sync();
     // An NC taken as dead may still be alive: tell it to stop when it asks.
     for (;;) {
       const std::optional<HdlcMailbox::Message> m = receive(std::nullopt);
+      if (m->link_down) {
+        link_down(*m);
+        continue;
+      }
+      if (lost_[m->from]) continue;
       const rc::MsgType type = rc::type_of(m->data);
       if ((type == rc::MsgType::Request || type == rc::MsgType::Lists) && !finished_[m->from]) {
         if (type == rc::MsgType::Request) {
@@ -485,6 +562,7 @@ void RootComputer::run() {
       }
     }
   } catch (const std::exception& e) {
+    supervise_links(false);  // no polls for ever after a failed frame
     SC_REPORT_ERROR(name(), e.what());
   }
 }

@@ -10,14 +10,21 @@
 // (step 3): lpt = heaviest predicted load first (the paper's), fifo = screen
 // order as NCs ask, static = block i to NC (i mod N) + 1.
 //
-// Fault tolerance (rendered frame): every piece handed out has a deadline
-// (docs/timing.md "rc_timeout_*"); an NC that misses one is taken as dead,
-// its unfinished pieces go back to the queue for the others, and an NC that
-// asks while nothing is ready but pieces are still out waits (parked) until
-// something comes back or the frame is complete. A late report of a piece
-// already done is ignored; an NC taken as dead that reports after all was
-// only slow: it gets work again. An NC that never asks at all is taken as
-// dead rc_timeout_base_ns after the last block is done.
+// Fault tolerance: the RC's HDLC controller supervises every NC's link
+// while the frame runs (docs/hdlc.md "Supervision": retry limit N2, polls of
+// idle links) and reports a link that goes down; the NC is then lost for
+// the frame at once: its unfinished pieces go back to the queue for the
+// others (any frame). In the rendered frame every piece handed out also has
+// a deadline (docs/timing.md "rc_timeout_*"), the last resort for an NC
+// alive on its link but stuck: an NC that misses one is taken as dead, its
+// pieces go back likewise, and an NC that asks while nothing is ready but
+// pieces are still out waits (parked) until something comes back or the
+// frame is complete (after a link-down, in any frame). A late report of a
+// piece already done is ignored; an NC taken as dead by a deadline that
+// reports after all was only slow: it gets work again (one whose link went
+// down cannot). An NC that never asks at all is taken as dead
+// rc_timeout_base_ns after the last block is done. Work left when every NC
+// has finished or lost its link is an error: nothing waits forever.
 //
 // Loosely timed: the RC's processor work is annotated from the timing table
 // (one interrupt per message received, one list element per piece taken,
@@ -39,6 +46,7 @@
 #include <tlm_utils/tlm_quantumkeeper.h>
 #include <vector>
 
+#include "hdlc_link_event.hpp"
 #include "hdlc_mailbox.hpp"
 #include "rc_protocol.hpp"
 #include "timing_params.hpp"
@@ -82,6 +90,15 @@ struct Timeout {
   std::uint32_t block = kNoBlock;  // the piece whose deadline passed
   bool list_job = false;
   std::uint32_t requeued = 0;      // unfinished pieces of that NC handed back to the queue
+};
+
+// The HDLC controller gave NC `nc`'s link up: the NC is lost for the frame.
+struct LinkDown {
+  Picos time = 0;   // the controller declared it
+  Picos taken = 0;  // the RC's processor took the report and acted
+  unsigned nc = 0;
+  hdlc::LinkDownReason reason = hdlc::LinkDownReason::RetryLimit;
+  std::uint32_t requeued = 0;  // unfinished pieces of that NC handed back to the queue
 };
 
 struct RcStats {
@@ -141,6 +158,7 @@ class RootComputer : public sc_core::sc_module {
   const std::vector<rc::Completion>& completions() const { return completions_; }
   const std::vector<rc::Receipt>& receipts() const { return receipts_; }  // every message, in order taken
   const std::vector<rc::Timeout>& timeouts() const { return timeouts_; }
+  const std::vector<rc::LinkDown>& link_downs() const { return link_downs_; }
   const rc::RcStats& stats() const { return stats_; }
   bool done() const { return done_; }  // every block done, every live NC got Finish
   std::string status() const;          // blocks done, NCs finished and dead (for errors)
@@ -167,11 +185,16 @@ class RootComputer : public sc_core::sc_module {
   void b_transport(tlm::tlm_generic_payload& p, sc_core::sc_time& delay);
   void work(std::uint64_t mpu_cycles);
   void post(sc_dt::uint64 address, const rc::Bytes& msg);
+  void supervise_links(bool on);
   std::optional<HdlcMailbox::Message> receive(std::optional<Picos> deadline);
   Picos now() const;
 
   void make_order(const std::vector<std::uint32_t>& load, bool charge);
   void handle(const HdlcMailbox::Message& m);
+  void link_down(const HdlcMailbox::Message& m);
+  std::uint32_t take_back(unsigned nc);
+  void check_progress_possible() const;
+  bool waits_for_pieces_out() const { return plan_.fault_tolerant || !link_downs_.empty(); }
   void report_block(unsigned nc, std::uint32_t block);
   void report_lists(unsigned nc, const rc::ListsMsg& lists);
   void serve(unsigned nc);         // answer NC's request now, or park it
@@ -201,6 +224,7 @@ class RootComputer : public sc_core::sc_module {
   std::vector<std::set<std::size_t>> own_;         // static: per NC (index = NC id)
   std::size_t blocks_done_ = 0;
   std::vector<bool> dead_, parked_, finished_, asked_;
+  std::vector<bool> lost_;  // its link went down: dead for good
   Picos all_done_at_ = 0;  // the last block was reported
   std::vector<rc::BlockListMsg> lists_;
 
@@ -208,6 +232,7 @@ class RootComputer : public sc_core::sc_module {
   std::vector<rc::Completion> completions_;
   std::vector<rc::Receipt> receipts_;
   std::vector<rc::Timeout> timeouts_;
+  std::vector<rc::LinkDown> link_downs_;
   rc::RcStats stats_;
   bool done_ = false;
 };
