@@ -5,8 +5,10 @@
 // One 128-bit microword per cycle, or a stall: the word at PC is fetched and
 // decoded combinationally; if no stall condition holds, all its slots issue
 // in this cycle. FP ops enter fp24_mul / fp24_add / fp24_func; their results
-// come back at t + L and are written (and bypassed) in that cycle. LD, MOVAF,
-// LIF, the I slot and DBNZ write at the end of the issue cycle.
+// come back at t + L and are written (and bypassed) in that cycle (the
+// function unit can return a SIN/COS and a RECIP/SQRT in one cycle: two
+// ports). LD, MOVAF, LIF, the I slot and DBNZ write at the end of the issue
+// cycle.
 //
 // MPU requests (hand-over, start) act in the cycle in which they are
 // presented: the core forwards them combinationally, so that an MPU call made
@@ -49,10 +51,10 @@ module apu_core
     output logic                    dbg_issue,
     output stall_e                  dbg_stall_reason,
     // F register writes visible from this cycle on: completions (mul, add,
-    // func) and the previous word's LD, MOVAF/LIF
-    output logic [4:0]              dbg_fc_en,
-    output logic [4:0][5:0]         dbg_fc_idx,
-    output logic [4:0][23:0]        dbg_fc_val,
+    // func RECIP/SQRT, func SIN/COS) and the previous word's LD, MOVAF/LIF
+    output logic [5:0]              dbg_fc_en,
+    output logic [5:0][5:0]         dbg_fc_idx,
+    output logic [5:0][23:0]        dbg_fc_val,
     // A register writes of the previous word: I slot, DBNZ
     output logic [1:0]              dbg_ac_en,
     output logic [1:0][3:0]         dbg_ac_idx,
@@ -66,7 +68,7 @@ module apu_core
     output logic [CC_W-1:0]         dbg_cc_val,
     output logic                    dbg_flags_en,
     output logic [FLAGS_W-1:0]      dbg_flags_val,
-    // sticky: a unit's out_valid/in_ready disagreed with the interlock's mirror
+    // sticky: a unit's out_valid disagreed with the interlock's mirror
     output logic                    dbg_unit_mismatch
 );
 
@@ -177,9 +179,9 @@ module apu_core
   // FP24 units and their interlock
   // =========================================================================
   logic               issue;
-  logic               mul_out_valid, add_out_valid, fu_out_valid, fu_in_ready;
-  logic [FP_W-1:0]    mul_out_result, add_out_result, fu_out_result;
-  logic [FLAGS_W-1:0] mul_out_flags, add_out_flags, fu_out_flags;
+  logic               mul_out_valid, add_out_valid, fu_out_valid, fu_trig_valid;
+  logic [FP_W-1:0]    mul_out_result, add_out_result, fu_out_result, fu_trig_result;
+  logic [FLAGS_W-1:0] mul_out_flags, add_out_flags, fu_out_flags, fu_trig_flags;
 
   logic mul_issue, add_issue, fu_issue, fu_trig;
   assign mul_issue = issue && w.m_en;
@@ -211,55 +213,58 @@ module apu_core
   );
 
   fp24_func u_func (
-      .clk       (clk),
-      .rst_n     (rst_n),
-      .in_valid  (fu_issue),
-      .in_op     (w.f_op),
-      .in_a      (fop[RD_FA]),
-      .in_b      ('0),
-      .in_ready  (fu_in_ready),
-      .out_valid (fu_out_valid),
-      .out_result(fu_out_result),
-      .out_flags (fu_out_flags)
-  );
-
-  logic               raw_hazard, waw_hazard, cmp_in_flight, pipes_busy, fu_second_cycle;
-  logic               mul_wb_valid, add_wb_valid, add_wb_cmp, fu_wb_valid;
-  logic [FREG_AW-1:0] mul_wb_d, add_wb_d, fu_wb_d;
-
-  apu_interlock #(.ADDR_W(FREG_AW), .N_SRC(N_RD), .N_DST(N_DS)) u_ilk (
       .clk            (clk),
       .rst_n          (rst_n),
-      .mul_issue      (mul_issue),
-      .mul_d          (w.m_d),
-      .add_issue      (add_issue),
-      .add_d          (w.a_d),
-      .add_cmp        (add_is_cmp),
-      .fu_issue       (fu_issue),
-      .fu_d           (w.f_d),
-      .fu_trig        (fu_trig),
-      .src_addr       (src_addr),
-      .src_en         (src_en),
-      .dst_addr       (dst_addr),
-      .dst_en         (dst_en),
-      .raw_hazard     (raw_hazard),
-      .waw_hazard     (waw_hazard),
-      .cmp_in_flight  (cmp_in_flight),
-      .pipes_busy     (pipes_busy),
-      .fu_second_cycle(fu_second_cycle),
-      .mul_wb_valid   (mul_wb_valid),
-      .mul_wb_d       (mul_wb_d),
-      .add_wb_valid   (add_wb_valid),
-      .add_wb_d       (add_wb_d),
-      .add_wb_cmp     (add_wb_cmp),
-      .fu_wb_valid    (fu_wb_valid),
-      .fu_wb_d        (fu_wb_d)
+      .in_valid       (fu_issue),
+      .in_op          (w.f_op),
+      .in_a           (fop[RD_FA]),
+      .in_b           ('0),
+      .out_valid      (fu_out_valid),
+      .out_result     (fu_out_result),
+      .out_flags      (fu_out_flags),
+      .out_trig_valid (fu_trig_valid),
+      .out_trig_result(fu_trig_result),
+      .out_trig_flags (fu_trig_flags)
+  );
+
+  logic               raw_hazard, waw_hazard, cmp_in_flight, pipes_busy;
+  logic               mul_wb_valid, add_wb_valid, add_wb_cmp, fu_wb_valid, fu_trig_wb_valid;
+  logic [FREG_AW-1:0] mul_wb_d, add_wb_d, fu_wb_d, fu_trig_wb_d;
+
+  apu_interlock #(.ADDR_W(FREG_AW), .N_SRC(N_RD), .N_DST(N_DS)) u_ilk (
+      .clk             (clk),
+      .rst_n           (rst_n),
+      .mul_issue       (mul_issue),
+      .mul_d           (w.m_d),
+      .add_issue       (add_issue),
+      .add_d           (w.a_d),
+      .add_cmp         (add_is_cmp),
+      .fu_issue        (fu_issue),
+      .fu_d            (w.f_d),
+      .fu_trig         (fu_trig),
+      .src_addr        (src_addr),
+      .src_en          (src_en),
+      .dst_addr        (dst_addr),
+      .dst_en          (dst_en),
+      .raw_hazard      (raw_hazard),
+      .waw_hazard      (waw_hazard),
+      .cmp_in_flight   (cmp_in_flight),
+      .pipes_busy      (pipes_busy),
+      .mul_wb_valid    (mul_wb_valid),
+      .mul_wb_d        (mul_wb_d),
+      .add_wb_valid    (add_wb_valid),
+      .add_wb_d        (add_wb_d),
+      .add_wb_cmp      (add_wb_cmp),
+      .fu_wb_valid     (fu_wb_valid),
+      .fu_wb_d         (fu_wb_d),
+      .fu_trig_wb_valid(fu_trig_wb_valid),
+      .fu_trig_wb_d    (fu_trig_wb_d)
   );
 
   // =========================================================================
   // Stall: the first reason of docs/apu-isa.md's list that holds
   // =========================================================================
-  logic   stall_bank, stall_raw, stall_waw, stall_cc, stall_struct, stall_drain;
+  logic   stall_bank, stall_raw, stall_waw, stall_cc, stall_drain;
   logic   stall;
   stall_e stall_reason;
 
@@ -269,7 +274,6 @@ module apu_core
   assign stall_raw    = raw_hazard;
   assign stall_waw    = waw_hazard;
   assign stall_cc     = is_bcc && cmp_in_flight;
-  assign stall_struct = w.f_en && !fu_in_ready;
   assign stall_drain  = (w.s_op == S_HALT) && pipes_busy;
 
   always_comb begin
@@ -278,7 +282,6 @@ module apu_core
     else if (stall_raw)       stall_reason = STALL_RAW;
     else if (stall_waw)       stall_reason = STALL_WAW;
     else if (stall_cc)        stall_reason = STALL_CC;
-    else if (stall_struct)    stall_reason = STALL_STRUCT;
     else if (stall_drain)     stall_reason = STALL_DRAIN;
     else                      stall_reason = STALL_NONE;
   end
@@ -320,9 +323,10 @@ module apu_core
   // Register files and data memory
   // =========================================================================
   // Completion writes (write-first: the bypass that makes t + L usable).
-  logic               wb_en   [3];
-  logic [FREG_AW-1:0] wb_addr [3];
-  logic [FP_W-1:0]    wb_data [3];
+  localparam int N_WB = 4;  // mul, add, func RECIP/SQRT, func SIN/COS
+  logic               wb_en   [N_WB];
+  logic [FREG_AW-1:0] wb_addr [N_WB];
+  logic [FP_W-1:0]    wb_data [N_WB];
   // Issue writes: LD, MOVAF/LIF.
   logic               wi_en   [2];
   logic [FREG_AW-1:0] wi_addr [2];
@@ -330,15 +334,16 @@ module apu_core
   logic [FP_W-1:0]    dmem_rdata;
 
   always_comb begin
-    wb_en[0] = mul_wb_valid;                 wb_addr[0] = mul_wb_d; wb_data[0] = mul_out_result;
-    wb_en[1] = add_wb_valid && !add_wb_cmp;  wb_addr[1] = add_wb_d; wb_data[1] = add_out_result;
-    wb_en[2] = fu_wb_valid;                  wb_addr[2] = fu_wb_d;  wb_data[2] = fu_out_result;
-    wi_en[0] = issue && is_ld;               wi_addr[0] = w.d_f;    wi_data[0] = dmem_rdata;
+    wb_en[0] = mul_wb_valid;                 wb_addr[0] = mul_wb_d;      wb_data[0] = mul_out_result;
+    wb_en[1] = add_wb_valid && !add_wb_cmp;  wb_addr[1] = add_wb_d;      wb_data[1] = add_out_result;
+    wb_en[2] = fu_wb_valid;                  wb_addr[2] = fu_wb_d;       wb_data[2] = fu_out_result;
+    wb_en[3] = fu_trig_wb_valid;             wb_addr[3] = fu_trig_wb_d;  wb_data[3] = fu_trig_result;
+    wi_en[0] = issue && is_ld;               wi_addr[0] = w.d_f;         wi_data[0] = dmem_rdata;
     wi_en[1] = issue && i_writes_f;          wi_addr[1] = w.i_d;
     wi_data[1] = (w.i_op == I_MOVAF) ? {8'h00, aop[AR_S]} : {w.i_imm, 8'h00};
   end
 
-  apu_fregs #(.DATA_W(FP_W), .ADDR_W(FREG_AW), .N_RD(N_RD), .N_WB(3), .N_WI(2)) u_fregs (
+  apu_fregs #(.DATA_W(FP_W), .ADDR_W(FREG_AW), .N_RD(N_RD), .N_WB(N_WB), .N_WI(2)) u_fregs (
       .clk    (clk),
       .rst_n  (rst_n),
       .rd_addr(src_addr),
@@ -455,12 +460,13 @@ module apu_core
   assign flags_next = flags_q
                     | (mul_wb_valid ? mul_out_flags : '0)
                     | (add_wb_valid ? add_out_flags : '0)
-                    | (fu_wb_valid  ? fu_out_flags  : '0);
+                    | (fu_wb_valid  ? fu_out_flags  : '0)
+                    | (fu_trig_wb_valid ? fu_trig_flags : '0);
 
   // The interlock's mirror and the units must agree on every cycle.
   logic unit_mismatch;
   assign unit_mismatch = (mul_wb_valid != mul_out_valid) || (add_wb_valid != add_out_valid)
-                      || (fu_wb_valid != fu_out_valid) || (fu_second_cycle == fu_in_ready);
+                      || (fu_wb_valid != fu_out_valid) || (fu_trig_wb_valid != fu_trig_valid);
 
   always_ff @(posedge clk) begin
     if (!rst_n) begin
@@ -544,15 +550,15 @@ module apu_core
   assign dbg_stall_reason = stall_reason;
 
   always_comb begin
-    for (int i = 0; i < 3; i++) begin
+    for (int i = 0; i < N_WB; i++) begin
       dbg_fc_en[i]  = wb_en[i];
       dbg_fc_idx[i] = wb_addr[i];
       dbg_fc_val[i] = wb_data[i];
     end
     for (int i = 0; i < 2; i++) begin
-      dbg_fc_en[3 + i]  = rt_fi_en[i];
-      dbg_fc_idx[3 + i] = rt_fi_idx[i];
-      dbg_fc_val[3 + i] = rt_fi_val[i];
+      dbg_fc_en[N_WB + i]  = rt_fi_en[i];
+      dbg_fc_idx[N_WB + i] = rt_fi_idx[i];
+      dbg_fc_val[N_WB + i] = rt_fi_val[i];
       dbg_ac_en[i]  = rt_a_en[i];
       dbg_ac_idx[i] = rt_a_idx[i];
       dbg_ac_val[i] = rt_a_val[i];

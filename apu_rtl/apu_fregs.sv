@@ -12,7 +12,7 @@ module apu_fregs #(
     parameter int DATA_W = 24,
     parameter int ADDR_W = 6,
     parameter int N_RD   = 7,
-    parameter int N_WB   = 3,
+    parameter int N_WB   = 4,
     parameter int N_WI   = 2
 ) (
     input  logic              clk,

@@ -1,11 +1,12 @@
 // APU interlock: the core's mirror of the three FP24 pipelines (docs/apu-rtl.md
 // "Scoreboard"). For every op issued it carries the destination tag through
-// stages named after the unit's own (s1, s2), so that
-//   - s1 holds ops issued at c-1 (and a SIN/COS issued at c-2, `held`): their
+// stages named after the unit's own (s1, s2, s3), so that
+//   - s1 holds ops issued at c-1, and s2 a SIN/COS issued at c-2: their
 //     results are still in flight in cycle c (raw / waw / cc / drain);
-//   - s2 holds ops completing in cycle c = t + L: the unit's out_* carry their
-//     result, which the F register file writes (and bypasses) this cycle.
-// Results leave each unit in issue order, so one s2 per unit suffices.
+//   - s2 (s3 for SIN/COS) holds ops completing in cycle c = t + L: the unit's
+//     out_* (out_trig_*) carry their result, which the F register file writes
+//     (and bypasses) this cycle.
+// Every stage holds at most one op: one issue per unit and cycle.
 module apu_interlock #(
     parameter int ADDR_W = 6,
     parameter int N_SRC  = 7,
@@ -31,15 +32,16 @@ module apu_interlock #(
     output logic              waw_hazard,
     output logic              cmp_in_flight,
     output logic              pipes_busy,
-    output logic              fu_second_cycle,  // mirror of fp24_func's !in_ready
     // completions in this cycle
     output logic              mul_wb_valid,
     output logic [ADDR_W-1:0] mul_wb_d,
     output logic              add_wb_valid,
     output logic [ADDR_W-1:0] add_wb_d,
     output logic              add_wb_cmp,
-    output logic              fu_wb_valid,
-    output logic [ADDR_W-1:0] fu_wb_d
+    output logic              fu_wb_valid,       // RECIP, SQRT
+    output logic [ADDR_W-1:0] fu_wb_d,
+    output logic              fu_trig_wb_valid,  // SIN, COS
+    output logic [ADDR_W-1:0] fu_trig_wb_d
 );
   // ---- tag pipelines ----------------------------------------------------------
   logic              mul_s1_valid, mul_s2_valid;
@@ -47,14 +49,9 @@ module apu_interlock #(
   logic              add_s1_valid, add_s2_valid;
   logic [ADDR_W-1:0] add_s1_d, add_s2_d;
   logic              add_s1_cmp, add_s2_cmp;
-  logic              fu_s1_valid, fu_s2_valid;
-  logic [ADDR_W-1:0] fu_s1_d, fu_s2_d;
-  logic              fu_s1_trig;  // SIN/COS: stage 1 takes two cycles
-  logic              fu_s1_held;  // ... and this is the second
-
-  logic fu_s1_leaves;
-  assign fu_second_cycle = fu_s1_valid && fu_s1_trig && !fu_s1_held;
-  assign fu_s1_leaves    = fu_s1_valid && !fu_second_cycle;
+  logic              fu_s1_valid, fu_s2_valid, fu_s3_valid;
+  logic [ADDR_W-1:0] fu_s1_d, fu_s2_d, fu_s3_d;
+  logic              fu_s1_trig, fu_s2_trig;  // SIN/COS: three stages
 
   always_ff @(posedge clk) begin
     if (!rst_n) begin
@@ -64,15 +61,15 @@ module apu_interlock #(
       add_s2_valid <= 1'b0;
       fu_s1_valid  <= 1'b0;
       fu_s2_valid  <= 1'b0;
+      fu_s3_valid  <= 1'b0;
     end else begin
       mul_s1_valid <= mul_issue;
       mul_s2_valid <= mul_s1_valid;
       add_s1_valid <= add_issue;
       add_s2_valid <= add_s1_valid;
-      // A SIN/COS stays in s1 for a second cycle; nothing issues meanwhile
-      // (the `struct` stall), so s1 is free again when it leaves.
-      fu_s1_valid  <= fu_issue || fu_second_cycle;
-      fu_s2_valid  <= fu_s1_leaves;
+      fu_s1_valid  <= fu_issue;
+      fu_s2_valid  <= fu_s1_valid;
+      fu_s3_valid  <= fu_s2_valid && fu_s2_trig;
     end
     mul_s1_d   <= mul_d;
     mul_s2_d   <= mul_s1_d;
@@ -80,23 +77,25 @@ module apu_interlock #(
     add_s1_cmp <= add_cmp;
     add_s2_d   <= add_s1_d;
     add_s2_cmp <= add_s1_cmp;
-    if (fu_issue) begin
-      fu_s1_d    <= fu_d;
-      fu_s1_trig <= fu_trig;
-      fu_s1_held <= 1'b0;
-    end else begin
-      fu_s1_held <= fu_second_cycle;
-    end
-    fu_s2_d <= fu_s1_d;
+    fu_s1_d    <= fu_d;
+    fu_s1_trig <= fu_trig;
+    fu_s2_d    <= fu_s1_d;
+    fu_s2_trig <= fu_s1_trig;
+    fu_s3_d    <= fu_s2_d;
   end
 
   // ---- hazards of the word at PC ---------------------------------------------
-  // A register is in flight in cycle c when an s1 op will write it: its result
-  // arrives at c + 1 or later. Ops in s2 complete now and are bypassed.
+  // A register is in flight in cycle c when an s1 op, or a SIN/COS in s2, will
+  // write it: its result arrives at c + 1 or later. Ops completing now are
+  // bypassed.
+  logic fu_s2_in_flight;
+  assign fu_s2_in_flight = fu_s2_valid && fu_s2_trig;
+
   function automatic logic in_flight(input logic [ADDR_W-1:0] r);
     in_flight = (mul_s1_valid && mul_s1_d == r)
              || (add_s1_valid && !add_s1_cmp && add_s1_d == r)
-             || (fu_s1_valid && fu_s1_d == r);
+             || (fu_s1_valid && fu_s1_d == r)
+             || (fu_s2_in_flight && fu_s2_d == r);
   endfunction
 
   always_comb begin
@@ -107,14 +106,16 @@ module apu_interlock #(
   end
 
   assign cmp_in_flight = add_s1_valid && add_s1_cmp;
-  assign pipes_busy    = mul_s1_valid || add_s1_valid || fu_s1_valid;
+  assign pipes_busy    = mul_s1_valid || add_s1_valid || fu_s1_valid || fu_s2_in_flight;
 
-  assign mul_wb_valid = mul_s2_valid;
-  assign mul_wb_d     = mul_s2_d;
-  assign add_wb_valid = add_s2_valid;
-  assign add_wb_d     = add_s2_d;
-  assign add_wb_cmp   = add_s2_cmp;
-  assign fu_wb_valid  = fu_s2_valid;
-  assign fu_wb_d      = fu_s2_d;
+  assign mul_wb_valid     = mul_s2_valid;
+  assign mul_wb_d         = mul_s2_d;
+  assign add_wb_valid     = add_s2_valid;
+  assign add_wb_d         = add_s2_d;
+  assign add_wb_cmp       = add_s2_cmp;
+  assign fu_wb_valid      = fu_s2_valid && !fu_s2_trig;
+  assign fu_wb_d          = fu_s2_d;
+  assign fu_trig_wb_valid = fu_s3_valid;
+  assign fu_trig_wb_d     = fu_s3_d;
 
 endmodule

@@ -79,8 +79,7 @@ package apu_pkg;
     STALL_RAW    = 3'd2,
     STALL_WAW    = 3'd3,
     STALL_CC     = 3'd4,
-    STALL_STRUCT = 3'd5,
-    STALL_DRAIN  = 3'd6
+    STALL_DRAIN  = 3'd5
   } stall_e;
 
   typedef enum logic [2:0] {

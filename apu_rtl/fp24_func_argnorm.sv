@@ -1,4 +1,4 @@
-// SIN/COS, second part of stage 1's second cycle (docs/fp24-func.md): the
+// SIN/COS, second part of stage 1 -> 2 (docs/fp24-func.md): the
 // reduced argument in radians as a float with a 64-bit significand,
 // z = z_sig * 2^(z_exp - 63), and u = z^2 in 0.64 fixed point. Below
 // |x| = 0.5 the input is its own reduced argument, exactly; above, it is
@@ -34,24 +34,24 @@ module fp24_func_argnorm #(
     z_exp = '0;
     u     = '0;
     if (en) begin
-      // Leading-zero count of |r| (bit 125 down) and its top 64 bits, in
-      // 64-bit words: one word step, then six binary steps within the word.
-      hi = {2'b00, rmag[125:64]};
-      lo = rmag[63:0];
-      if (hi == '0) begin hi = lo; lo = '0; lz = 7'd64; end
-      if (hi[63:32] == '0) begin hi = {hi[31:0], lo[63:32]}; lo = {lo[31:0], 32'd0}; lz = lz + 7'd32; end
-      if (hi[63:48] == '0) begin hi = {hi[47:0], lo[63:48]}; lo = {lo[47:0], 16'd0}; lz = lz + 7'd16; end
-      if (hi[63:56] == '0) begin hi = {hi[55:0], lo[63:56]}; lo = {lo[55:0], 8'd0}; lz = lz + 7'd8; end
-      if (hi[63:60] == '0) begin hi = {hi[59:0], lo[63:60]}; lo = {lo[59:0], 4'd0}; lz = lz + 7'd4; end
-      if (hi[63:62] == '0) begin hi = {hi[61:0], lo[63:62]}; lo = {lo[61:0], 2'd0}; lz = lz + 7'd2; end
-      if (hi[63] == 1'b0) begin hi = {hi[62:0], lo[63]}; lz = lz + 7'd1; end
-      r_sig = hi;
-      // |r| = r_sig * 2^((1 - lz) - 63); times pi/2 it lands in [2^62, 2^64).
-      zr = mulhi64(r_sig, ROM_HALF_PI);
       if (direct) begin
         z_sig = {m, {(64 - FRAC_W - 1) {1'b0}}};
         z_exp = x_exp;
       end else begin
+        // Leading-zero count of |r| (bit 125 down) and its top 64 bits, in
+        // 64-bit words: one word step, then six binary steps within the word.
+        hi = {2'b00, rmag[125:64]};
+        lo = rmag[63:0];
+        if (hi == '0) begin hi = lo; lo = '0; lz = 7'd64; end
+        if (hi[63:32] == '0) begin hi = {hi[31:0], lo[63:32]}; lo = {lo[31:0], 32'd0}; lz = lz + 7'd32; end
+        if (hi[63:48] == '0) begin hi = {hi[47:0], lo[63:48]}; lo = {lo[47:0], 16'd0}; lz = lz + 7'd16; end
+        if (hi[63:56] == '0) begin hi = {hi[55:0], lo[63:56]}; lo = {lo[55:0], 8'd0}; lz = lz + 7'd8; end
+        if (hi[63:60] == '0) begin hi = {hi[59:0], lo[63:60]}; lo = {lo[59:0], 4'd0}; lz = lz + 7'd4; end
+        if (hi[63:62] == '0) begin hi = {hi[61:0], lo[63:62]}; lo = {lo[61:0], 2'd0}; lz = lz + 7'd2; end
+        if (hi[63] == 1'b0) begin hi = {hi[62:0], lo[63]}; lz = lz + 7'd1; end
+        r_sig = hi;
+        // |r| = r_sig * 2^((1 - lz) - 63); times pi/2 it lands in [2^62, 2^64).
+        zr    = mulhi64(r_sig, ROM_HALF_PI);
         z_sig = zr[63] ? zr : {zr[62:0], 1'b0};
         z_exp = SEXP_W'(1) - SEXP_W'(lz) + SEXP_W'(zr[63]);
       end

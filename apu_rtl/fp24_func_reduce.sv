@@ -1,6 +1,6 @@
-// SIN/COS range reduction, first part of stage 1's second cycle
-// (docs/fp24-func.md): x * 2/pi mod 4 for |x| = m * 2^(E-16), E >= -1, by
-// one 17 x 128-bit product with the exponent's window of 2/pi (Payne-Hanek).
+// SIN/COS range reduction, first part of stage 1 -> 2 (docs/fp24-func.md):
+// x * 2/pi mod 4 for |x| = m * 2^(E-16), E >= -1, by one 17 x 128-bit
+// product with the exponent's window of 2/pi (Payne-Hanek).
 // The bits of 2/pi before the window only add multiples of 4; those after
 // it, under 2^-109. Rounded to the nearest quarter turn: quadrant, and the
 // distance to it, |r| = rmag * 2^-126 <= 1/2, with its sign.
@@ -8,7 +8,7 @@ module fp24_func_reduce #(
     parameter int EXP_W  = 7,
     parameter int FRAC_W = 16
 ) (
-    input  logic             en,        // operand isolation: idle unless SIN/COS
+    input  logic             en,        // operand isolation: idle unless SIN/COS, |x| >= 0.5
     input  logic [EXP_W-1:0] exp,       // biased
     input  logic [FRAC_W:0]  m,         // significand 1.f
     output logic [1:0]       quadrant,  // nearest integer of x * 2/pi, mod 4

@@ -25,10 +25,12 @@ module fp24_units (
     input  logic [ 1:0] func_in_op,
     input  logic [23:0] func_in_a,
     input  logic [23:0] func_in_b,
-    output logic        func_in_ready,
-    output logic        func_out_valid,
+    output logic        func_out_valid,       // RECIP, SQRT
     output logic [23:0] func_out_result,
-    output logic [ 4:0] func_out_flags
+    output logic [ 4:0] func_out_flags,
+    output logic        func_out_trig_valid,  // SIN, COS
+    output logic [23:0] func_out_trig_result,
+    output logic [ 4:0] func_out_trig_flags
 );
 
   fp24_mul u_mul (
@@ -55,16 +57,18 @@ module fp24_units (
   );
 
   fp24_func u_func (
-      .clk       (clk),
-      .rst_n     (rst_n),
-      .in_valid  (func_in_valid),
-      .in_op     (func_in_op),
-      .in_a      (func_in_a),
-      .in_b      (func_in_b),
-      .in_ready  (func_in_ready),
-      .out_valid (func_out_valid),
-      .out_result(func_out_result),
-      .out_flags (func_out_flags)
+      .clk            (clk),
+      .rst_n          (rst_n),
+      .in_valid       (func_in_valid),
+      .in_op          (func_in_op),
+      .in_a           (func_in_a),
+      .in_b           (func_in_b),
+      .out_valid      (func_out_valid),
+      .out_result     (func_out_result),
+      .out_flags      (func_out_flags),
+      .out_trig_valid (func_out_trig_valid),
+      .out_trig_result(func_out_trig_result),
+      .out_trig_flags (func_out_trig_flags)
   );
 
 endmodule

@@ -27,37 +27,46 @@ std::string hex(Bits v) {
   return buf;
 }
 
-// Pointers to one unit's ports inside a verilated model. in_op and in_ready
-// are null for units without them.
+// One result port: valid, result, flags.
+struct OutPins {
+  CData* valid;
+  IData* result;
+  CData* flags;
+};
+
+// Pointers to one unit's ports inside a verilated model. in_op is null for
+// units without it; trig (the function unit's SIN/COS result port) has null
+// pointers on the other units.
 struct Pins {
   CData* in_valid;
   CData* in_op;
   IData* in_a;
   IData* in_b;
-  CData* in_ready;
-  CData* out_valid;
-  IData* out_result;
-  CData* out_flags;
+  OutPins out;
+  OutPins trig;
 };
+
+// The function unit returns SIN/COS on a port of their own: a RECIP/SQRT
+// issued one cycle later finishes in the same cycle (docs/fp24-rtl.md).
+bool trig_port(Op op) { return op == Op::Sin || op == Op::Cos; }
 
 // One unit's issue port and its in-flight ops. The in-flight list is a
 // fixed ring: a unit can hold at most a few ops, and the hot loop must not
 // allocate.
 class Lane {
  public:
+  // A result collected on one edge; a unit yields at most two per edge.
+  struct Done {
+    Result r;
+    std::size_t tag;
+    Timing t;
+  };
+  static constexpr int kMaxDone = 2;
+
   Lane(Unit unit, Pins pins) : unit_(unit), pins_(pins) {}
 
-  // May an op be issued on `edge`? Cross-checks the RTL's in_ready against
-  // the initiation interval of the op table.
-  bool ready(std::uint64_t edge) const {
-    const bool by_table = edge >= next_issue_;
-    if (pins_.in_ready != nullptr && (*pins_.in_ready != 0) != by_table) {
-      throw TimingError("fp24 " + unit_name() + " unit: in_ready=" + std::to_string(*pins_.in_ready) +
-                        " on edge " + std::to_string(edge) + ", but the op table says the unit is " +
-                        (by_table ? "ready" : "busy"));
-    }
-    return by_table;
-  }
+  // May an op be issued on `edge`? The initiation interval of the op table.
+  bool ready(std::uint64_t edge) const { return edge >= next_issue_; }
 
   void drive_idle() { *pins_.in_valid = 0; }
 
@@ -73,25 +82,27 @@ class Lane {
   }
 
   // Called after the posedge of `edge`: the outputs now hold what a consumer
-  // samples on edge + 1. Returns true and fills r/tag/t if a result is there.
-  bool collect(std::uint64_t edge, Result* r, std::size_t* tag, Timing* t) {
+  // samples on edge + 1. Fills done[0..n) with the results there, in issue
+  // order, and returns n.
+  int collect(std::uint64_t edge, Done* done) {
     const std::uint64_t sample = edge + 1;
-    if (*pins_.out_valid == 0) {
-      if (count_ > 0 && ring_[head_].due <= sample) throw late(ring_[head_]);
-      return false;
+    bool taken[2] = {false, false};  // out, trig
+    int n = 0;
+    // The ring is in issue order, and so in order of due edge: a RECIP/SQRT
+    // issued right after a SIN/COS is due on the same edge, never earlier.
+    while (count_ > 0 && ring_[head_].due <= sample) {
+      const InFlight& f = ring_[head_];
+      const int port = trig_port(f.op.op) ? 1 : 0;
+      const OutPins& p = port ? pins_.trig : pins_.out;
+      if (*p.valid == 0 || taken[port]) throw late(f);
+      taken[port] = true;
+      done[n++] = {{*p.result, *p.flags}, f.tag, {f.issue_edge, sample}};
+      head_ = (head_ + 1) % ring_.size();
+      --count_;
     }
-    if (count_ == 0) {
-      throw TimingError("fp24 " + unit_name() + " unit: out_valid on edge " + std::to_string(sample) +
-                        " with no op in flight");
-    }
-    const InFlight& f = ring_[head_];
-    if (f.due != sample) throw TimingError(describe(f) + " arrived on edge " + std::to_string(sample));
-    *r = {*pins_.out_result, *pins_.out_flags};
-    *tag = f.tag;
-    *t = {f.issue_edge, sample};
-    head_ = (head_ + 1) % ring_.size();
-    --count_;
-    return true;
+    check_idle(pins_.out, taken[0], sample, false);
+    if (pins_.trig.valid != nullptr) check_idle(pins_.trig, taken[1], sample, true);
+    return n;
   }
 
   bool busy() const { return count_ > 0; }
@@ -103,6 +114,18 @@ class Lane {
     std::uint64_t issue_edge;
     std::uint64_t due;  // edge on which the result must be sampled
   };
+
+  // A port whose valid is up must have delivered a result due now.
+  void check_idle(const OutPins& p, bool taken, std::uint64_t sample, bool trig) const {
+    if (taken || *p.valid == 0) return;
+    for (std::size_t i = 0; i < count_; ++i) {
+      const InFlight& f = ring_[(head_ + i) % ring_.size()];
+      if (trig_port(f.op.op) == trig)
+        throw TimingError(describe(f) + " arrived on edge " + std::to_string(sample));
+    }
+    throw TimingError("fp24 " + unit_name() + " unit: " + (trig ? "out_trig_valid" : "out_valid") + " on edge " +
+                      std::to_string(sample) + " with no op in flight");
+  }
 
   std::string unit_name() const {
     static const char* const kNames[] = {"multiplier", "adder", "function"};
@@ -127,20 +150,21 @@ class Lane {
 
 template <class Model>
 Pins unit_pins(Model& m) {
-  Pins p{&m.in_valid, nullptr, &m.in_a, &m.in_b, nullptr, &m.out_valid, &m.out_result, &m.out_flags};
+  Pins p{&m.in_valid, nullptr, &m.in_a, &m.in_b, {&m.out_valid, &m.out_result, &m.out_flags}, {}};
   if constexpr (std::is_same_v<Model, Vfp24_add> || std::is_same_v<Model, Vfp24_func>) p.in_op = &m.in_op;
-  if constexpr (std::is_same_v<Model, Vfp24_func>) p.in_ready = &m.in_ready;
+  if constexpr (std::is_same_v<Model, Vfp24_func>) p.trig = {&m.out_trig_valid, &m.out_trig_result, &m.out_trig_flags};
   return p;
 }
 
 std::array<Pins, kUnits> units_pins(Vfp24_units& m) {
   return {{
-      {&m.mul_in_valid, nullptr, &m.mul_in_a, &m.mul_in_b, nullptr, &m.mul_out_valid, &m.mul_out_result,
-       &m.mul_out_flags},
-      {&m.add_in_valid, &m.add_in_op, &m.add_in_a, &m.add_in_b, nullptr, &m.add_out_valid, &m.add_out_result,
-       &m.add_out_flags},
-      {&m.func_in_valid, &m.func_in_op, &m.func_in_a, &m.func_in_b, &m.func_in_ready, &m.func_out_valid,
-       &m.func_out_result, &m.func_out_flags},
+      {&m.mul_in_valid, nullptr, &m.mul_in_a, &m.mul_in_b, {&m.mul_out_valid, &m.mul_out_result, &m.mul_out_flags},
+       {}},
+      {&m.add_in_valid, &m.add_in_op, &m.add_in_a, &m.add_in_b,
+       {&m.add_out_valid, &m.add_out_result, &m.add_out_flags}, {}},
+      {&m.func_in_valid, &m.func_in_op, &m.func_in_a, &m.func_in_b,
+       {&m.func_out_valid, &m.func_out_result, &m.func_out_flags},
+       {&m.func_out_trig_valid, &m.func_out_trig_result, &m.func_out_trig_flags}},
   }};
 }
 
@@ -240,9 +264,7 @@ class UnitImpl final : public RtlUnit::Impl {
   // outputs. Nothing here allocates.
   void run(Op op, const Bits* a, const Bits* b, Result* out, std::size_t n) override {
     std::size_t issued = 0, done = 0;
-    Result r;
-    std::size_t tag;
-    Timing t;
+    Lane::Done d[Lane::kMaxDone];
     while (done < n) {
       if (issued < n && lane_.ready(edge)) {
         lane_.drive({op, a[issued], b != nullptr ? b[issued] : 0}, issued, edge);
@@ -251,10 +273,9 @@ class UnitImpl final : public RtlUnit::Impl {
         lane_.drive_idle();
       }
       clk_.posedge();
-      if (lane_.collect(edge, &r, &tag, &t)) {
-        out[tag] = r;
-        ++done;
-      }
+      const int k = lane_.collect(edge, d);
+      for (int i = 0; i < k; ++i) out[d[i].tag] = d[i].r;
+      done += std::size_t(k);
       clk_.negedge();
       ++edge;
     }
@@ -322,8 +343,7 @@ std::vector<Result> RtlUnits::run(const std::vector<Issue>& ops, const IssuePatt
   while (done < ops.size()) {
     for (int u = 0; u < kUnits; ++u) {
       const bool waiting = next[u] < queue[u].size();
-      // ready() is consulted every cycle so in_ready is checked even when idle.
-      if (m.lanes[u].ready(m.edge) && waiting && !bubble(rng)) {
+      if (waiting && m.lanes[u].ready(m.edge) && !bubble(rng)) {
         const std::size_t i = queue[u][next[u]++];
         m.lanes[u].drive(ops[i], i, m.edge);
       } else {
@@ -332,13 +352,13 @@ std::vector<Result> RtlUnits::run(const std::vector<Issue>& ops, const IssuePatt
     }
     m.clk.posedge();
     for (Lane& lane : m.lanes) {
-      Result r;
-      std::size_t tag;
-      Timing t;
-      if (!lane.collect(m.edge, &r, &tag, &t)) continue;
-      results[tag] = r;
-      if (timing != nullptr) (*timing)[tag] = t;
-      ++done;
+      Lane::Done d[Lane::kMaxDone];
+      const int k = lane.collect(m.edge, d);
+      for (int i = 0; i < k; ++i) {
+        results[d[i].tag] = d[i].r;
+        if (timing != nullptr) (*timing)[d[i].tag] = d[i].t;
+      }
+      done += std::size_t(k);
     }
     m.clk.negedge();
     ++m.edge;

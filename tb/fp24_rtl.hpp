@@ -4,9 +4,10 @@
 // cycle; RtlUnits drives the three units side by side (apu_rtl/fp24_units.sv),
 // optionally writing an FST waveform. Both check the timing contract on every
 // op: a result is sampled exactly `latency` edges after its issue edge (so a
-// dependent op could be issued on that edge), results leave a unit in issue
-// order, and the function unit's in_ready is low exactly while the op table's
-// initiation interval forbids an issue. A violation throws TimingError.
+// dependent op could be issued on that edge), on the right port (the function
+// unit's SIN/COS on out_trig_*), never before the result of an op issued
+// earlier, and no valid rises with nothing due. A violation throws
+// TimingError.
 #pragma once
 
 #include <cstdint>

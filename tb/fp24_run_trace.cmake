@@ -17,6 +17,9 @@ endif()
 execute_process(COMMAND ${FST2VCD} ${FST} OUTPUT_VARIABLE vcd ERROR_QUIET)
 string(FIND "${vcd}" "$enddefinitions" end)
 string(SUBSTRING "${vcd}" 0 ${end} header)
+# A variable's id code is any printable character sequence, `;` `[` `]`
+# included, which CMake lists would split or group on: drop them first.
+string(REGEX REPLACE "\\$var ([a-z]+) ([0-9]+) [^ ]+ " "$var \\1 \\2 - " header "${header}")
 string(REGEX MATCHALL "\\$(scope [a-z]+ [^ ]+|upscope|var [a-z]+ [0-9]+ [^ ]+ [^ ]+( \\[[0-9:]+\\])?) " tokens "${header}")
 set(scope "")
 set(names "")

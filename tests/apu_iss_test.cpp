@@ -48,18 +48,30 @@ TEST(ApuIss, RawAtDistanceTwoDoesNotStall) {
   EXPECT_EQ(r.apu->freg(3), kTwo);
 }
 
-TEST(ApuIss, SinCosOccupyTheFunctionUnitForTwoCycles) {
-  // SIN at 1; RECIP at 2 is a struct stall, issues at 3; the ADD reading the
-  // SIN result (visible at 4) issues at 4 with no stall.
-  Prog r({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Recip, 3, 1), addu(AddOp::Add, 4, 2, 2), halt()});
+TEST(ApuIss, SinCosAndOtherFunctionOpsIssueBackToBack) {
+  // SIN at 1 (visible 4), COS at 2 (visible 5), RECIP at 3 (visible 5, with
+  // the COS); the ADD reading the SIN result issues at 4 with no stall.
+  Prog r({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Cos, 3, 1), func(FuncOp::Recip, 4, 1),
+          addu(AddOp::Add, 5, 2, 2), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Struct, N, N, Stall::Drain, N}));
-  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, -1, 2, 3, -1, 4}));
-  const auto sin1 = fp24::sin(kOne);
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, N, Stall::Drain, N}));
+  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, 2, 3, 4, -1, 5}));
+  const auto sin1 = fp24::sin(kOne), cos1 = fp24::cos(kOne);
+  const auto twice = fp24::add(sin1.value, sin1.value);
   EXPECT_EQ(r.recs[4].commits, (std::vector<Commit>{{K::FReg, 2, sin1.value}, {K::Flags, 0, sin1.flags}}));
-  EXPECT_EQ(r.recs[5].commits, (std::vector<Commit>{{K::FReg, 3, kOne}}));
-  EXPECT_EQ(r.apu->freg(4), fp24::add(sin1.value, sin1.value).value);
-  EXPECT_EQ(r.apu->flags(), sin1.flags | fp24::add(sin1.value, sin1.value).flags);
+  EXPECT_EQ(r.recs[5].commits, (std::vector<Commit>{{K::FReg, 3, cos1.value}, {K::FReg, 4, kOne}}));
+  EXPECT_EQ(r.recs[6].commits, (std::vector<Commit>{{K::FReg, 5, twice.value}}));
+  EXPECT_EQ(r.apu->flags(), sin1.flags | cos1.flags | twice.flags);
+}
+
+TEST(ApuIss, RecipAfterSinIntoTheSameRegisterWaitsForIt) {
+  // SIN F2 at 1 is in flight at 2 and 3: RECIP F2 is a waw stall twice,
+  // issues at 4 (visible 6), after the SIN result (visible 4).
+  Prog r({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Recip, 2, 1), halt()});
+  r.go();
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Waw, Stall::Waw, N, Stall::Drain, N}));
+  EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, fp24::sin(kOne).value}));
+  EXPECT_EQ(r.recs[6].commits, (std::vector<Commit>{{K::FReg, 2, kOne}}));
 }
 
 TEST(ApuIss, SinThenReaderStallsRawTwice) {

@@ -109,22 +109,37 @@ TEST(ApuRtl, OneOperandAdderOpsDoNotReadB) {
   EXPECT_EQ(r.apu->freg(4), 0xBF0000u);
 }
 
-TEST(ApuRtl, SinCosHoldTheFunctionUnitTwoCycles) {
-  // SIN at 1 (visible 4); RECIP at 2 is a struct stall, issues at 3
-  // (visible 5); ADD reading the SIN result issues at 4.
-  Program r({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Recip, 3, 1), addu(AddOp::Add, 4, 2, 2), halt()});
+TEST(ApuRtl, SinCosAndOtherFunctionOpsIssueBackToBack) {
+  // SIN at 1 (visible 4), COS at 2 (visible 5), RECIP at 3 (visible 5: the
+  // unit returns it on its other port in the COS's cycle); ADD reading the
+  // SIN result issues at 4.
+  Program r({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Cos, 3, 1), func(FuncOp::Recip, 4, 1),
+             addu(AddOp::Add, 5, 2, 2), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Struct, N, N, Stall::Drain, N}));
-  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, -1, 2, 3, -1, 4}));
-  const auto s = fp24::sin(kOne);
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, N, Stall::Drain, N}));
+  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, 2, 3, 4, -1, 5}));
+  const auto s = fp24::sin(kOne), c = fp24::cos(kOne);
   const auto twice = fp24::add(s.value, s.value);
   Commits at4{{K::FReg, 2, s.value}};
   if (s.flags) at4.push_back({K::Flags, 0, s.flags});
   EXPECT_EQ(r.recs[4].commits, at4);
-  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 3, kOne}}));
-  EXPECT_EQ(r.recs[6].commits[0], (Commit{K::FReg, 4, twice.value}));
-  EXPECT_EQ(r.apu->freg(4), twice.value);
-  EXPECT_EQ(r.apu->flags(), s.flags | twice.flags);
+  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 3, c.value}, {K::FReg, 4, kOne}}));
+  EXPECT_EQ(r.recs[6].commits[0], (Commit{K::FReg, 5, twice.value}));
+  EXPECT_EQ(r.apu->freg(3), c.value);
+  EXPECT_EQ(r.apu->freg(4), kOne);
+  EXPECT_EQ(r.apu->freg(5), twice.value);
+  EXPECT_EQ(r.apu->flags(), s.flags | c.flags | twice.flags);
+}
+
+TEST(ApuRtl, RecipAfterSinIntoTheSameRegisterWaitsForIt) {
+  // SIN F2 at 1 is in flight at 2 and 3 (u_func's s1, then s2): RECIP F2 is
+  // a waw stall twice, issues at 4 (visible 6).
+  Program r({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Recip, 2, 1), halt()});
+  r.go();
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Waw, Stall::Waw, N, Stall::Drain, N}));
+  EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, fp24::sin(kOne).value}));
+  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 2, kOne}}));
+  EXPECT_EQ(r.apu->freg(2), kOne);
 }
 
 TEST(ApuRtl, CosReaderStallsRawTwice) {
@@ -136,13 +151,19 @@ TEST(ApuRtl, CosReaderStallsRawTwice) {
   EXPECT_EQ(r.apu->freg(3), fp24::mul(c.value, c.value).value);
 }
 
-TEST(ApuRtl, StructStallOnlyRightAfterSinCos) {
-  // SQRT after SQRT, and COS two cycles after COS: no struct stall.
-  Program r({lif(1, 0x4000), func(FuncOp::Sqrt, 2, 1), func(FuncOp::Sqrt, 3, 1), func(FuncOp::Cos, 4, 1), nop(),
-         func(FuncOp::Cos, 5, 1), halt()});
+TEST(ApuRtl, FunctionUnitTakesAnOpEveryCycle) {
+  // SQRT at 1 (visible 3), COS at 2 and 3 (visible 5, 6), SQRT at 4 (visible
+  // 6, with the second COS). HALT at 5 drains: the COS of 3 is in s2, the
+  // SQRT of 4 in s1; both complete at 6, where HALT issues.
+  Program r({lif(1, 0x4000), func(FuncOp::Sqrt, 2, 1), func(FuncOp::Cos, 3, 1), func(FuncOp::Cos, 4, 1),
+             func(FuncOp::Sqrt, 5, 1), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, N, N, Stall::Drain, Stall::Drain, N}));
-  EXPECT_EQ(r.apu->freg(5), fp24::cos(kTwo).value);
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, N, Stall::Drain, N}));
+  const auto c = fp24::cos(kTwo), q = fp24::sqrt(kTwo);
+  EXPECT_EQ(r.recs[3].commits[0], (Commit{K::FReg, 2, q.value}));
+  EXPECT_EQ(r.recs[5].commits[0], (Commit{K::FReg, 3, c.value}));
+  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, c.value}, {K::FReg, 5, q.value}}));
+  EXPECT_EQ(r.apu->freg(5), q.value);
 }
 
 TEST(ApuRtl, DrainAtHaltWaitsForTheLastResult) {

@@ -11,8 +11,8 @@
 namespace mc1::apu {
 
 // Why a cycle issued no word (docs/apu-isa.md, in priority order).
-enum class Stall : std::uint8_t { None = 0, Bank, Raw, Waw, Cc, Struct, Drain };
-constexpr int kStallKinds = 7;
+enum class Stall : std::uint8_t { None = 0, Bank, Raw, Waw, Cc, Drain };
+constexpr int kStallKinds = 6;
 const char* stall_name(Stall s);
 
 enum class Fault : std::uint8_t {

@@ -14,7 +14,6 @@ const char* stall_name(Stall s) {
     case Stall::Raw: return "raw";
     case Stall::Waw: return "waw";
     case Stall::Cc: return "cc";
-    case Stall::Struct: return "struct";
     case Stall::Drain: return "drain";
   }
   return "?";
@@ -63,8 +62,6 @@ DecodedWord DecodedWord::from(const Encoded& e) {
   if (w.f.en) {
     d.src |= bit(w.f.a);
     d.dst |= bit(w.f.d);
-    d.kind |= kFuncOp;
-    if (w.f.op == FuncOp::Sin || w.f.op == FuncOp::Cos) d.kind |= kSinCos;
   }
   switch (w.d.op) {
     case MemOp::Ld: d.dst |= bit(w.d.f); break;
@@ -113,7 +110,6 @@ void Iss::reset() {
   }
   ring_.fill(Bucket{});
   fp_done_ = cmp_done_ = 0;
-  func_busy_ = ~std::uint64_t{0};
   counters_ = Counters{};
 }
 
@@ -224,7 +220,6 @@ MC1_HOT Stall Iss::stall_reason(const DecodedWord& dw) const {
   if (dw.src & in_flight) return Stall::Raw;
   if (dw.dst & in_flight) return Stall::Waw;
   if ((k & DecodedWord::kCcBranch) && cmp_done_ > cycle_) return Stall::Cc;
-  if ((k & DecodedWord::kFuncOp) && func_busy_ == cycle_) return Stall::Struct;
   if ((k & DecodedWord::kHalt) && fp_done_ > cycle_) return Stall::Drain;
   return Stall::None;
 }
@@ -308,7 +303,6 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
       case FuncOp::Sin: r = fp::sin(x); latency = 3; break;
       case FuncOp::Cos: r = fp::cos(x); latency = 3; break;
     }
-    if (latency == 3) func_busy_ = cycle_ + 1;
     push_f(latency, w.f.d, r.value);
     push_flags(latency, r.flags);
     if (cycle_ + latency > fp_done_) fp_done_ = cycle_ + latency;

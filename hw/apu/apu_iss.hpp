@@ -18,12 +18,10 @@ namespace mc1::apu {
 // the stall logic asks of every word, precomputed.
 struct DecodedWord {
   enum : std::uint8_t {
-    kFuncOp = 1,     // F slot enabled: subject to `struct`
-    kSinCos = 2,     // F slot is SIN/COS: occupies the unit for a second cycle
-    kSwap = 4,       // SWAPD/SWAPP: subject to `bank`
-    kCcBranch = 8,   // BCC/BNCC: subject to `cc`
-    kHalt = 16,      // subject to `drain`
-    kReserved = 32,  // a reserved op in some slot: faults when it would issue
+    kSwap = 1,       // SWAPD/SWAPP: subject to `bank`
+    kCcBranch = 2,   // BCC/BNCC: subject to `cc`
+    kHalt = 4,       // subject to `drain`
+    kReserved = 8,   // a reserved op in some slot: faults when it would issue
   };
   MicroWord w;
   std::uint64_t src = 0;  // F registers read (raw)
@@ -85,13 +83,14 @@ class Iss final : public ApuEngine {
  private:
   struct FWrite { std::uint8_t index; std::uint32_t value; };
   struct AWrite { std::uint8_t index; std::uint16_t value; };
-  // What becomes visible in one future cycle. At most one write per slot.
+  // What becomes visible in one future cycle. At most one write per slot,
+  // except the F slot: a SIN/COS and a RECIP/SQRT issued one cycle later.
   struct Bucket {
     std::uint64_t fmask = 0;
     std::uint8_t nf = 0, na = 0;
     bool cc_valid = false, flags_commit = false;
     std::uint8_t cc = 0, flags = 0;  // flags: the OR of the ops', then FLAGS once applied
-    FWrite f[5];  // M, A, F, LD, MOVAF/LIF
+    FWrite f[6];  // M, A, F twice, LD, MOVAF/LIF
     AWrite a[2];  // I slot, DBNZ
   };
   static constexpr int kRing = 4;  // > the longest latency (3)
@@ -132,7 +131,6 @@ class Iss final : public ApuEngine {
   std::array<Bucket, kRing> ring_{};
   std::uint64_t fp_done_ = 0;      // first cycle with no FP op in flight
   std::uint64_t cmp_done_ = 0;     // first cycle with no CMP in flight
-  std::uint64_t func_busy_ = ~std::uint64_t{0};  // cycle taken by a SIN/COS's second stage-1 cycle
   Counters counters_;
 };
 

@@ -103,7 +103,9 @@ std::string Profile::report(int top_n) const {
   if (static_cast<int>(hot.size()) > top_n) hot.resize(static_cast<std::size_t>(top_n));
   if (!hot.empty()) {
     s += "top stalling words\n";
-    s += "bank pc     stalled  share   issued   bank    raw    waw     cc struct  drain  word\n";
+    s += "bank pc     stalled  share   issued";
+    for (int k = 1; k < kStallKinds; ++k) s += format(" %6s", stall_name(static_cast<Stall>(k)));
+    s += "  word\n";
     for (const Hot& h : hot) {
       const PcStats& p = pcs_[h.bank][h.pc];
       s += format("%-4d 0x%03x %-8llu %5.1f%% %-8llu", h.bank, h.pc, static_cast<unsigned long long>(h.n),

@@ -14,7 +14,8 @@ namespace mc1::apu {
 namespace {
 
 constexpr std::uint32_t kMask24 = 0xFFFFFF;
-constexpr int kFCommitPorts = 5;  // mul, add, func completions; LD, MOVAF/LIF of t - 1
+constexpr int kFCompletionPorts = 4;  // mul, add, func RECIP/SQRT, func SIN/COS
+constexpr int kFCommitPorts = 6;      // the completions; LD, MOVAF/LIF of t - 1
 
 // Bits [pos + width - 1 : pos] of a wide Verilator port.
 template <typename Wide>
@@ -204,7 +205,7 @@ bool RtlEngine::unit_mismatch() const { return top_->dbg_unit_mismatch; }
 std::uint32_t RtlEngine::freg(int i) const {
   const Vapu_core& t = *top_;
   i &= 63;
-  for (int p = 0; p < 3; ++p) {
+  for (int p = 0; p < kFCompletionPorts; ++p) {
     if (((t.dbg_fc_en >> p) & 1) && static_cast<int>((t.dbg_fc_idx >> (6 * p)) & 63) == i)
       return wide_bits(t.dbg_fc_val, 24 * p, 24);
   }

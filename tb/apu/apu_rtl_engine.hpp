@@ -53,7 +53,7 @@ class RtlEngine final : public ApuEngine {
   // passed; returns the cycles clocked (the fast path, as Iss::run).
   std::uint64_t run(std::uint64_t max_cycles) override;
 
-  // True if a unit's out_valid / in_ready ever disagreed with the core's
+  // True if a unit's out_valid / out_trig_valid ever disagreed with the core's
   // interlock mirror of the pipelines (a unit latency other than the doc's).
   bool unit_mismatch() const;
 
