@@ -655,11 +655,11 @@ TEST(RenderScan, PseudoPolygonsInTilesOfAWholeFrameBlock) {
   EXPECT_LT(a.max_rel_t, 1e-3);
 }
 
-// s2's candidates per batch of hits (shadow_candidates): fig. 6's list of
-// (object, light), less the triangles whose padded box misses the box of the
-// batch's hits on that object and the light. Every shadow flag is the one the
-// whole lists give, for fewer APU cycles.
-void expect_narrowed_shadow_lists_keep_flags(const std::string& name, int w, int h, int bs) {
+// s2's candidates per group of hits (shadows): fig. 6's list of (object,
+// light), less the triangles whose padded box misses the box of the group's
+// hits on that object and the light. Every shadow flag is the one the whole
+// lists give, for at most 1/`gain` of the APU cycles.
+void expect_narrowed_shadow_lists_keep_flags(const std::string& name, int w, int h, int bs, double gain) {
   scene::Scene sc = scene::load_scene(scene_path(name));
   sc.camera.width = w;
   sc.camera.height = h;
@@ -712,11 +712,16 @@ void expect_narrowed_shadow_lists_keep_flags(const std::string& name, int w, int
   std::printf("%s %dx%d: %d hits, %d shadowed; s2 APU cycles narrowed %.3g M, whole lists %.3g M\n", name.c_str(),
               w, h, hits, flags_set, narrowed_cycles / 1e6, whole_cycles / 1e6);
   EXPECT_GT(flags_set, hits / 20);
-  EXPECT_LT(narrowed_cycles, whole_cycles);
+  EXPECT_LT(narrowed_cycles * gain, whole_cycles);
 }
 
-TEST(RenderShadows, NarrowedListsKeepEveryFlagOnTheTeapot) { expect_narrowed_shadow_lists_keep_flags("teapot", 32, 24, 16); }
-TEST(RenderShadows, NarrowedListsKeepEveryFlagInTheRoom) { expect_narrowed_shadow_lists_keep_flags("room", 64, 48, 16); }
+// Measured: teapot 15.5 M vs 133 M (8.6x), room 4.5 M vs 12.5 M (2.8x).
+TEST(RenderShadows, NarrowedListsKeepEveryFlagOnTheTeapot) {
+  expect_narrowed_shadow_lists_keep_flags("teapot", 32, 24, 16, 6.0);
+}
+TEST(RenderShadows, NarrowedListsKeepEveryFlagInTheRoom) {
+  expect_narrowed_shadow_lists_keep_flags("room", 64, 48, 16, 2.0);
+}
 
 // The solid rule (docs/renderer.md, solid_rule and r_inside): a solid of two
 // overlapping glass spheres, whose refracted rays meet the spheres' inner

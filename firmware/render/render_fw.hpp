@@ -201,6 +201,7 @@ class RenderFirmware {
   void project_boxes();  // r_box over every object box and triangle
   using Box = std::array<std::int32_t, 6>;  // min xyz, max xyz as order_key()s
   std::vector<int> shadow_candidates(int object, int light, const Box& hits);
+  std::vector<int> narrow_shadow_list(const std::vector<int>& candidates, int light, const Box& hits);
   void build_shadow_lists();  // r_slist over every (object, light, object)
   // The solid rule: per object, the region primitives a hit on it must be
   // tested against (empty unless a solid with a region and another primitive).
