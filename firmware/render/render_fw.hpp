@@ -147,7 +147,7 @@ class RenderFirmware {
   // integer bookkeeping.
   struct Ray {
     std::array<std::uint32_t, 48> rec{};
-    int list = 0;    // candidate list (index into lists_)
+    int list = 0;    // candidate list (index into the lists it is cast with)
     int pixel = 0;   // index in the block
     int depth = 0;   // 0: eye ray
     int from = -1;   // primitive the ray leaves (R_FROM): shadow and secondary rays
@@ -173,6 +173,13 @@ class RenderFirmware {
   void shadows(std::vector<Ray>& rays);
   // s3/s4 (r_shade): weighted local colour and the secondary rays' data.
   void shade(std::vector<Ray>& rays, Step step);
+  // The reflected and transmitted rays of a shaded generation at `depth`
+  // (list 1: every primitive).
+  std::vector<Ray> children(const std::vector<Ray>& gen, int depth) const;
+  // s4's candidates: appends one list per group of `rays` to `lists` and
+  // sets the rays' `list`: every primitive less the triangles behind the
+  // group (docs/renderer.md).
+  void secondary_candidates(std::vector<Ray>& rays, std::vector<std::vector<int>>& lists);
 
  private:
   struct Bank {
@@ -217,11 +224,12 @@ class RenderFirmware {
   std::vector<ScreenRect> object_rect_;     // per object: its view box on the screen
   std::vector<ScreenRect> prim_rect_;       // per primitive: triangles' own, regions kWholeScreen
   std::vector<Box> prim_box_;               // per triangle: its padded view box (r_box)
+  std::vector<Box> object_tri_box_;         // per object: the union of its triangles' prim_box_
   std::vector<std::vector<int>> shadow_objects_;  // [object * lights + light]
   std::vector<std::vector<int>> solid_regions_;   // [object]: build_solid_regions
   // Candidate lists of primitives: [0] the block's eye rays (s1), [1] every
-  // primitive in file order (s4). s2 makes its own per batch of rays
-  // (shadow_candidates).
+  // primitive in file order. s2 (shadows) and s4 (secondary_candidates)
+  // make their own per group of rays.
   std::vector<std::vector<int>> lists_;
   std::vector<std::uint32_t> scene_words_;  // words C_D0 .. PRIMS-1 of every bank
   std::array<Bank, 2> banks_;
