@@ -18,11 +18,12 @@
 #include "apu_profile.hpp"
 #include "apu_random.hpp"
 #include "apu_tools.hpp"
+#include "apuasm.hpp"
 #include "fp24.hpp"
 
-#ifndef MC1_SOURCE_DIR
-#define MC1_SOURCE_DIR "."
-#endif
+// firmware/kernels/xform4.apu, assembled at build time (tb/apu/CMakeLists.txt).
+extern const unsigned char mc1_xform4_kernel_image[];
+extern const unsigned long mc1_xform4_kernel_image_size;
 
 namespace {
 
@@ -31,8 +32,9 @@ namespace fp = mc1::fp24;
 
 constexpr const char* kUsage =
     "usage: apu-bench [--kernel PATH] [--engines iss,rtl] [--iss-cycles N] [--rtl-cycles N] [--check]\n"
-    "Runs the xform4 vertex-transform stream (blocks of 1000 vertices) on each engine through the\n"
-    "MPU driver, the MPU polling every 64 cycles. Prints APU cycles, cycles per vertex, unit\n"
+    "Runs the xform4 vertex-transform stream (blocks of 1000 vertices; the built-in\n"
+    "firmware/kernels/xform4.apu, or --kernel's .apu/.bin with its interface) on each engine through\n"
+    "the MPU driver, the MPU polling every 64 cycles. Prints APU cycles, cycles per vertex, unit\n"
     "utilization and host speed; --check exits 1 if the ISS is below 20 M cycles/s or the RTL\n"
     "below 2 M cycles/s (or a result is wrong, always).\n";
 
@@ -151,7 +153,7 @@ Result bench(const std::string& name, const std::vector<Encoded>& kernel, std::u
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string kernel_path = std::string(MC1_SOURCE_DIR) + "/firmware/kernels/xform4.apu";
+  std::string kernel_path;  // empty: the embedded xform4.apu
   std::vector<std::string> engines = {"iss", "rtl"};
   std::uint64_t iss_cycles = 40'000'000, rtl_cycles = 4'000'000;
   bool check = false;
@@ -183,7 +185,13 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    const std::vector<Encoded> kernel = tools::load_program_file(kernel_path);
+    const std::vector<Encoded> kernel =
+        kernel_path.empty()
+            ? mc1::apuasm::parse_image(std::string(reinterpret_cast<const char*>(mc1_xform4_kernel_image),
+                                              mc1_xform4_kernel_image_size),
+                                  "xform4.bin (embedded)")
+            : tools::load_program_file(kernel_path);
+    if (kernel_path.empty()) kernel_path = "xform4.apu (built in)";
     std::vector<Result> results;
     for (const auto& e : engines) results.push_back(bench(e, kernel, e == "rtl" ? rtl_cycles : iss_cycles));
 
