@@ -412,14 +412,12 @@ double standard_scene_psnr(const std::string& name, int width, int height) {
 }
 
 // Measured (docs/renderer.md): whitted 64x48 67.3 dB, room 64x48 47.0 dB,
-// smooth 64x48 50.0 dB, teapot 32x24 64.5 dB (64x48: docs/renderer.md).
+// smooth 64x48 50.0 dB, teapot 32x24 64.5 dB, teapot 64x48 48.0 dB.
 TEST(RenderScenes, WhittedWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("whitted", 64, 48), 35.0); }
 TEST(RenderScenes, RoomWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("room", 64, 48), 35.0); }
-// The teapot (1153 primitives) is smaller here; its 64x48 frame runs under
-// `ctest -L long` (firmware/render/CMakeLists.txt).
 TEST(RenderScenes, SmoothWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("smooth", 64, 48), 35.0); }
 TEST(RenderScenes, TeapotWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("teapot", 32, 24), 35.0); }
-TEST(RenderScenes, DISABLED_Long_TeapotAt64x48) { EXPECT_GE(standard_scene_psnr("teapot", 64, 48), 35.0); }
+TEST(RenderScenes, TeapotAt64x48Within35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("teapot", 64, 48), 35.0); }
 
 // Step 2 (r_box): block lists hold only the objects whose projected box
 // meets the block, and s1's candidates only the triangles whose projection
