@@ -710,11 +710,10 @@ void expect_narrowed_shadow_lists_keep_flags(const std::string& name, int w, int
   EXPECT_LT(narrowed_cycles * gain, whole_cycles);
 }
 
-// s4's candidates per group of secondary rays (secondary_candidates): every
-// primitive less the triangles wholly behind the group's origins on an axis
-// where all its rays go one way. The first two generations of secondary
-// rays find the same primitive at the same t (bits) as against every
-// primitive, for at most 1/`gain` of the APU cycles.
+// s4's candidates per secondary ray (secondary_candidates): every primitive
+// less the triangles wholly behind the ray's origin on some axis. The first
+// two generations of secondary rays find the same primitive at the same t
+// (bits) as against every primitive, for at most 1/`gain` of the APU cycles.
 void expect_secondary_lists_keep_hits(const std::string& name, int w, int h, int bs, double gain) {
   Rig rig;
   const scene::Scene sc = load_standard_scene(rig, name, w, h);

@@ -1131,36 +1131,29 @@ std::vector<RenderFirmware::Ray> RenderFirmware::hidden_surface(const BlockList&
   return gen;
 }
 
-// s4's candidates per group of secondary rays (consecutive in the
-// generation): every primitive in file order, as the paper's s4 has no
-// lists, less the triangles that lie wholly behind the group. Where every
-// ray of the group has d_c >= 0 (sign bit clear), no ray reaches a point with
-// x_c below the least origin's x_c, so a triangle whose padded view box
-// (r_box, 16 epsilon) ends below it cannot be hit; the same for d_c < 0 above
-// the greatest. An object whose triangles' box is behind is passed over
+// s4's candidates, one list per ray: every primitive in file order, as the
+// paper's s4 has no lists, less the triangles that lie wholly behind the
+// ray. A ray with d_c >= 0 (sign bit clear) never reaches a point with x_c
+// below its origin's, so a triangle whose padded view box (r_box, 16
+// epsilon) ends below it cannot be hit; the same for d_c < 0 and a box that
+// begins above it. An object whose triangles' box is behind is passed over
 // whole. Regions are kept. MPU work: order keys and sign bits compared as
-// integers. Teapot 64x48 on 4 NCs, s4 APU cycles by rays per group: 98 M
-// (no culling), 30 M (4), 19 M (2), 11 M (1: a list per ray, so an r_cast
-// batch holds 8 rays, not 32; the MPU's list work does not grow).
+// integers. Teapot 64x48 on 4 NCs, s4 APU cycles: 98 M with no culling,
+// 11 M with a list per ray (an r_cast batch then holds 8 rays, not 32);
+// lists shared by groups of 2 or 4 consecutive rays (culling on the axes
+// where all agree) gave 19 M and 30 M.
 void RenderFirmware::secondary_candidates(std::vector<Ray>& rays, std::vector<std::vector<int>>& lists) {
-  constexpr int kGroup = 1;
   auto& cost = stats_.step[static_cast<int>(Step::Secondary)];
-  for (std::size_t first = 0; first < rays.size(); first += kGroup) {
-    const std::size_t end = std::min(rays.size(), first + kGroup);
-    Box origins = kEmptyBox;
-    int up = 7, down = 7;  // axes on which every direction is >= 0 / < 0
-    for (std::size_t i = first; i < end; ++i) {
-      Box p;
-      for (int c = 0; c < 3; ++c) {
-        p[c] = p[3 + c] = order_key(rays[i].rec[R_O + c]);
-        const bool negative = (rays[i].rec[R_D + c] >> 23) & 1u;
-        (negative ? up : down) &= ~(1 << c);
-      }
-      grow_box(origins, p);
+  for (Ray& r : rays) {
+    std::array<std::int32_t, 3> origin;
+    unsigned negative = 0;  // bit c: d_c's sign bit
+    for (int c = 0; c < 3; ++c) {
+      origin[c] = order_key(r.rec[R_O + c]);
+      negative |= ((r.rec[R_D + c] >> 23) & 1u) << c;
     }
     auto behind = [&](const Box& b) {
       for (int c = 0; c < 3; ++c)
-        if (((up >> c) & 1 && b[3 + c] < origins[c]) || ((down >> c) & 1 && b[c] > origins[3 + c])) return true;
+        if ((negative >> c) & 1 ? b[c] > origin[c] : b[3 + c] < origin[c]) return true;
       return false;
     };
     std::vector<int> list;
@@ -1174,7 +1167,7 @@ void RenderFirmware::secondary_candidates(std::vector<Ray>& rays, std::vector<st
         list.push_back(q);
       }
     }
-    for (std::size_t i = first; i < end; ++i) rays[i].list = static_cast<int>(lists.size());
+    r.list = static_cast<int>(lists.size());
     lists.push_back(std::move(list));
   }
 }
@@ -1210,12 +1203,12 @@ std::vector<Rgb8> RenderFirmware::render_block(const BlockList& list) {
   for (int depth = 0; !gen.empty(); ++depth) {
     const Step s1 = depth == 0 ? Step::HiddenSurface : Step::Secondary;
     const Step s3 = depth == 0 ? Step::Shading : Step::Secondary;
-    std::vector<std::vector<int>> lists = lists_;  // eye rays: list 0
-    if (depth > 0) {                                // depth 0: hidden_surface did s1
-      secondary_candidates(gen, lists);
-      cast(gen, lists, s1);
+    std::vector<std::vector<int>> own;  // secondary rays: one list each
+    if (depth > 0) {                     // depth 0: hidden_surface did s1
+      secondary_candidates(gen, own);
+      cast(gen, own, s1);
     }
-    solid_rule(gen, lists, s1);
+    solid_rule(gen, depth == 0 ? lists_ : own, s1);  // eye rays: list 0
     surface(gen, s1);
     shadows(gen);
     shade(gen, s3);

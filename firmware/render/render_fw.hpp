@@ -176,9 +176,9 @@ class RenderFirmware {
   // The reflected and transmitted rays of a shaded generation at `depth`
   // (list 1: every primitive).
   std::vector<Ray> children(const std::vector<Ray>& gen, int depth) const;
-  // s4's candidates: appends one list per group of `rays` to `lists` and
-  // sets the rays' `list`: every primitive less the triangles behind the
-  // group (docs/renderer.md).
+  // s4's candidates: appends one list per ray of `rays` to `lists` and sets
+  // the ray's `list`: every primitive less the triangles behind the ray
+  // (docs/renderer.md).
   void secondary_candidates(std::vector<Ray>& rays, std::vector<std::vector<int>>& lists);
 
  private:
