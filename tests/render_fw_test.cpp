@@ -516,12 +516,7 @@ TEST(RenderShadows, RoomEyeHitsHaveTheReferenceShadowFlags) {
   for (const auto& r : rays) {
     if (r.rec[R_ID] == kNoHit) continue;
     for (int l = 0; l < lights; ++l) {
-      RenderFirmware::Ray s;
-      std::copy(r.rec.begin() + R_P, r.rec.begin() + R_P + 3, s.rec.begin() + R_O);
-      s.rec[R_KIND] = 1;
-      s.rec[R_ARG] = static_cast<Word>(l);
-      s.rec[R_ID] = kNoHit;
-      s.from = static_cast<int>(r.rec[R_ID]);
+      RenderFirmware::Ray s = RenderFirmware::shadow_ray(r, l);
       s.list = 1 + v.prim_object[s.from] * lights + l;  // its shadow list (fig. 6)
       probes.push_back(s);
     }
@@ -678,12 +673,7 @@ void expect_narrowed_shadow_lists_keep_flags(const std::string& name, int w, int
       for (const auto& r : rays) {
         if (r.rec[R_ID] == kNoHit) continue;
         for (int l = 0; l < lights; ++l) {
-          RenderFirmware::Ray p;
-          std::copy(r.rec.begin() + R_P, r.rec.begin() + R_P + 3, p.rec.begin() + R_O);
-          p.rec[R_KIND] = 1;
-          p.rec[R_ARG] = static_cast<Word>(l);
-          p.rec[R_ID] = kNoHit;
-          p.from = static_cast<int>(r.rec[R_ID]);
+          RenderFirmware::Ray p = RenderFirmware::shadow_ray(r, l);
           lists.emplace_back();
           for (int b : rig.fw.shadow_list(v.prim_object[p.from], l))
             for (int q = 0; q < v.objects[b].prim_count; ++q) lists.back().push_back(v.objects[b].first_prim + q);

@@ -800,6 +800,16 @@ std::vector<int> RenderFirmware::shadow_candidates(int object, int light, const 
   return narrow_shadow_list(all, light, hits);
 }
 
+RenderFirmware::Ray RenderFirmware::shadow_ray(const Ray& hit, int light) {
+  Ray s;
+  std::copy(hit.rec.begin() + R_P, hit.rec.begin() + R_P + 3, s.rec.begin() + R_O);
+  s.rec[R_KIND] = 1;
+  s.rec[R_ARG] = static_cast<std::uint32_t>(light);
+  s.rec[R_ID] = kNoHit;
+  s.from = static_cast<int>(hit.rec[R_ID]);
+  return s;
+}
+
 void RenderFirmware::shadows(std::vector<Ray>& rays) {
   const int lights = static_cast<int>(view_.lights.size());
   // Hits in groups of half an r_cast batch of shadow rays (a group's rays
@@ -842,12 +852,7 @@ void RenderFirmware::shadows(std::vector<Ray>& rays) {
     rays[i].rec[R_SHADOW] = 0;
     if (!is_hit(rays[i])) continue;
     for (int l = 0; l < lights; ++l) {
-      Ray s;
-      std::copy(rays[i].rec.begin() + R_P, rays[i].rec.begin() + R_P + 3, s.rec.begin() + R_O);
-      s.rec[R_KIND] = 1;
-      s.rec[R_ARG] = static_cast<std::uint32_t>(l);
-      s.rec[R_ID] = kNoHit;
-      s.from = static_cast<int>(rays[i].rec[R_ID]);
+      Ray s = shadow_ray(rays[i], l);
       s.list = list_of.at({group_of[i], view_.prim_object.at(s.from) * lights + l});
       probes.push_back(s);
       owner.emplace_back(i, l);

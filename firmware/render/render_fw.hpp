@@ -171,6 +171,9 @@ class RenderFirmware {
   void surface(std::vector<Ray>& rays, Step step);
   // s2: shadow rays to every light (r_cast), R_SHADOW bits.
   void shadows(std::vector<Ray>& rays);
+  // The shadow ray (kind 1) from a hit's point toward `light`, leaving the
+  // hit's primitive; its list is the caller's.
+  static Ray shadow_ray(const Ray& hit, int light);
   // s3/s4 (r_shade): weighted local colour and the secondary rays' data.
   void shade(std::vector<Ray>& rays, Step step);
   // The reflected and transmitted rays of a shaded generation at `depth`
