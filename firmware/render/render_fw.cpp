@@ -1,6 +1,7 @@
 #include "render_fw.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -535,41 +536,52 @@ BlockList RenderFirmware::build_block_list(const Block& block) {
 
 // ---------------------------------------------------------------- s1/s2/s4: r_cast
 
-void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, Step step) {
+// Items (rays) in batches of at most kRaysPerBatch, in order, whose keys
+// (candidate lists) number at most 8 per batch; per batch the union of the
+// keys' primitives in chunks of kPrimSlots. Chunk c + 1 of a batch continues
+// chunk c's results, so each chunk level is one stream. `always_run`: a
+// batch whose keys name no primitive still gets one (empty) chunk.
+std::vector<RenderFirmware::BatchPlan> RenderFirmware::plan_batches(
+    int items, const std::function<int(int)>& key_of, const std::function<const std::vector<int>&(int)>& prims_of,
+    bool always_run, StepCost& cost) {
   constexpr int kListsPerBatch = 8;
-  constexpr int kListWords = 48;
-  auto& cost = stats_.step[static_cast<int>(step)];
-  struct Plan {
-    int first = 0, n = 0;
-    std::vector<int> lists;                // distinct candidate lists
-    std::vector<std::vector<int>> chunks;  // the lists' primitives, <= 48 per chunk
-  };
-  std::vector<Plan> plans;
-  for (int i = 0; i < static_cast<int>(rays.size());) {
-    Plan p;
+  std::vector<BatchPlan> plans;
+  for (int i = 0; i < items;) {
+    BatchPlan p;
     p.first = i;
-    while (i < static_cast<int>(rays.size()) && p.n < kRaysPerBatch) {
-      const int l = rays[i].list;
-      if (std::find(p.lists.begin(), p.lists.end(), l) == p.lists.end()) {
-        if (static_cast<int>(p.lists.size()) == kListsPerBatch) break;
-        p.lists.push_back(l);
+    while (i < items && p.n < kRaysPerBatch) {
+      const int key = key_of(i);
+      if (std::find(p.keys.begin(), p.keys.end(), key) == p.keys.end()) {
+        if (static_cast<int>(p.keys.size()) == kListsPerBatch) break;
+        p.keys.push_back(key);
       }
       ++p.n;
       ++i;
     }
     std::set<int> all;
-    for (int l : p.lists) {
-      all.insert(lists[l].begin(), lists[l].end());
-      cost.list_elements += lists[l].size();
+    for (int key : p.keys) {
+      const std::vector<int>& prims = prims_of(key);
+      all.insert(prims.begin(), prims.end());
+      cost.list_elements += prims.size();
     }
     std::vector<int> chunk;
     for (int prim : all) {
       chunk.push_back(prim);
       if (static_cast<int>(chunk.size()) == kPrimSlots) p.chunks.push_back(std::move(chunk)), chunk.clear();
     }
-    if (!chunk.empty() || p.chunks.empty()) p.chunks.push_back(chunk);
+    if (!chunk.empty() || (always_run && p.chunks.empty())) p.chunks.push_back(chunk);
     plans.push_back(std::move(p));
   }
+  return plans;
+}
+
+void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, Step step) {
+  constexpr int kListWords = 48;
+  auto& cost = stats_.step[static_cast<int>(step)];
+  // Every batch runs (a ray with no candidates still gets its O, D, t).
+  const std::vector<BatchPlan> plans = plan_batches(
+      static_cast<int>(rays.size()), [&](int i) { return rays[i].list; },
+      [&](int l) -> const std::vector<int>& { return lists[l]; }, true, cost);
   std::size_t levels = 0;
   for (const auto& p : plans) levels = std::max(levels, p.chunks.size());
   // One stream per chunk level: pass c + 1 of a batch needs pass c's results.
@@ -578,28 +590,28 @@ void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<
     for (int b = 0; b < static_cast<int>(plans.size()); ++b)
       if (plans[b].chunks.size() > c) items.push_back(b);
     auto fill = [&](int item) {
-      const Plan& p = plans[items[item]];
+      const BatchPlan& p = plans[items[item]];
       ensure_scene(step);
       const auto& chunk = p.chunks[c];
       const auto slots = place_prims(chunk, step);
       std::map<int, int> slot_of;
       for (std::size_t k = 0; k < chunk.size(); ++k) slot_of[chunk[k]] = slots[k];
       std::vector<std::uint32_t> list_words(kListWords);
-      std::vector<int> list_n(p.lists.size());
-      for (std::size_t k = 0; k < p.lists.size(); ++k) {
+      std::vector<int> list_n(p.keys.size());
+      for (std::size_t k = 0; k < p.keys.size(); ++k) {
         int n = 0;
-        for (int prim : lists[p.lists[k]]) {
+        for (int prim : lists[p.keys[k]]) {
           auto it = slot_of.find(prim);
           if (it != slot_of.end()) list_words[n++] = static_cast<std::uint32_t>(it->second);
         }
-        cost.list_elements += lists[p.lists[k]].size();
+        cost.list_elements += lists[p.keys[k]].size();
         list_n[k] = n;
         if (n) write(static_cast<std::uint16_t>(LISTS + kListWords * k), list_words.data(), n, step);
       }
       for (int j = 0; j < p.n; ++j) {
         auto rec = rays[p.first + j].rec;
-        const int k = static_cast<int>(std::find(p.lists.begin(), p.lists.end(), rays[p.first + j].list) -
-                                       p.lists.begin());
+        const int k = static_cast<int>(std::find(p.keys.begin(), p.keys.end(), rays[p.first + j].list) -
+                                       p.keys.begin());
         rec[R_LIST] = static_cast<std::uint32_t>(LISTS + kListWords * k);
         rec[R_LISTN] = static_cast<std::uint32_t>(list_n[k]);
         if (c > 0) {  // a later pass: the ray's data as the earlier pass left it
@@ -616,7 +628,7 @@ void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<
       write(COUNT, &count, 1, step);
     };
     auto drain = [&](int item) {
-      const Plan& p = plans[items[item]];
+      const BatchPlan& p = plans[items[item]];
       for (int j = 0; j < p.n; ++j) {
         auto back = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j), R_SLOT + 1, step);
         auto& rec = rays[p.first + j].rec;
@@ -894,44 +906,15 @@ bool RenderFirmware::may_be_hidden(const Ray& r) const {
 }
 
 std::vector<int> RenderFirmware::hidden_hits(std::vector<Ray>& rays, const std::vector<int>& which, Step step) {
-  constexpr int kListsPerBatch = 8;
   constexpr int kListWords = 48;
   auto& cost = stats_.step[static_cast<int>(step)];
   // Batches of at most 32 rays whose hits lie on at most 8 objects; the
   // objects' regions in chunks of 48 slots (a later chunk skips rays already
-  // found hidden), as in cast().
-  struct Plan {
-    int first = 0, n = 0;                  // which[first .. first + n)
-    std::vector<int> objects;              // one list each: the object's regions
-    std::vector<std::vector<int>> chunks;  // their primitives, <= 48 per chunk
-  };
+  // found hidden), as in cast(). A batch without regions does not run.
   auto object_of = [&](int k) { return view_.prim_object.at(rays[which[k]].rec[R_ID]); };
-  std::vector<Plan> plans;
-  for (int i = 0; i < static_cast<int>(which.size());) {
-    Plan p;
-    p.first = i;
-    while (i < static_cast<int>(which.size()) && p.n < kRaysPerBatch) {
-      const int o = object_of(i);
-      if (std::find(p.objects.begin(), p.objects.end(), o) == p.objects.end()) {
-        if (static_cast<int>(p.objects.size()) == kListsPerBatch) break;
-        p.objects.push_back(o);
-      }
-      ++p.n;
-      ++i;
-    }
-    std::set<int> all;
-    for (int o : p.objects) {
-      all.insert(solid_regions_[o].begin(), solid_regions_[o].end());
-      cost.list_elements += solid_regions_[o].size();
-    }
-    std::vector<int> chunk;
-    for (int prim : all) {
-      chunk.push_back(prim);
-      if (static_cast<int>(chunk.size()) == kPrimSlots) p.chunks.push_back(std::move(chunk)), chunk.clear();
-    }
-    if (!chunk.empty()) p.chunks.push_back(chunk);
-    plans.push_back(std::move(p));
-  }
+  const std::vector<BatchPlan> plans = plan_batches(
+      static_cast<int>(which.size()), object_of,
+      [&](int o) -> const std::vector<int>& { return solid_regions_[o]; }, false, cost);
   std::vector<char> hidden(which.size(), 0);
   std::size_t levels = 0;
   for (const auto& p : plans) levels = std::max(levels, p.chunks.size());
@@ -940,24 +923,24 @@ std::vector<int> RenderFirmware::hidden_hits(std::vector<Ray>& rays, const std::
     for (int b = 0; b < static_cast<int>(plans.size()); ++b)
       if (plans[b].chunks.size() > c) items.push_back(b);
     auto fill = [&](int item) {
-      const Plan& p = plans[items[item]];
+      const BatchPlan& p = plans[items[item]];
       ensure_scene(step);
       const auto& chunk = p.chunks[c];
       const auto slots = place_prims(chunk, step);
       std::vector<std::uint32_t> list_words(kListWords);
-      std::vector<int> list_n(p.objects.size());
-      for (std::size_t k = 0; k < p.objects.size(); ++k) {
+      std::vector<int> list_n(p.keys.size());
+      for (std::size_t k = 0; k < p.keys.size(); ++k) {
         int n = 0;
         for (std::size_t s = 0; s < chunk.size(); ++s)
-          if (view_.prim_object[chunk[s]] == p.objects[k]) list_words[n++] = static_cast<std::uint32_t>(slots[s]);
+          if (view_.prim_object[chunk[s]] == p.keys[k]) list_words[n++] = static_cast<std::uint32_t>(slots[s]);
         cost.list_elements += chunk.size();
         list_n[k] = n;
         if (n) write(static_cast<std::uint16_t>(LISTS + kListWords * k), list_words.data(), n, step);
       }
       for (int j = 0; j < p.n; ++j) {
         auto rec = rays[which[p.first + j]].rec;
-        const int k = static_cast<int>(std::find(p.objects.begin(), p.objects.end(), object_of(p.first + j)) -
-                                       p.objects.begin());
+        const int k = static_cast<int>(std::find(p.keys.begin(), p.keys.end(), object_of(p.first + j)) -
+                                       p.keys.begin());
         rec[R_LIST] = static_cast<std::uint32_t>(LISTS + kListWords * k);
         rec[R_LISTN] = hidden[p.first + j] ? 0 : static_cast<std::uint32_t>(list_n[k]);
         write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rec.data(), R_LISTN + 1, step);
@@ -966,7 +949,7 @@ std::vector<int> RenderFirmware::hidden_hits(std::vector<Ray>& rays, const std::
       write(COUNT, &count, 1, step);
     };
     auto drain = [&](int item) {
-      const Plan& p = plans[items[item]];
+      const BatchPlan& p = plans[items[item]];
       for (int j = 0; j < p.n; ++j) {
         const std::uint32_t tmin = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_TMIN), 1, step)[0];
         if (tmin == 0) continue;

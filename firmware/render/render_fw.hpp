@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -220,6 +221,15 @@ class RenderFirmware {
   // r_inside over rays[which[k]]: the hits strictly inside another region of
   // their solid get R_TMIN = R_T; returns them (indices into rays).
   std::vector<int> hidden_hits(std::vector<Ray>& rays, const std::vector<int>& which, Step step);
+  // r_cast's and r_inside's batches (plan_batches in render_fw.cpp).
+  struct BatchPlan {
+    int first = 0, n = 0;                  // items first .. first + n - 1
+    std::vector<int> keys;                 // distinct candidate lists, in first use order
+    std::vector<std::vector<int>> chunks;  // the keys' primitives, <= kPrimSlots per chunk
+  };
+  std::vector<BatchPlan> plan_batches(int items, const std::function<int(int)>& key_of,
+                                      const std::function<const std::vector<int>&(int)>& prims_of, bool always_run,
+                                      StepCost& cost);
 
   std::unique_ptr<DirectLink> own_link_;  // before link_: it may refer to it
   ApuLink& link_;
