@@ -221,6 +221,13 @@ struct TestScene {
   }
 };
 
+// Every primitive of a view scene, in file order (a candidate list).
+std::vector<int> every_primitive(const ViewScene& v) {
+  std::vector<int> all(v.prims.size());
+  for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+  return all;
+}
+
 struct Rig {
   apu::Iss iss;
   apu::ApuDriver drv{iss};
@@ -428,8 +435,7 @@ void expect_block_lists_conservative(const scene::Scene& sc, int bs, std::size_t
   rig.fw.load_scene(make_scene_image(sc));
   const auto& v = rig.fw.view();
   const int w = sc.camera.width, h = sc.camera.height;
-  std::vector<int> all(v.prims.size());
-  for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+  const std::vector<int> all = every_primitive(v);
   std::vector<RenderFirmware::Ray> rays;
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
@@ -505,8 +511,7 @@ TEST(RenderShadows, RoomEyeHitsHaveTheReferenceShadowFlags) {
   Rig rig;
   const scene::Scene sc = load_standard_scene(rig, "room", w, h);
   const auto& v = rig.fw.view();
-  std::vector<int> all(v.prims.size());
-  for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+  const std::vector<int> all = every_primitive(v);
   // s1 as the renderer does it (scan conversion, then regions), the frame
   // as one block: rays row-major.
   std::vector<RenderFirmware::Ray> rays = rig.fw.hidden_surface(rig.fw.build_block_list({0, 0, w, h}));
@@ -588,8 +593,7 @@ ScanAgreement scan_against_casting(const std::string& name, int w, int h, int bs
   Rig rig;
   const scene::Scene sc = load_standard_scene(rig, name, w, h);
   const auto& v = rig.fw.view();
-  std::vector<int> all(v.prims.size());
-  for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+  const std::vector<int> all = every_primitive(v);
   ScanAgreement a;
   for (int y0 = 0; y0 < h; y0 += bs)
     for (int x0 = 0; x0 < w; x0 += bs) {
@@ -707,9 +711,7 @@ void expect_narrowed_shadow_lists_keep_flags(const std::string& name, int w, int
 void expect_secondary_lists_keep_hits(const std::string& name, int w, int h, int bs, double gain) {
   Rig rig;
   const scene::Scene sc = load_standard_scene(rig, name, w, h);
-  const int prims = static_cast<int>(rig.fw.view().prims.size());
-  std::vector<int> every(prims);
-  for (int q = 0; q < prims; ++q) every[q] = q;
+  const std::vector<int> every = every_primitive(rig.fw.view());
   std::uint64_t narrowed_cycles = 0, whole_cycles = 0;
   int rays = 0, hits = 0;
   auto& s4 = rig.fw.stats().step[static_cast<int>(Step::Secondary)];
@@ -933,8 +935,7 @@ TEST(RenderSolids, EyeRaysGoPastSurfacesInsideTheSolid) {
   Rig rig;
   rig.fw.load_scene(make_scene_image(sc));
   const auto& v = rig.fw.view();
-  std::vector<int> all(v.prims.size());
-  for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+  const std::vector<int> all = every_primitive(v);
   auto rays = eye_rays(w, h);
   rig.fw.cast(rays, {all}, Step::HiddenSurface);
   const SolidCounts before = solid_counts(sc, v, rays, true, w, h);
@@ -965,8 +966,7 @@ TEST(RenderSolids, RefractedRaysGoPastSurfacesInsideTheSolid) {
   Rig rig;
   rig.fw.load_scene(make_scene_image(sc));
   const auto& v = rig.fw.view();
-  std::vector<int> all(v.prims.size());
-  for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+  const std::vector<int> all = every_primitive(v);
   auto rays = eye_rays(w, h);
   rig.fw.cast(rays, {all}, Step::HiddenSurface);
   rig.fw.solid_rule(rays, {all}, Step::HiddenSurface);
