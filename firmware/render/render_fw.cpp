@@ -536,6 +536,28 @@ BlockList RenderFirmware::build_block_list(const Block& block) {
 
 // ---------------------------------------------------------------- s1/s2/s4: r_cast
 
+// The batches of `plans` as r_cast / r_inside streams, one per chunk level
+// (pass c + 1 of a batch needs pass c's results): fill(plan, c, slots) with
+// chunk c's primitives placed in the bank's slots, drain(plan) after the run.
+template <class Fill, class Drain>
+void RenderFirmware::stream_chunks(const std::string& kernel, const std::vector<BatchPlan>& plans, Step step,
+                                   Fill fill, Drain drain) {
+  std::size_t levels = 0;
+  for (const auto& p : plans) levels = std::max(levels, p.chunks.size());
+  for (std::size_t c = 0; c < levels; ++c) {
+    std::vector<int> items;
+    for (int b = 0; b < static_cast<int>(plans.size()); ++b)
+      if (plans[b].chunks.size() > c) items.push_back(b);
+    stream(kernel, static_cast<int>(items.size()), step,
+           [&](int item) {
+             const BatchPlan& p = plans[items[item]];
+             ensure_scene(step);
+             fill(p, c, place_prims(p.chunks[c], step));
+           },
+           [&](int item) { drain(plans[items[item]]); });
+  }
+}
+
 // Items (rays) in batches of at most kRaysPerBatch, in order, whose keys
 // (candidate lists) number at most 8 per batch; per batch the union of the
 // keys' primitives in chunks of kPrimSlots. Chunk c + 1 of a batch continues
@@ -582,63 +604,51 @@ void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<
   const std::vector<BatchPlan> plans = plan_batches(
       static_cast<int>(rays.size()), [&](int i) { return rays[i].list; },
       [&](int l) -> const std::vector<int>& { return lists[l]; }, true, cost);
-  std::size_t levels = 0;
-  for (const auto& p : plans) levels = std::max(levels, p.chunks.size());
-  // One stream per chunk level: pass c + 1 of a batch needs pass c's results.
-  for (std::size_t c = 0; c < levels; ++c) {
-    std::vector<int> items;
-    for (int b = 0; b < static_cast<int>(plans.size()); ++b)
-      if (plans[b].chunks.size() > c) items.push_back(b);
-    auto fill = [&](int item) {
-      const BatchPlan& p = plans[items[item]];
-      ensure_scene(step);
-      const auto& chunk = p.chunks[c];
-      const auto slots = place_prims(chunk, step);
-      std::map<int, int> slot_of;
-      for (std::size_t k = 0; k < chunk.size(); ++k) slot_of[chunk[k]] = slots[k];
-      std::vector<std::uint32_t> list_words(kListWords);
-      std::vector<int> list_n(p.keys.size());
-      for (std::size_t k = 0; k < p.keys.size(); ++k) {
-        int n = 0;
-        for (int prim : lists[p.keys[k]]) {
-          auto it = slot_of.find(prim);
-          if (it != slot_of.end()) list_words[n++] = static_cast<std::uint32_t>(it->second);
-        }
-        cost.list_elements += lists[p.keys[k]].size();
-        list_n[k] = n;
-        if (n) write(static_cast<std::uint16_t>(LISTS + kListWords * k), list_words.data(), n, step);
+  auto fill = [&](const BatchPlan& p, std::size_t c, const std::vector<int>& slots) {
+    const auto& chunk = p.chunks[c];
+    std::map<int, int> slot_of;
+    for (std::size_t k = 0; k < chunk.size(); ++k) slot_of[chunk[k]] = slots[k];
+    std::vector<std::uint32_t> list_words(kListWords);
+    std::vector<int> list_n(p.keys.size());
+    for (std::size_t k = 0; k < p.keys.size(); ++k) {
+      int n = 0;
+      for (int prim : lists[p.keys[k]]) {
+        auto it = slot_of.find(prim);
+        if (it != slot_of.end()) list_words[n++] = static_cast<std::uint32_t>(it->second);
       }
-      for (int j = 0; j < p.n; ++j) {
-        auto rec = rays[p.first + j].rec;
-        const int k = static_cast<int>(std::find(p.keys.begin(), p.keys.end(), rays[p.first + j].list) -
-                                       p.keys.begin());
-        rec[R_LIST] = static_cast<std::uint32_t>(LISTS + kListWords * k);
-        rec[R_LISTN] = static_cast<std::uint32_t>(list_n[k]);
-        if (c > 0) {  // a later pass: the ray's data as the earlier pass left it
-          if (rec[R_KIND] == 1 && rec[R_ID] != kNoHit) rec[R_LISTN] = 0;  // already blocked
-          rec[R_KIND] = rec[R_KIND] == 2 || rec[R_KIND] == 5 ? 3 : rec[R_KIND] == 1 ? 4 : rec[R_KIND];
-        }
-        write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rec.data(), R_SLOT + 1, step);
-        const int from = rays[p.first + j].from;
-        static_assert(R_TMIN == R_FROM + 1, "R_FROM, R_TMIN are written together");
-        const std::uint32_t tail[2] = {from < 0 ? kNoHit : static_cast<std::uint32_t>(from), rec[R_TMIN]};
-        write(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_FROM), tail, 2, step);
+      cost.list_elements += lists[p.keys[k]].size();
+      list_n[k] = n;
+      if (n) write(static_cast<std::uint16_t>(LISTS + kListWords * k), list_words.data(), n, step);
+    }
+    for (int j = 0; j < p.n; ++j) {
+      auto rec = rays[p.first + j].rec;
+      const int k = static_cast<int>(std::find(p.keys.begin(), p.keys.end(), rays[p.first + j].list) -
+                                     p.keys.begin());
+      rec[R_LIST] = static_cast<std::uint32_t>(LISTS + kListWords * k);
+      rec[R_LISTN] = static_cast<std::uint32_t>(list_n[k]);
+      if (c > 0) {  // a later pass: the ray's data as the earlier pass left it
+        if (rec[R_KIND] == 1 && rec[R_ID] != kNoHit) rec[R_LISTN] = 0;  // already blocked
+        rec[R_KIND] = rec[R_KIND] == 2 || rec[R_KIND] == 5 ? 3 : rec[R_KIND] == 1 ? 4 : rec[R_KIND];
       }
-      const std::uint32_t count = static_cast<std::uint32_t>(p.n);
-      write(COUNT, &count, 1, step);
-    };
-    auto drain = [&](int item) {
-      const BatchPlan& p = plans[items[item]];
-      for (int j = 0; j < p.n; ++j) {
-        auto back = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j), R_SLOT + 1, step);
-        auto& rec = rays[p.first + j].rec;
-        for (int w = R_O; w <= R_T; ++w) rec[w] = back[w];
-        rec[R_ID] = back[R_ID];
-        rec[R_SLOT] = back[R_SLOT];
-      }
-    };
-    stream("r_cast", static_cast<int>(items.size()), step, fill, drain);
-  }
+      write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rec.data(), R_SLOT + 1, step);
+      const int from = rays[p.first + j].from;
+      static_assert(R_TMIN == R_FROM + 1, "R_FROM, R_TMIN are written together");
+      const std::uint32_t tail[2] = {from < 0 ? kNoHit : static_cast<std::uint32_t>(from), rec[R_TMIN]};
+      write(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_FROM), tail, 2, step);
+    }
+    const std::uint32_t count = static_cast<std::uint32_t>(p.n);
+    write(COUNT, &count, 1, step);
+  };
+  auto drain = [&](const BatchPlan& p) {
+    for (int j = 0; j < p.n; ++j) {
+      auto back = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j), R_SLOT + 1, step);
+      auto& rec = rays[p.first + j].rec;
+      for (int w = R_O; w <= R_T; ++w) rec[w] = back[w];
+      rec[R_ID] = back[R_ID];
+      rec[R_SLOT] = back[R_SLOT];
+    }
+  };
+  stream_chunks("r_cast", plans, step, fill, drain);
 }
 
 // ---------------------------------------------------------------- s1: r_scan
@@ -916,49 +926,38 @@ std::vector<int> RenderFirmware::hidden_hits(std::vector<Ray>& rays, const std::
       static_cast<int>(which.size()), object_of,
       [&](int o) -> const std::vector<int>& { return solid_regions_[o]; }, false, cost);
   std::vector<char> hidden(which.size(), 0);
-  std::size_t levels = 0;
-  for (const auto& p : plans) levels = std::max(levels, p.chunks.size());
-  for (std::size_t c = 0; c < levels; ++c) {
-    std::vector<int> items;
-    for (int b = 0; b < static_cast<int>(plans.size()); ++b)
-      if (plans[b].chunks.size() > c) items.push_back(b);
-    auto fill = [&](int item) {
-      const BatchPlan& p = plans[items[item]];
-      ensure_scene(step);
-      const auto& chunk = p.chunks[c];
-      const auto slots = place_prims(chunk, step);
-      std::vector<std::uint32_t> list_words(kListWords);
-      std::vector<int> list_n(p.keys.size());
-      for (std::size_t k = 0; k < p.keys.size(); ++k) {
-        int n = 0;
-        for (std::size_t s = 0; s < chunk.size(); ++s)
-          if (view_.prim_object[chunk[s]] == p.keys[k]) list_words[n++] = static_cast<std::uint32_t>(slots[s]);
-        cost.list_elements += chunk.size();
-        list_n[k] = n;
-        if (n) write(static_cast<std::uint16_t>(LISTS + kListWords * k), list_words.data(), n, step);
-      }
-      for (int j = 0; j < p.n; ++j) {
-        auto rec = rays[which[p.first + j]].rec;
-        const int k = static_cast<int>(std::find(p.keys.begin(), p.keys.end(), object_of(p.first + j)) -
-                                       p.keys.begin());
-        rec[R_LIST] = static_cast<std::uint32_t>(LISTS + kListWords * k);
-        rec[R_LISTN] = hidden[p.first + j] ? 0 : static_cast<std::uint32_t>(list_n[k]);
-        write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rec.data(), R_LISTN + 1, step);
-      }
-      const std::uint32_t count = static_cast<std::uint32_t>(p.n);
-      write(COUNT, &count, 1, step);
-    };
-    auto drain = [&](int item) {
-      const BatchPlan& p = plans[items[item]];
-      for (int j = 0; j < p.n; ++j) {
-        const std::uint32_t tmin = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_TMIN), 1, step)[0];
-        if (tmin == 0) continue;
-        hidden[p.first + j] = 1;
-        rays[which[p.first + j]].rec[R_TMIN] = tmin;
-      }
-    };
-    stream("r_inside", static_cast<int>(items.size()), step, fill, drain);
-  }
+  auto fill = [&](const BatchPlan& p, std::size_t c, const std::vector<int>& slots) {
+    const auto& chunk = p.chunks[c];
+    std::vector<std::uint32_t> list_words(kListWords);
+    std::vector<int> list_n(p.keys.size());
+    for (std::size_t k = 0; k < p.keys.size(); ++k) {
+      int n = 0;
+      for (std::size_t s = 0; s < chunk.size(); ++s)
+        if (view_.prim_object[chunk[s]] == p.keys[k]) list_words[n++] = static_cast<std::uint32_t>(slots[s]);
+      cost.list_elements += chunk.size();
+      list_n[k] = n;
+      if (n) write(static_cast<std::uint16_t>(LISTS + kListWords * k), list_words.data(), n, step);
+    }
+    for (int j = 0; j < p.n; ++j) {
+      auto rec = rays[which[p.first + j]].rec;
+      const int k = static_cast<int>(std::find(p.keys.begin(), p.keys.end(), object_of(p.first + j)) -
+                                     p.keys.begin());
+      rec[R_LIST] = static_cast<std::uint32_t>(LISTS + kListWords * k);
+      rec[R_LISTN] = hidden[p.first + j] ? 0 : static_cast<std::uint32_t>(list_n[k]);
+      write(static_cast<std::uint16_t>(RAYS + R_SIZE * j), rec.data(), R_LISTN + 1, step);
+    }
+    const std::uint32_t count = static_cast<std::uint32_t>(p.n);
+    write(COUNT, &count, 1, step);
+  };
+  auto drain = [&](const BatchPlan& p) {
+    for (int j = 0; j < p.n; ++j) {
+      const std::uint32_t tmin = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j + R_TMIN), 1, step)[0];
+      if (tmin == 0) continue;
+      hidden[p.first + j] = 1;
+      rays[which[p.first + j]].rec[R_TMIN] = tmin;
+    }
+  };
+  stream_chunks("r_inside", plans, step, fill, drain);
   std::vector<int> out;
   for (std::size_t k = 0; k < which.size(); ++k)
     if (hidden[k]) out.push_back(which[k]);

@@ -227,6 +227,9 @@ class RenderFirmware {
     std::vector<int> keys;                 // distinct candidate lists, in first use order
     std::vector<std::vector<int>> chunks;  // the keys' primitives, <= kPrimSlots per chunk
   };
+  template <class Fill, class Drain>
+  void stream_chunks(const std::string& kernel, const std::vector<BatchPlan>& plans, Step step, Fill fill,
+                     Drain drain);
   std::vector<BatchPlan> plan_batches(int items, const std::function<int(int)>& key_of,
                                       const std::function<const std::vector<int>&(int)>& prims_of, bool always_run,
                                       StepCost& cost);
