@@ -442,33 +442,39 @@ TEST(ApuAsmDirectives, Macros) {
 // Hostile input: every integer operation checked, expansion bounded,
 // directories refused (issue 11).
 
+// A source that must not assemble and its first diagnostic.
+struct BadSource {
+  const char* src;
+  const char* error;
+};
+
 TEST(ApuAsmLimits, ExpressionOverflowIsALocatedError) {
-  // INT64_MIN / -1 used to kill the assembler with SIGFPE.
-  EXPECT_EQ(first_error(".equ X, -(1<<62)*2/-1\n"),
-            "e.apu:1:19: error: integer overflow: -9223372036854775808 / -1 does not fit in 64 bits");
-  // ... and (1<<62)*4 wrapped to 0, so this loaded 5.
-  EXPECT_EQ(first_error("li a1, (1<<62)*4+5\n"),
-            "e.apu:1:15: error: integer overflow: 4611686018427387904 * 4 does not fit in 64 bits");
-  EXPECT_EQ(first_error(".equ X, 0x7fffffffffffffff + 1\n"),
-            "e.apu:1:28: error: integer overflow: 9223372036854775807 + 1 does not fit in 64 bits");
-  EXPECT_EQ(first_error(".equ X, -0x7fffffffffffffff - 2\n"),
-            "e.apu:1:29: error: integer overflow: -9223372036854775807 - 2 does not fit in 64 bits");
-  EXPECT_EQ(first_error(".equ M, -0x7fffffffffffffff - 1\n.equ X, -M\n"),
-            "e.apu:2:9: error: integer overflow: -(-9223372036854775808) does not fit in 64 bits");
-  EXPECT_EQ(first_error(".equ X, 3 << 62\n"), "e.apu:1:11: error: integer overflow: 3 << 62 does not fit in 64 bits");
-  EXPECT_EQ(first_error(".equ X, 1 << 63\n"), "e.apu:1:11: error: integer overflow: 1 << 63 does not fit in 64 bits");
-  EXPECT_EQ(first_error("ld f1, [a1-(-0x7fffffffffffffff-1)]\n"),
-            "e.apu:1:11: error: integer overflow: -(-9223372036854775808) does not fit in 64 bits");
-  EXPECT_EQ(first_error(".equ X, 9223372036854775808\n"),
-            "e.apu:1:9: error: number too large (the largest is 9223372036854775807)");
+  const BadSource cases[] = {
+      // INT64_MIN / -1 used to kill the assembler with SIGFPE.
+      {".equ X, -(1<<62)*2/-1\n",
+       "e.apu:1:19: error: integer overflow: -9223372036854775808 / -1 does not fit in 64 bits"},
+      // (1<<62)*4 wrapped to 0, so this loaded 5.
+      {"li a1, (1<<62)*4+5\n", "e.apu:1:15: error: integer overflow: 4611686018427387904 * 4 does not fit in 64 bits"},
+      {".equ X, 0x7fffffffffffffff + 1\n",
+       "e.apu:1:28: error: integer overflow: 9223372036854775807 + 1 does not fit in 64 bits"},
+      {".equ X, -0x7fffffffffffffff - 2\n",
+       "e.apu:1:29: error: integer overflow: -9223372036854775807 - 2 does not fit in 64 bits"},
+      {".equ M, -0x7fffffffffffffff - 1\n.equ X, -M\n",
+       "e.apu:2:9: error: integer overflow: -(-9223372036854775808) does not fit in 64 bits"},
+      {".equ X, 3 << 62\n", "e.apu:1:11: error: integer overflow: 3 << 62 does not fit in 64 bits"},
+      {".equ X, 1 << 63\n", "e.apu:1:11: error: integer overflow: 1 << 63 does not fit in 64 bits"},
+      {"ld f1, [a1-(-0x7fffffffffffffff-1)]\n",
+       "e.apu:1:11: error: integer overflow: -(-9223372036854775808) does not fit in 64 bits"},
+      {".equ X, 9223372036854775808\n", "e.apu:1:9: error: number too large (the largest is 9223372036854775807)"},
+      {".equ X, 4 / (2 - 2)\n", "e.apu:1:11: error: division by zero"},
+      {".equ X, 4 % 0\n", "e.apu:1:11: error: modulo by zero"},
+      {".equ X, 1 << 64\n", "e.apu:1:11: error: shift count 64 out of range 0..63"},
+      {".equ X, 8 >> -1\n", "e.apu:1:11: error: shift count -1 out of range 0..63"},
+  };
+  for (const auto& c : cases) EXPECT_EQ(first_error(c.src), c.error) << c.src;
 }
 
-TEST(ApuAsmLimits, DivisionAndShiftCounts) {
-  EXPECT_EQ(first_error(".equ X, 4 / (2 - 2)\n"), "e.apu:1:11: error: division by zero");
-  EXPECT_EQ(first_error(".equ X, 4 % 0\n"), "e.apu:1:11: error: modulo by zero");
-  EXPECT_EQ(first_error(".equ X, 1 << 64\n"), "e.apu:1:11: error: shift count 64 out of range 0..63");
-  EXPECT_EQ(first_error(".equ X, 8 >> -1\n"), "e.apu:1:11: error: shift count -1 out of range 0..63");
-  // The edges themselves are values.
+TEST(ApuAsmLimits, ExpressionEdgesAreValues) {
   const auto p = assemble(
       ".equ MIN, -0x7fffffffffffffff - 1\n"
       ".equ MAX, 9223372036854775807\n"
