@@ -78,13 +78,16 @@ class FileSizeLimit {
 TEST(AtomicFile, GoodWriteRenamesIntoPlace) {
   ScratchDir dir;
   const std::string path = dir.file("out.bin");
+  const mode_t old_mask = umask(027);
   write_file_atomically(path, "first");
+  umask(old_mask);
   EXPECT_EQ(slurp(path), "first");
+  EXPECT_EQ(mode_of(path) & 07777, 0640u) << "a new file gets 0666 less the umask, as from open(2)";
+  chmod(path.c_str(), 0604);
   EXPECT_EQ(dir.names(), std::set<std::string>{"out.bin"});
-  chmod(path.c_str(), 0640);
   write_file_atomically(path, std::string("second\0bytes", 12));
   EXPECT_EQ(slurp(path), std::string("second\0bytes", 12));
-  EXPECT_EQ(mode_of(path) & 07777, 0640u) << "an existing file keeps its mode";
+  EXPECT_EQ(mode_of(path) & 07777, 0604u) << "an existing file keeps its mode";
   EXPECT_EQ(dir.names(), std::set<std::string>{"out.bin"});
 }
 

@@ -3,11 +3,13 @@
 // destructor's close() (where a small file's write happens) not at all.
 #include "atomic_file.hpp"
 
+#include <atomic>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <stdexcept>
+#include <string>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <utility>
@@ -47,12 +49,17 @@ std::string resolve(const std::string& path) {
   return out;
 }
 
-// The mode a new file gets from open(2): 0666 less the umask (which can only
-// be read by setting it).
-mode_t new_file_mode() {
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  return 0666 & ~mask;
+// Creates "DIR.NAME.tmp.PID.N" exclusively (N counts up past names in use),
+// with mode 0666 so that open(2) applies the umask as for any new file;
+// returns the descriptor and sets `temp`, or -1 with errno set.
+int create_temp(const std::string& dir, const std::string& name, std::string& temp) {
+  static std::atomic<unsigned> counter{0};
+  for (int tries = 0; tries < 1000; ++tries) {
+    temp = dir + "." + name + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0 || errno != EEXIST) return fd;
+  }
+  return -1;
 }
 
 }  // namespace
@@ -70,11 +77,11 @@ StagedFile::StagedFile(const std::string& path, std::string_view bytes) : path_(
   const auto slash = target_.find_last_of('/');
   const std::string dir = slash == std::string::npos ? "" : target_.substr(0, slash + 1);
   const std::string name = slash == std::string::npos ? target_ : target_.substr(slash + 1);
-  std::string temp = dir + "." + name + ".tmp.XXXXXX";
-  const int fd = ::mkostemp(temp.data(), O_CLOEXEC);
+  std::string temp;
+  const int fd = create_temp(dir, name, temp);
   if (fd < 0) fail(path_, "cannot create a temporary file beside it", errno);
-  const mode_t mode = exists ? (st.st_mode & 07777) : new_file_mode();
-  if (::fchmod(fd, mode) != 0 || !write_and_close(fd, bytes)) {
+  // A replaced file keeps its mode.
+  if ((exists && ::fchmod(fd, st.st_mode & 07777) != 0) || !write_and_close(fd, bytes)) {
     const int err = errno;
     ::unlink(temp.c_str());
     fail(path_, "cannot write", err);

@@ -8,7 +8,7 @@
 
 namespace mc1 {
 
-// `bytes` written beside `path` under a temporary name (".NAME.tmp.XXXXXX"),
+// `bytes` written beside `path` under a temporary name (".NAME.tmp.PID.N"),
 // every write and the close checked; commit() renames it onto `path`. Until
 // then `path` is untouched, and a StagedFile destroyed without commit()
 // removes its temporary file, so several outputs can be staged first and
@@ -17,7 +17,8 @@ namespace mc1 {
 // A target that exists and is not a regular file (/dev/null, /dev/full, a
 // FIFO) is written in place by the constructor, because renaming over it
 // would replace the device; its write errors are reported all the same.
-// Errors: std::runtime_error "PATH: what failed: reason".
+// Errors: std::runtime_error "PATH: what failed: reason". There is no fsync:
+// this guards against writes that fail, not against a machine that crashes.
 class StagedFile {
  public:
   StagedFile(const std::string& path, std::string_view bytes);
