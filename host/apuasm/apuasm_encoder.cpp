@@ -182,6 +182,15 @@ class WordEncoder {
     return true;
   }
 
+  // The op of the table entry this mnemonic names, after need(n, usage) and
+  // take(s); nullopt when the mnemonic is none of the table's.
+  template <class Op, size_t N>
+  std::optional<Op> match(const std::pair<const char*, Op> (&table)[N], size_t n, const char* usage, Slot s) {
+    for (const auto& [name, op] : table)
+      if (is(name, n, usage, s)) return op;
+    return std::nullopt;
+  }
+
   bool mul_slot();
   bool add_slot();
   bool func_slot();
@@ -224,23 +233,17 @@ bool WordEncoder::add_slot() {
   }
   static const std::pair<const char*, AddOp> kUnary[] = {
       {"float", AddOp::Float}, {"fix", AddOp::Fix}, {"neg", AddOp::Neg}, {"abs", AddOp::Abs}};
-  for (const auto& [name, aop] : kUnary) {
-    if (!is(name, 2, "fd, fa", kSlotA)) continue;
-    w_.a = {true, aop, op_->fdest(0), op_->freg(1), 0};
-    return true;
-  }
-  return false;
+  const auto aop = match(kUnary, 2, "fd, fa", kSlotA);
+  if (aop) w_.a = {true, *aop, op_->fdest(0), op_->freg(1), 0};
+  return aop.has_value();
 }
 
 bool WordEncoder::func_slot() {
   static const std::pair<const char*, FuncOp> kFunc[] = {
       {"recip", FuncOp::Recip}, {"sqrt", FuncOp::Sqrt}, {"sin", FuncOp::Sin}, {"cos", FuncOp::Cos}};
-  for (const auto& [name, fop] : kFunc) {
-    if (!is(name, 2, "fd, fa", kSlotF)) continue;
-    w_.f = {true, fop, op_->fdest(0), op_->freg(1)};
-    return true;
-  }
-  return false;
+  const auto fop = match(kFunc, 2, "fd, fa", kSlotF);
+  if (fop) w_.f = {true, *fop, op_->fdest(0), op_->freg(1)};
+  return fop.has_value();
 }
 
 bool WordEncoder::data_slot() {
@@ -277,26 +280,24 @@ bool WordEncoder::int_imm_or_reg() {
   static const std::pair<const char*, IntOp> kImmOps[] = {
       {"addi", IntOp::Addi}, {"muli", IntOp::Muli}, {"andi", IntOp::Andi}, {"ori", IntOp::Ori},
       {"shl", IntOp::Shl},   {"shr", IntOp::Shr},   {"sra", IntOp::Sra}};
-  for (const auto& [name, iop] : kImmOps) {
-    if (!is(name, 3, "ad, as, imm", kSlotI)) continue;
-    i.op = iop;
+  if (const auto iop = match(kImmOps, 3, "ad, as, imm", kSlotI)) {
+    i.op = *iop;
     i.d = op_->adest(0);
     i.s = op_->areg(1);
-    const bool shift = iop == IntOp::Shl || iop == IntOp::Shr || iop == IntOp::Sra;
+    const bool shift = i.op == IntOp::Shl || i.op == IntOp::Shr || i.op == IntOp::Sra;
     i.imm = shift ? op_->shift_amount(2) : op_->imm16(2);
     return true;
   }
   static const std::pair<const char*, IntOp> kRegOps[] = {
       {"add", IntOp::Add}, {"sub", IntOp::Sub}, {"xor", IntOp::Xor}};
-  for (const auto& [name, iop] : kRegOps) {
-    if (!is(name, 3, "ad, as, at", kSlotI)) continue;
-    i.op = iop;
+  const auto iop = match(kRegOps, 3, "ad, as, at", kSlotI);
+  if (iop) {
+    i.op = *iop;
     i.d = op_->adest(0);
     i.s = op_->areg(1);
     i.t = op_->areg(2);
-    return true;
   }
-  return false;
+  return iop.has_value();
 }
 
 bool WordEncoder::int_moves() {
@@ -320,17 +321,15 @@ bool WordEncoder::seq_slot() {
   auto& s = w_.s;
   static const std::pair<const char*, SeqOp> kTargetOps[] = {
       {"jmp", SeqOp::Jmp}, {"call", SeqOp::Call}, {"swapp", SeqOp::Swapp}};
-  for (const auto& [name, sop] : kTargetOps) {
-    if (!is(name, 1, "target", kSlotS)) continue;
-    s.op = sop;
+  if (const auto sop = match(kTargetOps, 1, "target", kSlotS)) {
+    s.op = *sop;
     s.target = op_->target(0);
     return true;
   }
   static const std::pair<const char*, SeqOp> kBare[] = {
       {"ret", SeqOp::Ret}, {"swapd", SeqOp::Swapd}, {"halt", SeqOp::Halt}};
-  for (const auto& [name, sop] : kBare) {
-    if (!is(name, 0, name, kSlotS)) continue;
-    s.op = sop;
+  if (const auto sop = match(kBare, 0, mn_.c_str(), kSlotS)) {
+    s.op = *sop;
     return true;
   }
   return seq_branches();
@@ -358,18 +357,16 @@ bool WordEncoder::seq_branches() {
   }
   static const std::pair<const char*, SeqOp> kRegOps[] = {
       {"dbnz", SeqOp::Dbnz}, {"bz", SeqOp::Bz}, {"bnz", SeqOp::Bnz}, {"bltz", SeqOp::Bltz}};
-  for (const auto& [name, sop] : kRegOps) {
-    if (!is(name, 2, "ar, target", kSlotS)) continue;
-    s.op = sop;
-    s.r = op_->areg(0);
-    s.target = op_->target(1);
-    if (sop == SeqOp::Dbnz) {
-      st_.dbnz_areg = s.r;
-      st_.dbnz_col = op_->at(0).col;
-    }
-    return true;
+  const auto sop = match(kRegOps, 2, "ar, target", kSlotS);
+  if (!sop) return false;
+  s.op = *sop;
+  s.r = op_->areg(0);
+  s.target = op_->target(1);
+  if (s.op == SeqOp::Dbnz) {
+    st_.dbnz_areg = s.r;
+    st_.dbnz_col = op_->at(0).col;
   }
-  return false;
+  return true;
 }
 
 // docs/apu-isa.md: no register may be written twice by one word.
