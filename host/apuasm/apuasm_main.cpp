@@ -5,6 +5,7 @@
 #include <iostream>
 #include <string>
 
+#include "apu_image.hpp"
 #include "apuasm.hpp"
 
 namespace {
@@ -67,7 +68,7 @@ int main(int argc, char** argv) {
   try {
     if (!disasm.empty()) {
       if (!source.empty()) return usage_error("-d takes no source file");
-      std::cout << mc1::apuasm::disassembly_text(mc1::apuasm::load_image(disasm));
+      std::cout << mc1::apuasm::disassembly_text(mc1::apu::load_image(disasm));
       return 0;
     }
     if (source.empty()) return usage_error("no source file");
@@ -78,7 +79,7 @@ int main(int argc, char** argv) {
       image = (has_ext ? source.substr(0, dot) : source) + ".bin";
     }
     const auto program = mc1::apuasm::assemble_file(source);
-    mc1::apuasm::write_image(image, program.words);
+    mc1::apu::write_image(image, program.words);
     if (!listing.empty() && !write_text(listing, mc1::apuasm::listing_text(program))) return 1;
     if (!hex.empty() && !write_text(hex, mc1::apuasm::readmemh_text(program.words))) return 1;
     return 0;
