@@ -245,9 +245,9 @@ class Checker:
             if t == before:
                 break
         if not t.startswith("@ROOT@"):
-            if "$" in t or "/" in t or t.startswith("-") or not os.path.exists(os.path.join(self.root, os.path.dirname(rel), t)):
+            if "$" in t or t.startswith("-") or t.isupper():  # unknown variable, option, keyword
                 return None
-            t = "@ROOT@/" + os.path.dirname(rel) + "/" + t
+            t = "@ROOT@/" + os.path.dirname(rel) + "/" + t  # relative to this CMakeLists.txt
         p = os.path.normpath(t.replace("@ROOT@", "").lstrip("/")).replace(os.sep, "/")
         return unit_of(p + "/x") if os.path.isdir(os.path.join(self.root, p)) else unit_of(p)
 
