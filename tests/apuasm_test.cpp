@@ -16,6 +16,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "apu_image.hpp"
 #include "apuasm.hpp"
 #include "apuasm_macros.hpp"
 #include "disasm.hpp"
@@ -876,7 +877,7 @@ TEST(ApuAsmOutput, ListingFormat) {
 
 TEST(ApuAsmOutput, ImageBytes) {
   const std::vector<Encoded> words = {{0x0123456789ABCDEFull, 0xFEDCBA9876543210ull}, {1, 2}};
-  const std::string b = image_bytes(words);
+  const std::string b = apu::image_bytes(words);
   ASSERT_EQ(b.size(), 8u + 32u);
   EXPECT_EQ(b.substr(0, 4), "APU1");
   EXPECT_EQ(static_cast<unsigned char>(b[4]), 2);
@@ -884,14 +885,14 @@ TEST(ApuAsmOutput, ImageBytes) {
   EXPECT_EQ(static_cast<unsigned char>(b[16]), 0x10);  // hi
   EXPECT_EQ(static_cast<unsigned char>(b[24]), 1);
   EXPECT_EQ(static_cast<unsigned char>(b[32]), 2);
-  EXPECT_EQ(parse_image(b), words);
-  EXPECT_THROW(parse_image("APU0" + b.substr(4)), std::runtime_error);
-  EXPECT_THROW(parse_image(b.substr(0, b.size() - 1)), std::runtime_error);
+  EXPECT_EQ(apu::parse_image(b), words);
+  EXPECT_THROW(apu::parse_image("APU0" + b.substr(4)), std::runtime_error);
+  EXPECT_THROW(apu::parse_image(b.substr(0, b.size() - 1)), std::runtime_error);
 
   TempDir dir;
   const std::string path = dir.path() + "/x.bin";
-  write_image(path, words);
-  EXPECT_EQ(load_image(path), words);
+  apu::write_image(path, words);
+  EXPECT_EQ(apu::load_image(path), words);
   std::remove(path.c_str());
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "apu_image.hpp"
 #include "apuasm.hpp"
 #include "atomic_file.hpp"
 
@@ -30,7 +31,7 @@ std::string default_image(const std::string& source) {
 int disassemble(const std::string& image) {
   std::string text;
   try {
-    text = mc1::apuasm::disassembly_text(mc1::apuasm::load_image(image));
+    text = mc1::apuasm::disassembly_text(mc1::apu::load_image(image));
   } catch (const std::exception& e) {
     std::cerr << "apuasm: " << e.what() << "\n";
     return kExitInput;
@@ -54,7 +55,7 @@ int assemble(const Options& o) {
   try {
     std::vector<mc1::StagedFile> staged;
     staged.reserve(3);
-    staged.emplace_back(o.image.empty() ? default_image(o.source) : o.image, mc1::apuasm::image_bytes(program.words));
+    staged.emplace_back(o.image.empty() ? default_image(o.source) : o.image, mc1::apu::image_bytes(program.words));
     if (!o.listing.empty()) staged.emplace_back(o.listing, mc1::apuasm::listing_text(program));
     if (!o.hex.empty()) staged.emplace_back(o.hex, mc1::apuasm::readmemh_text(program.words));
     for (auto& f : staged) f.commit();
