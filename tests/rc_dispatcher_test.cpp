@@ -63,6 +63,7 @@ struct Bench {
   rc::Dispatcher d;
 
   Bench(unsigned ncs, rc::FramePlan p) : plan(p), d(port.t, ncs, std::move(p), port) {}
+  Bench(const Bench&) = delete;  // d holds a reference to port
   NcState state(unsigned nc) const { return d.states()[nc]; }
   void request(unsigned nc, std::uint32_t done = rc::kNoBlock) { d.on_message(nc, rc::encode(rc::RequestMsg{done})); }
   // NC nc sends the lists of the job it was last given; block b's load is `load(b)`.
@@ -88,6 +89,15 @@ struct Bench {
     d.serve_parked();
   }
 };
+
+// Two NCs, two blocks, deadlines: NC 1 has done block 0 and waits while
+// NC 2 holds block 1.
+void park_nc1(Bench& b) {
+  b.request(1);
+  b.request(2);
+  b.request(1, 0);
+  ASSERT_EQ(b.state(1), NcState::Parked);
+}
 
 }  // namespace
 
@@ -231,6 +241,7 @@ TEST(RcDispatcher, WorkingToParkedWhileBlocksAreOut) {
   Bench b(2, block_plan(2, true));
   b.request(1);
   b.request(2);
+  EXPECT_EQ(b.state(1), NcState::Working);
   b.request(1, 0);
   EXPECT_EQ(b.state(1), NcState::Parked);  // block 1 may still come back
   EXPECT_EQ(b.port.last_type(1), rc::MsgType::Assign);
@@ -292,10 +303,7 @@ TEST(RcDispatcher, WorkingToLostRequeuesItsBlock) {
 
 TEST(RcDispatcher, ParkedToWorkingWhenABlockComesBack) {
   Bench b(2, block_plan(2, true));
-  b.request(1);
-  b.request(2);
-  b.request(1, 0);
-  ASSERT_EQ(b.state(1), NcState::Parked);
+  park_nc1(b);
   b.link_down(2);
   b.d.serve_parked();
   EXPECT_EQ(b.state(1), NcState::Working);
@@ -322,9 +330,7 @@ TEST(RcDispatcher, ParkedToWorkingWhenStep3Begins) {
 
 TEST(RcDispatcher, ParkedToFinishedWhenTheLastBlockIsDone) {
   Bench b(2, block_plan(2, true));
-  b.request(1);
-  b.request(2);
-  b.request(1, 0);
+  park_nc1(b);
   b.request(2, 1);
   EXPECT_EQ(b.state(2), NcState::Finished);
   EXPECT_EQ(b.state(1), NcState::Parked);
@@ -335,9 +341,7 @@ TEST(RcDispatcher, ParkedToFinishedWhenTheLastBlockIsDone) {
 
 TEST(RcDispatcher, ParkedToLost) {
   Bench b(2, block_plan(2, true));
-  b.request(1);
-  b.request(2);
-  b.request(1, 0);
+  park_nc1(b);
   b.link_down(1);
   EXPECT_EQ(b.state(1), NcState::Lost);
   EXPECT_EQ(b.d.link_downs()[0].requeued, 0u);
@@ -345,9 +349,7 @@ TEST(RcDispatcher, ParkedToLost) {
 
 TEST(RcDispatcher, ParkedToParkedWhenItAsksAgain) {
   Bench b(2, block_plan(2, true));
-  b.request(1);
-  b.request(2);
-  b.request(1, 0);
+  park_nc1(b);
   b.request(1);
   EXPECT_EQ(b.state(1), NcState::Parked);
 }

@@ -163,7 +163,6 @@ class Dispatcher {
   const std::vector<Block>& order() const { return order_; }
   // Step 2's block lists by block id (empty without step 2).
   const std::vector<BlockListMsg>& block_lists() const { return lists_; }
-  bool lists_phase() const { return lists_phase_; }
   std::string status() const;  // blocks done, NCs finished and dead (for errors)
 
  private:

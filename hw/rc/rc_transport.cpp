@@ -28,11 +28,12 @@ void RcTransport::post(sc_dt::uint64 address, const Bytes& msg) {
   p.set_data_ptr(data.data());
   p.set_data_length(static_cast<unsigned>(data.size()));
   p.set_streaming_width(static_cast<unsigned>(data.size()));
-  qk_.set(to_controller(p));  // the controller took the message at this time
+  const sc_core::sc_time taken = to_controller(p);
   if (!p.is_response_ok())
     SC_REPORT_ERROR(owner_.c_str(), ("HDLC refused a message to " + std::to_string(address) + ": " +
                                      p.get_response_string())
                                         .c_str());
+  qk_.set(taken);  // the controller took the message at this local time
   ++stats_.messages_sent;
   stats_.bytes_sent += msg.size();
 }

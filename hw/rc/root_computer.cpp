@@ -39,23 +39,12 @@ RootComputer::RootComputer(sc_core::sc_module_name name, const TimingParams& t, 
 }
 
 rc::RcStats RootComputer::stats() const {
-  const rc::TransportStats& x = transport_.stats();
-  const rc::DispatchStats& d = dispatcher_.stats();
   rc::RcStats s;
-  s.messages_sent = x.messages_sent;
-  s.messages_received = x.messages_received;
-  s.bytes_sent = x.bytes_sent;
-  s.bytes_received = x.bytes_received;
-  s.busy = x.busy;
+  static_cast<rc::TransportStats&>(s) = transport_.stats();
+  static_cast<rc::DispatchStats&>(s) = dispatcher_.stats();
   s.setup_done = setup_done_;
-  s.last_completion = d.last_completion;
   s.done_at = done_at_;
   s.download_bytes = download_bytes_;
-  s.lists_done = d.lists_done;
-  s.sort_compares = d.sort_compares;
-  s.late_reports = d.late_reports;
-  s.reassigned = d.reassigned;
-  s.revived = d.revived;
   return s;
 }
 

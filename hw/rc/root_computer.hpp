@@ -53,18 +53,11 @@ namespace mc1 {
 
 namespace rc {
 
-struct RcStats {
-  std::uint64_t messages_sent = 0, messages_received = 0, bytes_sent = 0, bytes_received = 0;
-  Picos busy = 0;          // processor time annotated
-  Picos setup_done = 0;    // downloads and set-up posted
-  Picos last_completion = 0;
-  Picos done_at = 0;       // every block done and every live NC told (or taken as dead)
+// Everything the RC counts: its HDLC side, its dispatcher, the frame.
+struct RcStats : TransportStats, DispatchStats {
+  Picos setup_done = 0;              // downloads and set-up posted
+  Picos done_at = 0;                 // every block done and every live NC told (or taken as dead)
   std::uint64_t download_bytes = 0;  // broadcast before the first piece of work
-  Picos lists_done = 0;              // step 2: the last block list arrived (0: no step 2)
-  std::uint64_t sort_compares = 0;   // the load sort of step 3
-  std::uint64_t late_reports = 0;    // reports of pieces already done (ignored)
-  std::uint64_t reassigned = 0;      // pieces handed out again after a timeout
-  std::uint64_t revived = 0;         // NCs taken as dead that reported after all
 };
 
 }  // namespace rc
