@@ -42,15 +42,16 @@ const char* nc_state_name(NcState s) {
 //   an NC taken as dead that reports after all: Dead -> Working (revived),
 //     or, once the frame is complete, Dead -> Finished;
 //   a link going down: anything but Lost -> Lost.
-// Parked -> Parked and Parked -> Dead happen only to an NC that asks again
-// while it waits (the RC answers as to any request; a piece it still held
-// keeps its deadline). Finished and Lost are final but for Finished -> Lost.
+// Parked -> Parked happens only to an NC that asks again while it waits,
+// Parked -> Dead only to one that asked without reporting the piece it held
+// (the RC answers such requests as any other; the piece keeps its
+// deadline). Finished and Lost are final but for Finished -> Lost.
 bool transition_allowed(NcState from, NcState to) {
   using S = NcState;
   switch (from) {
     case S::Starting:
     case S::Working:
-    case S::Parked: return to == S::Working || to == S::Parked || to == S::Finished || to == S::Dead || to == S::Lost;
+    case S::Parked: return to != S::Starting;
     case S::Dead: return to == S::Working || to == S::Finished || to == S::Lost;
     case S::Finished: return to == S::Lost;
     case S::Lost: return false;
