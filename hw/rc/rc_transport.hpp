@@ -27,9 +27,6 @@
 
 namespace mc1 {
 
-// TLM address of a message to every NC (NC ids are 1..N).
-constexpr sc_dt::uint64 kHdlcBroadcast = 0xFFFFFFFFu;
-
 namespace rc {
 
 struct Receipt {
