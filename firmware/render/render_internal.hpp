@@ -35,9 +35,6 @@ inline void grow_box(KeyBox& b, const KeyBox& p) {
 
 constexpr std::uint32_t kOne = 0x3F0000;  // FP24 1.0
 
-// A positive FP24 number: sign clear, exponent field not zero.
-inline bool positive(std::uint32_t fp24) { return !(fp24 & 0x800000) && (fp24 & 0x7F0000); }
-
 // Triangles and pseudo triangles (P_TYPE): what r_scan draws and r_box projects.
 inline bool is_triangle(std::uint32_t type) { return type == kTriangle || type == kPseudoTriangle; }
 

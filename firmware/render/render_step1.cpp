@@ -111,8 +111,7 @@ void add_objects(ViewScene& v, const SceneImage& img, const XformItems& x) {
     const auto& oi = img.objects[o];
     ViewScene::Object vo;
     vo.solid = oi.solid;
-    const auto& mw = img.materials.at(oi.material).w;
-    vo.secondary = positive(mw[M_KS]) || positive(mw[M_KT]);
+    vo.secondary = spawns_secondary(img.materials.at(oi.material));
     vo.first_prim = oi.first_prim;
     vo.prim_count = oi.prim_count;
     const auto& it = x.of(x.box[o]);

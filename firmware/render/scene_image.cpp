@@ -1,15 +1,22 @@
 #include "scene_image.hpp"
 
+#include "render_layout.hpp"
+
 #ifdef MC1_RENDER_HAVE_SCENE
 #include <stdexcept>
 #include <string>
 
 #include "fp24_convert.hpp"
-#include "render_layout.hpp"
 #include "scene.hpp"
 #endif
 
 namespace mc1::render {
+
+bool spawns_secondary(const MaterialImage& m) {
+  // A positive FP24 number: sign clear, exponent field not zero.
+  auto positive = [](Word w) { return !(w & 0x800000) && (w & 0x7F0000); };
+  return positive(m.w[layout::M_KS]) || positive(m.w[layout::M_KT]);
+}
 
 #ifdef MC1_RENDER_HAVE_SCENE
 namespace {
@@ -58,10 +65,10 @@ SceneImage make_scene_image(const scene::Scene& s) {
     mi.w[M_KD] = fp24_from_double(m.kd);
     mi.w[M_KM] = fp24_from_double(m.km);
     const double n = m.n < 0 ? 0 : m.n > 32767 ? 32767 : m.n;
-    // n = M_N + M_NF / 256 (docs/renderer.md: cos^n by squaring and square roots)
-    const Word fixed = static_cast<Word>(n * 256 + 0.5);
-    mi.w[M_N] = fixed >> 8;
-    mi.w[M_NF] = fixed & 0xFF;
+    // n = M_N + M_NF / 2^M_NF_BITS (docs/renderer.md: cos^n by squaring and square roots)
+    const Word fixed = static_cast<Word>(n * (1 << M_NF_BITS) + 0.5);
+    mi.w[M_N] = fixed >> M_NF_BITS;
+    mi.w[M_NF] = fixed & ((1u << M_NF_BITS) - 1);
     mi.w[M_KS] = fp24_from_double(m.ks);
     mi.w[M_KT] = fp24_from_double(m.kt);
     mi.w[M_ETA] = fp24_from_double(m.index);

@@ -53,6 +53,9 @@ struct MaterialImage {
   std::array<Word, layout::M_SIZE> w{};  // r_layout.inc M_* layout; checker frame in world (M_CKO, M_CKU, M_CKV)
   Word checker_scale = 0;                // r_xform divides M_CKU, M_CKV by it
 };
+// ks > 0 or kt > 0: the pixels of an object of this material get s4 rays
+// (FP24 signs and exponents compared as integers).
+bool spawns_secondary(const MaterialImage& m);
 
 struct ObjectImage {
   bool solid = false;
