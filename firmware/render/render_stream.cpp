@@ -4,7 +4,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "apuasm.hpp"
+#include "apu_image.hpp"
 #include "render_internal.hpp"
 #include "render_kernels.hpp"
 
@@ -23,7 +23,7 @@ const std::vector<apu::Encoded>& kernel_words(const std::string& name) {
   for (const auto& k : kernel_images()) {
     if (name == k.name) {
       std::string bytes(reinterpret_cast<const char*>(k.bytes), k.size);
-      return cache.emplace(name, apuasm::parse_image(bytes, name)).first->second;
+      return cache.emplace(name, apu::parse_image(bytes, name)).first->second;
     }
   }
   throw std::out_of_range("no renderer kernel named " + name);
