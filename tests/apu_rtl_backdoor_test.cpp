@@ -47,13 +47,15 @@ TEST(ApuRtlBackdoor, ProgramBanksMatchTheMpuPortAndTheFetch) {
     const Encoded marker = int_op(IntOp::Li, 5, static_cast<std::uint16_t>(0x1230 + bank)).encode();
     core.write_program(700, marker);
     EXPECT_EQ(core.backdoor.read_program(bank, 700), marker) << name << ": the MPU port's word is not there";
-    // Backdoor write, fetched by the sequencer: LI a7, v | HALT at 40.
-    const std::uint16_t v = static_cast<std::uint16_t>(0x4d00 + bank);
-    MicroWord w = halt();
-    w.i = {IntOp::Li, 7, 0, 0, v};
-    core.backdoor.write_program(bank, 40, w.encode());
-    EXPECT_EQ(core.run_handed_over(40, false), 1) << name;
-    EXPECT_EQ(core.backdoor.areg_array(7), v) << name << ": the backdoor's word did not run";
+    // Backdoor writes, fetched by the sequencer: JMP 679 at 40, HALT at 679.
+    // (Had they missed the bank, the run would go through empty words.)
+    MicroWord jmp;
+    jmp.s = {SeqOp::Jmp, 0, 679};
+    core.backdoor.write_program(bank, 40, jmp.encode());
+    core.backdoor.write_program(bank, 679, halt().encode());
+    EXPECT_EQ(core.run_handed_over(40, false), 2) << name << ": the backdoor's words did not run";
+    EXPECT_EQ(core.top.apu2mpu_run_state, static_cast<int>(RunState::Halted)) << name;
+    EXPECT_EQ(core.top.dbg_pc, 679) << name;
   }
 }
 
