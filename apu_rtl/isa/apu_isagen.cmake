@@ -3,15 +3,15 @@
 # apu_pkg.sv and the C++ header apu_isa.hpp from it, so the RTL and the C++
 # models cannot disagree on a field, an op code or a latency.
 #
-#   cmake -DTABLE=<apu_isa.tbl> -DOUT_DIR=<dir> -P apu_isagen.cmake
+#   cmake -DTABLE=<apu_isa.tbl> -DPKG_SV=<apu_pkg.sv> -DISA_HPP=<apu_isa.hpp> -P apu_isagen.cmake
 #
 # A file is rewritten only when its content changes (so nothing rebuilds for
 # a comment elsewhere). Errors name the table's file and line.
 
 cmake_minimum_required(VERSION 3.22)  # IN_LIST, and the policies of the project
 
-if(NOT TABLE OR NOT OUT_DIR)
-  message(FATAL_ERROR "usage: cmake -DTABLE=<apu_isa.tbl> -DOUT_DIR=<dir> -P apu_isagen.cmake")
+if(NOT TABLE OR NOT PKG_SV OR NOT ISA_HPP)
+  message(FATAL_ERROR "usage: cmake -DTABLE=<apu_isa.tbl> -DPKG_SV=<apu_pkg.sv> -DISA_HPP=<apu_isa.hpp> -P apu_isagen.cmake")
 endif()
 
 function(table_error line_no text)
@@ -471,6 +471,5 @@ function(write_if_changed path content)
   endif()
   file(WRITE "${path}" "${content}")
 endfunction()
-file(MAKE_DIRECTORY "${OUT_DIR}")
-write_if_changed("${OUT_DIR}/apu_pkg.sv" "${sv}")
-write_if_changed("${OUT_DIR}/apu_isa.hpp" "${hpp}")
+write_if_changed("${PKG_SV}" "${sv}")
+write_if_changed("${ISA_HPP}" "${hpp}")

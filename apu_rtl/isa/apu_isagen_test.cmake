@@ -4,7 +4,9 @@
 cmake_minimum_required(VERSION 3.22)
 
 function(generate table out_dir rc_var log_var)
-  execute_process(COMMAND ${CMAKE_COMMAND} -DTABLE=${table} -DOUT_DIR=${out_dir} -P ${GENERATOR}
+  file(MAKE_DIRECTORY ${out_dir})
+  execute_process(COMMAND ${CMAKE_COMMAND} -DTABLE=${table} -DPKG_SV=${out_dir}/apu_pkg.sv
+                          -DISA_HPP=${out_dir}/apu_isa.hpp -P ${GENERATOR}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE log)
   set(${rc_var} ${rc} PARENT_SCOPE)
   set(${log_var} "${log}" PARENT_SCOPE)
