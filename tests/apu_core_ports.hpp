@@ -77,7 +77,11 @@ class CorePorts {
   }
 
  private:
-  VerilatedContext ctx_;  // before top: top is built in it
+  // The ISA's power-on state: every register and word 0.
+  struct ZeroContext : VerilatedContext {
+    ZeroContext() { randReset(0); }
+  };
+  ZeroContext ctx_;  // before top: top is built in it
 
  public:
   Vapu_core top;
