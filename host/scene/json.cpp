@@ -119,6 +119,7 @@ class Builder : public nlohmann::json::json_sax_t {
   Value root_;
   bool have_root_ = false;
   Last last_ = Last::open;
+  bool separator_taken_ = false;  // at an error: the parser took a ',' or ':' first
 
   [[noreturn]] void fail(int line, int column, const std::string& msg) const {
     throw SceneError(name_ + ":" + std::to_string(line) + ":" + std::to_string(column) +
@@ -128,6 +129,7 @@ class Builder : public nlohmann::json::json_sax_t {
   bool at_end() const { return pos_ >= text_.size(); }
   char peek() const { return at_end() ? '\0' : text_[pos_]; }
   void advance() {
+    if (at_end()) return;
     if (text_[pos_++] == '\n') {
       ++line_;
       column_ = 1;
@@ -160,7 +162,7 @@ class Builder : public nlohmann::json::json_sax_t {
     char c = peek();
     if (c == '"') {
       advance();
-      while (peek() != '"') {
+      while (!at_end() && peek() != '"') {
         if (peek() == '\\') advance();
         advance();
       }
@@ -329,8 +331,6 @@ class Builder : public nlohmann::json::json_sax_t {
     if (separator_taken_) return in_array ? "expected a value" : "expected a key string";
     return in_array ? "expected ',' or ']'" : "expected ',' or '}'";
   }
-
-  bool separator_taken_ = false;
 };
 
 }  // namespace
