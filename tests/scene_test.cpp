@@ -299,18 +299,25 @@ TEST(SceneLimits, TessellatedPatchesCount) {
 // Values the NC would hold as FP24 inf or 0 are refused where the path is known.
 TEST(SceneErrors, ValuesOutsideFp24Range) {
   const std::string range = std::string(kFp24Range);
-  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"quadric\", \"coefficients\": [1, 1, 1, 0, 0, 0, 0, 0, 0, -1], "
-                                            "\"box\": {\"min\": [-1e300, -1e300, -1e300], \"max\": [1e300, 1e300, 1e300]}}"))),
-            "t.json:9: objects[0].primitives[0].box.min[0]: expected " + range + ", got -1e+300");
-  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"triangle\", \"vertices\": [[0, 0, 0], [1e300, 0, 0], "
-                                            "[0, 1e300, 0]]}"))),
-            "t.json:9: objects[0].primitives[0].vertices[1][0]: expected " + range + ", got 1e+300");
-  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"ellipsoid\", \"A\": [[1e200, 0, 0], [0, 1e200, 0], "
-                                            "[0, 0, 1e200]], \"centre\": [0, 0, 0]}"))),
-            "t.json:9: objects[0].primitives[0].A[0][0]: expected " + range + ", got 1e+200");
-  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"quadric\", \"coefficients\": [1, 1, 1, 0, 0, 0, 0, 0, 0, "
-                                            "-1e20], \"box\": {\"min\": [-1, -1, -1], \"max\": [1, 1, 1]}}"))),
-            "t.json:9: objects[0].primitives[0].coefficients[9]: expected " + range + ", got -1e+20");
+  struct Case {
+    const char* primitive;
+    const char* path;  // below objects[0].primitives[0]
+    const char* got;
+  };
+  for (const Case& c : {
+           Case{"{\"type\": \"quadric\", \"coefficients\": [1, 1, 1, 0, 0, 0, 0, 0, 0, -1], "
+                "\"box\": {\"min\": [-1e300, -1e300, -1e300], \"max\": [1e300, 1e300, 1e300]}}",
+                "box.min[0]", "-1e+300"},
+           Case{"{\"type\": \"triangle\", \"vertices\": [[0, 0, 0], [1e300, 0, 0], [0, 1e300, 0]]}",  // was "zero area"
+                "vertices[1][0]", "1e+300"},
+           Case{"{\"type\": \"ellipsoid\", \"A\": [[1e200, 0, 0], [0, 1e200, 0], [0, 0, 1e200]], "  // was "singular"
+                "\"centre\": [0, 0, 0]}",
+                "A[0][0]", "1e+200"},
+           Case{"{\"type\": \"quadric\", \"coefficients\": [1, 1, 1, 0, 0, 0, 0, 0, 0, -1e20], "
+                "\"box\": {\"min\": [-1, -1, -1], \"max\": [1, 1, 1]}}",
+                "coefficients[9]", "-1e+20"}})
+    EXPECT_EQ(error_of(scene_text(object_with(c.primitive))),
+              std::string("t.json:9: objects[0].primitives[0].") + c.path + ": expected " + range + ", got " + c.got);
   // Below the smallest normal: it would be flushed to 0.
   EXPECT_EQ(error_of(scene_text(kSphere, "", ", \"ks\": 1e-20")),
             "t.json:5: materials[0].ks: expected " + range + ", got 1e-20");
