@@ -619,12 +619,23 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
 
 Scene load_scene(const std::string& path) {
   if (std::filesystem::is_directory(path)) throw SceneError(path + ": is a directory (expected a scene file)");
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open scene file");
-  std::stringstream ss;
-  ss << in.rdbuf();
+  std::string text;
+  std::streamoff size = in.seekg(0, std::ios::end) ? static_cast<std::streamoff>(in.tellg()) : -1;
+  if (size >= 0) {
+    // One read: a huge scene is then refused by the parse within a moment.
+    text.resize(static_cast<std::size_t>(size));
+    in.seekg(0);
+    in.read(text.data(), size);
+  } else {  // a pipe
+    in.clear();
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    text = ss.str();
+  }
   if (in.bad()) throw SceneError(path + ": read error");
-  return parse_scene(ss.str(), path, dirname(path));
+  return parse_scene(text, path, dirname(path));
 }
 
 }  // namespace mc1::scene
