@@ -12,6 +12,7 @@
 #include "apu_engine.hpp"
 #include "apu_iss.hpp"
 #include "apu_rtl_engine.hpp"
+#include "apu_image.hpp"
 #include "apuasm.hpp"
 #include "microword.hpp"
 
@@ -31,7 +32,7 @@ inline bool ends_with(const std::string& s, const char* suffix) {
 
 inline std::vector<Encoded> load_program_file(const std::string& path) {
   if (ends_with(path, ".apu")) return apuasm::assemble_file(path).words;
-  return apuasm::load_image(path);
+  return apu::load_image(path);
 }
 
 }  // namespace mc1::apu::tools
