@@ -3,8 +3,15 @@
 //     frame it delivers has a good FCS (re-encoding it decodes to itself);
 //  2. round trip: a frame built from the input (address, control, info)
 //     encodes to a wire image that decodes to exactly that frame;
-//  3. any single wire-bit error in that image is detected: the decoder
-//     delivers no frame that differs from the one sent.
+//  3. a single wire-bit error in that image never delivers changed content:
+//     every frame the decoder delivers is the one sent, or a run of bits the
+//     sender itself put on the line. A flipped bit can make a flag inside the
+//     frame (HDLC's flag emulation); what follows it is then framed afresh,
+//     and if the information field carries a whole frame image of its own,
+//     that frame is delivered (docs/hdlc.md "What the FCS cannot see"). The
+//     fuzzer found such an input in its first minutes; the property says
+//     precisely what CRC-16 plus zero insertion guarantee.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -33,6 +40,19 @@ void any_stream(const std::uint8_t* data, std::size_t size) {
   }
 }
 
+// LSB-first bits of the frame's octets, FCS included, without zero insertion.
+Bits octet_bits(const Frame& f) {
+  Bits out;
+  for (std::uint8_t o : frame_octets(f))
+    for (int b = 0; b < 8; ++b) out.push_back(static_cast<std::uint8_t>((o >> b) & 1u));
+  return out;
+}
+
+bool sent_by_sender(const Frame& got, const Bits& sent) {
+  const Bits g = octet_bits(got);
+  return std::search(sent.begin(), sent.end(), g.begin(), g.end()) != sent.end();
+}
+
 void round_trip_and_one_bit_errors(const std::uint8_t* data, std::size_t size) {
   if (size < 4) return;
   Frame f;
@@ -43,6 +63,7 @@ void round_trip_and_one_bit_errors(const std::uint8_t* data, std::size_t size) {
   const Bits wire = encode(f);
   std::optional<Frame> back = decode(wire);
   if (!back || !(*back == f)) violated("round trip lost the frame", f);
+  const Bits sent = octet_bits(f);
   // One flipped bit chosen by the input, and a sweep of 64 more spread over the image.
   for (std::size_t k = 0; k < 65; ++k) {
     const std::size_t bit = (flip_seed + k * (wire.size() / 64 + 1)) % wire.size();
@@ -53,7 +74,7 @@ void round_trip_and_one_bit_errors(const std::uint8_t* data, std::size_t size) {
     d.feed(bad, got);
     d.idle();
     for (const Frame& g : got)
-      if (!(g == f)) violated("a one-bit wire error went undetected", g);
+      if (!(g == f) && !sent_by_sender(g, sent)) violated("a one-bit wire error delivered changed content", g);
   }
 }
 
