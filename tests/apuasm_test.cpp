@@ -891,9 +891,29 @@ TEST(ApuAsmOutput, ImageBytes) {
 
   TempDir dir;
   const std::string path = dir.path() + "/x.bin";
-  apu::write_image(path, words);
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << b;
+  }
   EXPECT_EQ(apu::load_image(path), words);
   std::remove(path.c_str());
+}
+
+// A directory or an endless device is refused, naming the path (issue 11).
+TEST(ApuImage, LoadRefusesADirectoryAndAnEndlessDevice) {
+  TempDir dir;
+  try {
+    apu::load_image(dir.path());
+    FAIL() << "a directory was read as an image";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), dir.path() + ": is a directory (expected an APU image)");
+  }
+  try {
+    apu::load_image("/dev/zero");
+    FAIL() << "/dev/zero was read as an image";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "/dev/zero: not an APU image (no \"APU1\" header)");
+  }
 }
 
 // ---------------------------------------------------------------------------

@@ -1,7 +1,7 @@
 // The APU program image (docs/apu-asm.md, "Output"): what the assembler
 // writes and the MPU firmware loads.
+#include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "apu_image.hpp"
@@ -52,19 +52,18 @@ std::vector<Encoded> parse_image(const std::string& bytes, const std::string& na
   return words;
 }
 
-void write_image(const std::string& path, const std::vector<Encoded>& words) {
-  std::ofstream out(path, std::ios::binary);
-  const std::string bytes = image_bytes(words);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw std::runtime_error(path + ": cannot write");
-}
-
 std::vector<Encoded> load_image(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(path + ": is a directory (expected an APU image)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": cannot read");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_image(ss.str(), path);
+  // At most one byte more than the largest image, so that a device such as
+  // /dev/zero is refused as too long instead of read for ever.
+  std::string bytes(kHeaderBytes + kProgramWords * kWordBytes + 1, '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (in.bad()) throw std::runtime_error(path + ": read error");
+  bytes.resize(static_cast<std::size_t>(in.gcount()));
+  return parse_image(bytes, path);
 }
 
 }  // namespace mc1::apu

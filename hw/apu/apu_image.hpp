@@ -13,7 +13,8 @@ namespace mc1::apu {
 std::string image_bytes(const std::vector<Encoded>& words);
 // Throws std::runtime_error naming `name` on a bad image.
 std::vector<Encoded> parse_image(const std::string& bytes, const std::string& name = "<image>");
-void write_image(const std::string& path, const std::vector<Encoded>& words);
+// Reads and parses a file; a directory, a device that never ends or a file
+// longer than the largest image is refused, naming the path.
 std::vector<Encoded> load_image(const std::string& path);
 
 }  // namespace mc1::apu

@@ -113,15 +113,6 @@ void Iss::start(std::uint16_t pc) {
   state_ = RunState::Running;
 }
 
-bool Iss::pipelines_empty() const {
-  // The bucket of the coming cycle is already in the state.
-  for (int i = 1; i < kRing; ++i) {
-    const Bucket& b = ring_[(cycle_ + i) % kRing];
-    if (b.nf | b.na | b.cc_valid) return false;
-  }
-  return true;
-}
-
 MC1_HOT void Iss::push_f(int latency, std::uint8_t index, std::uint32_t value) {
   Bucket& b = ring_[(cycle_ + latency) % kRing];
   b.f[b.nf++] = {index, value};

@@ -73,9 +73,6 @@ class Iss final : public ApuEngine {
   int psel() const { return psel_; }
   int dsel() const { return dsel_; }
   int call_depth() const { return sp_; }
-  // No result or register write is still to become visible.
-  bool pipelines_empty() const;
-  std::uint32_t bank_word(int bank, std::uint16_t addr) const { return data_[bank & 1][addr % kDataWords]; }
   const Encoded& program_word(int bank, std::uint16_t addr) const {
     return program_[bank & 1][addr % kProgramWords];
   }
