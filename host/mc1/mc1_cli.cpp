@@ -189,6 +189,8 @@ void write_text(const std::string& path, const std::string& text) {
 void print_faults(const FrameReport& r) {
   auto ms = [](Picos t) { return t * 1e-9; };
   for (const KillReport& k : r.kills) std::printf("  NC %u killed at %.3f ms\n", k.nc, ms(k.time));
+  for (const NcReport& n : r.ncs)
+    if (n.watchdog) std::printf("  NC %u stopped at %.3f ms: %s\n", n.id, ms(n.killed_at), n.fault.c_str());
   for (const CutLineReport& c : r.cut_lines) std::printf("  NC %u's line cut at %.3f ms\n", c.nc, ms(c.time));
   for (const rc::LinkDown& d : r.link_downs)
     std::printf("  %.3f ms: NC %u's link is down (%s); %u pieces handed out again\n", ms(d.time), d.nc,
