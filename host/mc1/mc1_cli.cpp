@@ -179,11 +179,15 @@ std::vector<std::string> take_params(TimingParams& t, const std::vector<std::str
   }
 }
 
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  out << text;
-  if (!out) throw std::runtime_error(path + ": write failed");
+void Outputs::add(const std::string& path, std::string_view bytes) { staged_.emplace_back(path, bytes); }
+
+void Outputs::add(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  add(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+void Outputs::commit() {
+  for (StagedFile& f : staged_) f.commit();
+  staged_.clear();
 }
 
 void print_faults(const FrameReport& r) {
