@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "apuasm.hpp"
 #include "diag.hpp"
 #include "mc1_diag.hpp"
 #include "mc1_engines.hpp"
@@ -190,6 +191,35 @@ TEST(DiagFrame, KilledNcAndCutLineFoundByLinkSupervision) {
     EXPECT_EQ(n.busy + n.wait_rc + n.wait_bus + n.idle + n.dead, r.frame_time) << "NC " << n.id;
     EXPECT_EQ(n.link_down != 0, n.id == 3 || n.id == 7) << "NC " << n.id;
   }
+}
+
+// A kernel that never takes its data bank (issue 11: this hung the whole
+// simulation): the APU watchdog stops every NC in simulated time, the RC's
+// link supervision takes them as lost, and the frame is refused with the
+// reason, instead of a hang.
+std::string g_sc_error;
+void capture_error(const sc_core::sc_report& r, const sc_core::sc_actions&) {
+  if (r.get_severity() >= sc_core::SC_ERROR) g_sc_error = r.get_msg();
+}
+
+TEST(DiagFrame, RunawayKernelStoppedByTheWatchdog) {
+  SystemConfig c = config(3, 32, 16);
+  c.timing.apu_watchdog_cycles = 100'000;  // 25 ms
+  test::fresh_kernel();
+  g_sc_error.clear();
+  sc_core::sc_report_handler::set_handler(capture_error);
+  std::string what;
+  try {
+    run_frame(c, apuasm::assemble("spin: jmp spin\n").words, diag::nc_main);
+  } catch (const std::runtime_error& e) {
+    what = e.what();
+  }
+  sc_core::sc_report_handler::set_handler(test::report_to_gtest);
+  EXPECT_NE(g_sc_error.find("the frame cannot complete: every NC has finished or lost its link"), std::string::npos)
+      << g_sc_error;
+  for (int k = 1; k <= 3; ++k)
+    EXPECT_NE(what.find("NC " + std::to_string(k) + " stopped at "), std::string::npos) << what;
+  EXPECT_NE(what.find("APU watchdog (100000 cycles): took no data bank in 100000 cycles"), std::string::npos) << what;
 }
 
 TEST(DiagFrame, TwoHundredFiftySixNcsWithFaults) {

@@ -50,7 +50,9 @@ struct OneNc {
   std::unique_ptr<ImageBus> bus;
   std::unique_ptr<DataCollector> dc;
   std::unique_ptr<FrameMemory> fm;
-  OneNc(nc::Firmware fw, std::unique_ptr<apu::ApuEngine> engine = std::make_unique<apu::Iss>()) {
+  OneNc(nc::Firmware fw, std::unique_ptr<apu::ApuEngine> engine = std::make_unique<apu::Iss>(),
+        const TimingParams& timing = {})
+      : t(timing) {
     tlm_utils::tlm_quantumkeeper::set_global_quantum(sc_core::sc_time(1, sc_core::SC_US));
     // An RC with no block: it answers the NC's only request with Finish.
     rc = std::make_unique<RootComputer>("rc", t, 1, std::vector<apu::Encoded>{{0, 0}}, rc::SetupMsg{64, 64},
@@ -80,7 +82,84 @@ void drain_rc(nc::NcPort& port) {
 
 class NcTest : public test::SystemCTest {};
 
+// A kernel that never halts nor takes a bank: the watchdog's case.
+const char* kSpin = "spin:   jmp spin\n";
+
+TimingParams watchdog_of(std::uint64_t cycles) {
+  TimingParams t;
+  t.apu_watchdog_cycles = cycles;
+  return t;
+}
+
 }  // namespace
+
+// The APU watchdog (docs/reliability.md): a runaway kernel stops the NC's
+// processor after the budget, in simulated time, as a reported fault.
+TEST_F(NcTest, WatchdogStopsARunawayKernelWaitedForToHalt) {
+  const auto words = apuasm::assemble(kSpin).words;
+  bool returned = false;
+  OneNc b(
+      [&](nc::NcPort& port) {
+        drain_rc(port);
+        port.apu().load_program(words);
+        port.apu().hand_over_program();
+        port.apu().start(0);
+        port.apu_wait_halt();
+        returned = true;
+      },
+      std::make_unique<apu::Iss>(), watchdog_of(10'000));
+  sc_core::sc_start();
+  const auto& s = b.nc->stats();
+  EXPECT_FALSE(returned);
+  EXPECT_TRUE(s.watchdog);
+  EXPECT_TRUE(s.killed);
+  EXPECT_NE(s.fault.find("APU watchdog (10000 cycles): no HALT"), std::string::npos) << s.fault;
+  EXPECT_EQ(s.apu_cycles, 10'000u);
+  ASSERT_EQ(b.nc->apu_spans().size(), 1u);
+  const nc::ApuSpan a = b.nc->apu_spans()[0];
+  EXPECT_EQ(s.killed_at, a.begin + 10'000u * 250'000u);  // 2.5 ms of APU time later
+  EXPECT_EQ(a.end, s.killed_at);
+}
+
+TEST_F(NcTest, WatchdogStopsAKernelThatNeverTakesTheDataBank) {
+  const auto words = apuasm::assemble(kSpin).words;
+  OneNc b(
+      [&](nc::NcPort& port) {
+        drain_rc(port);
+        port.apu().load_program(words);
+        port.apu().hand_over_program();
+        port.apu().start(0);
+        port.apu().hand_over_data();
+        port.apu_wait_swap();
+      },
+      std::make_unique<apu::Iss>(), watchdog_of(4'000));
+  sc_core::sc_start();
+  const auto& s = b.nc->stats();
+  EXPECT_TRUE(s.watchdog);
+  EXPECT_NE(s.fault.find("took no data bank in 4000 cycles"), std::string::npos) << s.fault;
+  EXPECT_EQ(s.apu_cycles, 4'000u);
+  ASSERT_EQ(b.nc->apu_spans().size(), 1u);
+  EXPECT_EQ(s.killed_at, b.nc->apu_spans()[0].begin + 4'000u * 250'000u);
+}
+
+// A legal run shorter than the budget is not touched by it.
+TEST_F(NcTest, WatchdogLeavesARunWithinItsBudget) {
+  const auto words = apuasm::assemble(kLoop).words;
+  const std::uint64_t n = bare_cycles(words);
+  OneNc b(
+      [&](nc::NcPort& port) {
+        drain_rc(port);
+        port.apu().load_program(words);
+        port.apu().hand_over_program();
+        port.apu().start(0);
+        port.apu_wait_halt();
+      },
+      std::make_unique<apu::Iss>(), watchdog_of(n + 1));
+  sc_core::sc_start();
+  EXPECT_FALSE(b.nc->stats().watchdog);
+  EXPECT_FALSE(b.nc->stats().killed);
+  EXPECT_EQ(b.nc->stats().apu_cycles, n);
+}
 
 TEST_F(NcTest, ApuTimeIsCyclesTimesTheApuClock) {
   const auto words = apuasm::assemble(kLoop).words;

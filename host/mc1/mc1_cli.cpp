@@ -179,16 +179,22 @@ std::vector<std::string> take_params(TimingParams& t, const std::vector<std::str
   }
 }
 
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  out << text;
-  if (!out) throw std::runtime_error(path + ": write failed");
+void Outputs::add(const std::string& path, std::string_view bytes) { staged_.emplace_back(path, bytes); }
+
+void Outputs::add(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  add(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+void Outputs::commit() {
+  for (StagedFile& f : staged_) f.commit();
+  staged_.clear();
 }
 
 void print_faults(const FrameReport& r) {
   auto ms = [](Picos t) { return t * 1e-9; };
   for (const KillReport& k : r.kills) std::printf("  NC %u killed at %.3f ms\n", k.nc, ms(k.time));
+  for (const NcReport& n : r.ncs)
+    if (n.watchdog) std::printf("  NC %u stopped at %.3f ms: %s\n", n.id, ms(n.killed_at), n.fault.c_str());
   for (const CutLineReport& c : r.cut_lines) std::printf("  NC %u's line cut at %.3f ms\n", c.nc, ms(c.time));
   for (const rc::LinkDown& d : r.link_downs)
     std::printf("  %.3f ms: NC %u's link is down (%s); %u pieces handed out again\n", ms(d.time), d.nc,

@@ -7,8 +7,10 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "atomic_file.hpp"
 #include "mc1_system.hpp"
 
 namespace mc1::cli {
@@ -58,7 +60,19 @@ SystemConfig machine_config();
 bool wants_help(const std::vector<std::string>& args);
 // The timing table first (it consumes --param/--params); returns the rest.
 std::vector<std::string> take_params(TimingParams& t, const std::vector<std::string>& args);
-void write_text(const std::string& path, const std::string& text);
+// The files one run writes, whole or not at all (docs/reliability.md): each
+// is staged beside its target as it is made, and commit() renames them all
+// into place. A run that fails before commit(), a write that fails included,
+// leaves none of them.
+class Outputs {
+ public:
+  void add(const std::string& path, std::string_view bytes);
+  void add(const std::string& path, const std::vector<std::uint8_t>& bytes);
+  void commit();
+
+ private:
+  std::vector<StagedFile> staged_;
+};
 // The summary's lines on injected faults and the links the RC found down.
 void print_faults(const FrameReport& r);
 

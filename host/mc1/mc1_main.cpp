@@ -21,6 +21,7 @@
 #include "mc1_system.hpp"
 #include "png_writer.hpp"
 #include "report_writers.hpp"
+#include "scene.hpp"
 
 namespace {
 
@@ -98,7 +99,6 @@ const char* kParamsUsage =
 using cli::parse_engine;
 using cli::take_params;
 using cli::wants_help;
-using cli::write_text;
 
 void frame_options(const cli::Args& a, SystemConfig& cfg) {
   if (a.has("engine")) cfg.engine = parse_engine(a.get("engine"));
@@ -139,6 +139,15 @@ std::uint64_t apu_cycles(const FrameReport& r) {
   return c;
 }
 
+// --kernel: a bad or unreadable image is bad input (exit 2), named.
+std::vector<apu::Encoded> kernel_image(const std::string& path) {
+  try {
+    return apu::load_image(path);
+  } catch (const std::runtime_error& e) {
+    throw CliError(std::string("--kernel: ") + e.what());
+  }
+}
+
 int cmd_diag(const std::vector<std::string>& argv) {
   if (wants_help(argv)) {
     std::cout << kDiagUsage;
@@ -161,14 +170,16 @@ int cmd_diag(const std::vector<std::string>& argv) {
   cli::fault_options(a.all("kill-node"), a.all("cut-line"), cfg);
   const bool quiet = a.has("quiet");
   const std::vector<apu::Encoded> program =
-      a.has("kernel") ? apu::load_image(a.get("kernel")) : diag::kernel();
+      a.has("kernel") ? kernel_image(a.get("kernel")) : diag::kernel();
 
   const FrameReport r = run_frame(cfg, program, diag::nc_main, a.get("vcd"));
   const Check c = compare(r);
 
-  if (a.has("out")) write_file(a.get("out"), encode_png_rgb8(r.width, r.height, r.rgb.data()));
-  if (a.has("stats")) write_text(a.get("stats"), stats_json(r));
-  if (a.has("gantt")) write_text(a.get("gantt"), gantt_svg(r));
+  cli::Outputs out;
+  if (a.has("out")) out.add(a.get("out"), encode_png_rgb8(r.width, r.height, r.rgb.data()));
+  if (a.has("stats")) out.add(a.get("stats"), stats_json(r));
+  if (a.has("gantt")) out.add(a.get("gantt"), gantt_svg(r));
+  out.commit();
   if (!quiet) {
     std::printf("mc1 diag: %u NCs (%s engine), %ux%u pixels, %u blocks of %ux%u\n", r.nodes, r.engine.c_str(),
                 r.width, r.height, r.blocks, r.block_w, r.block_h);
@@ -228,7 +239,7 @@ int cmd_bench(const std::vector<std::string>& argv) {
     std::fflush(stdout);
   }
   json << "]}\n";
-  if (a.has("json")) write_text(a.get("json"), json.str());
+  if (a.has("json")) write_file_atomically(a.get("json"), json.str());
   return all_ok ? 0 : 1;
 }
 
@@ -254,6 +265,10 @@ int sc_main(int argc, char** argv) {
     std::cout << kUsage;
     return args.empty() ? 2 : 0;
   }
+  if (args[0] == "--version") {
+    std::cout << "mc1 " << MC1_VERSION << "\n";
+    return 0;
+  }
   const std::string cmd = args[0];
   args.erase(args.begin());
   try {
@@ -265,6 +280,9 @@ int sc_main(int argc, char** argv) {
     std::fprintf(stderr, "mc1: unknown command '%s'\n%s", cmd.c_str(), kUsage);
     return 2;
   } catch (const CliError& e) {
+    std::fprintf(stderr, "mc1 %s: %s\n", cmd.c_str(), e.what());
+    return 2;
+  } catch (const scene::SceneError& e) {  // a missing or bad scene is bad input
     std::fprintf(stderr, "mc1 %s: %s\n", cmd.c_str(), e.what());
     return 2;
   } catch (const std::exception& e) {

@@ -167,6 +167,29 @@ void print_summary(const RenderRun& run) {
                 static_cast<unsigned long long>(r.bus.duplicate_runs));
 }
 
+// --ref: the double-precision reference at the same size, its PSNR, and with
+// --diff the difference image (staged with the other outputs). Returns 1 when
+// the PSNR is below min_psnr.
+int compare_to_reference(const RenderJob& job, const FrameReport& r, const std::string& diff, double min_psnr,
+                         bool quiet, Outputs& out) {
+  scene::Scene s = scene::load_scene(job.scene);
+  const imgcmp::Image ref = refrender::Renderer(s).render(static_cast<int>(r.width), static_cast<int>(r.height));
+  const imgcmp::Image got = frame_image(r);
+  const double p = imgcmp::psnr(got, ref);
+  if (!quiet)
+    std::printf("  against the reference renderer: PSNR %.2f dB, largest difference %d\n", p,
+                imgcmp::max_abs_diff(got, ref));
+  if (!diff.empty()) {
+    const imgcmp::Image d = imgcmp::difference(got, ref, 8);
+    out.add(diff, encode_png_rgb8(static_cast<unsigned>(d.width), static_cast<unsigned>(d.height), d.rgb.data()));
+  }
+  if (p < min_psnr) {
+    std::fprintf(stderr, "mc1 render: PSNR %.2f dB against the reference is below --min-psnr %.2f\n", p, min_psnr);
+    return 1;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int cmd_render(const std::vector<std::string>& argv_in) {
@@ -213,30 +236,23 @@ int cmd_render(const std::vector<std::string>& argv_in) {
     run = run_render(job, cfg, a.get("vcd"), [&bar](const rc::Progress& p) { bar.update(p); });
   }
   const FrameReport& r = run.report;
-  if (a.has("out")) write_file(a.get("out"), encode_png_rgb8(r.width, r.height, r.rgb.data()));
-  if (a.has("stats")) write_text(a.get("stats"), stats_json(r));
-  if (a.has("gantt")) write_text(a.get("gantt"), gantt_svg(r));
+  // Every output is staged first and renamed into place together, so that a
+  // write that fails leaves none of them; a failed check still leaves them.
+  Outputs out;
+  if (a.has("out")) out.add(a.get("out"), encode_png_rgb8(r.width, r.height, r.rgb.data()));
+  if (a.has("stats")) out.add(a.get("stats"), stats_json(r));
+  if (a.has("gantt")) out.add(a.get("gantt"), gantt_svg(r));
   if (!quiet) print_summary(run);
+  int status = 0;
   if (r.fm_pixels_written != std::uint64_t{r.width} * r.height) {
     std::fprintf(stderr, "mc1 render: the frame memory got %llu pixel writes for %u pixels\n",
                  static_cast<unsigned long long>(r.fm_pixels_written), r.width * r.height);
-    return 1;
+    status = 1;
+  } else if (a.has("ref")) {
+    status = compare_to_reference(job, r, a.get("diff"), min_psnr, quiet, out);
   }
-  if (a.has("ref")) {
-    scene::Scene s = scene::load_scene(job.scene);
-    const imgcmp::Image ref = refrender::Renderer(s).render(static_cast<int>(r.width), static_cast<int>(r.height));
-    const imgcmp::Image got = frame_image(r);
-    const double p = imgcmp::psnr(got, ref);
-    if (!quiet)
-      std::printf("  against the reference renderer: PSNR %.2f dB, largest difference %d\n", p,
-                  imgcmp::max_abs_diff(got, ref));
-    if (a.has("diff")) imgcmp::write_png(a.get("diff"), imgcmp::difference(got, ref, 8));
-    if (p < min_psnr) {
-      std::fprintf(stderr, "mc1 render: PSNR %.2f dB against the reference is below --min-psnr %.2f\n", p, min_psnr);
-      return 1;
-    }
-  }
-  return 0;
+  out.commit();
+  return status;
 }
 
 namespace {
@@ -358,7 +374,7 @@ int cmd_bench_render(const std::vector<std::string>& argv) {
   }
   if (a.has("rtl")) std::printf("RTL engine, %u NCs: host %.1f s\n", static_nodes, rtl_host);
   json << ", \"frames_equal\": " << (same ? "true" : "false") << "}\n";
-  if (a.has("json")) write_text(a.get("json"), json.str());
+  if (a.has("json")) write_file_atomically(a.get("json"), json.str());
   if (!same) std::fprintf(stderr, "mc1 bench-render: frames of one size differ between runs\n");
   return same ? 0 : 1;
 }

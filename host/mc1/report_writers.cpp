@@ -132,6 +132,7 @@ std::string stats_json(const FrameReport& r) {
       << ", \"blocks\": " << n.blocks << ", \"pixels\": " << n.pixels << ", \"runs\": " << n.runs
       << ", \"finished_ps\": " << n.finished_at;
     if (n.killed) o << ", \"killed_ps\": " << n.killed_at;
+    if (n.watchdog) o << ", \"watchdog\": " << quote(n.fault);
     if (n.link_down) o << ", \"link_down_ps\": " << n.link_down;
     if (!n.milestones.empty()) {
       o << ", \"milestones\": {";

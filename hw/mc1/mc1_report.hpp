@@ -19,6 +19,8 @@ struct NcReport {
   Picos busy = 0, wait_rc = 0, wait_bus = 0, idle = 0, dead = 0;  // sum = frame time
   bool killed = false;
   Picos killed_at = 0;
+  bool watchdog = false;  // stopped by the APU watchdog at killed_at
+  std::string fault;      // what the watchdog saw
   Picos link_down = 0;  // the RC's controller gave its link up (0: never)
   std::vector<std::pair<std::string, Picos>> milestones;
   Picos apu_busy = 0;                                   // APU started, not halted

@@ -69,6 +69,8 @@ Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::
     n.nc2rc_hdlc.bind(hdlc_->nc2rc_hdlc);
     hdlc_->hdlc2nc.bind(n.hdlc2nc);
     n.nc2bus_pixels.bind(bus_->nc2bus_pixels);
+    // The APU watchdog stops the processor, and the link protocol it runs.
+    n.on_stop([this, k](Picos at) { hdlc_->stop_station(k, at); });
   }
   bus_->bus2dc.bind(monitor_->bus2dc);
   monitor_->mon2dc.bind(dc_->bus2dc);
@@ -175,6 +177,8 @@ FrameReport Mc1System::report(double host_seconds) {
     x.dead = s.time[static_cast<int>(nc::Activity::Dead)];
     x.killed = s.killed;
     x.killed_at = s.killed_at;
+    x.watchdog = s.watchdog;
+    x.fault = s.fault;
     x.milestones = s.milestones;
     x.apu_busy = s.apu_running;
     x.apu_cycles = s.apu_cycles;
@@ -240,6 +244,18 @@ FrameReport Mc1System::report(double host_seconds) {
 
 namespace {
 
+// The NCs the APU watchdog stopped, a line each: why a frame could not complete.
+std::string nc_faults(Mc1System& sys) {
+  std::string out;
+  for (unsigned k = 1; k <= sys.config().nodes; ++k) {
+    const nc::NcStats& s = sys.nc(k).stats();
+    if (s.watchdog)
+      out += "\nNC " + std::to_string(k) + " stopped at " + std::to_string(s.killed_at / 1'000'000'000.0) +
+             " ms: " + s.fault;
+  }
+  return out;
+}
+
 FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_path);
 
 }  // namespace
@@ -257,7 +273,6 @@ FrameReport run_plan(const SystemConfig& cfg, rc::FramePlan plan, const nc::Firm
 }
 
 namespace {
-
 FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_path) {
   sc_core::sc_trace_file* tf = nullptr;
   if (!vcd_path.empty()) {
@@ -268,12 +283,16 @@ FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_pa
     sys->trace(tf);
   }
   const auto t0 = std::chrono::steady_clock::now();
-  sc_core::sc_start();
+  try {
+    sc_core::sc_start();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(e.what() + nc_faults(*sys));
+  }
   const double host = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (tf) sc_core::sc_close_vcd_trace_file(tf);
   if (!sys->rc().done())
     throw std::runtime_error("the simulation stopped before the frame was complete: " + sys->rc().status() +
-                             " (see the SystemC report above, if any)");
+                             " (see the SystemC report above, if any)" + nc_faults(*sys));
   return sys->report(host);
 }
 

@@ -199,20 +199,22 @@ void NodeComputer::apu_wait_swap() {
   if (driver_.data_ready() && engine_->state() != apu::RunState::Running)
     throw std::runtime_error("NC " + std::to_string(id_) +
                              ": waiting for the APU to take a data bank, but the APU is not running");
+  // Not past the kill time (the processor stops there), nor past the watchdog's budget.
+  const std::uint64_t to_kill =
+      kill_at_ == ~Picos{0} ? ~std::uint64_t{0} : kill_at_ > apu_time_ ? (kill_at_ - apu_time_) / cycle_ps_ : 0;
+  const std::uint64_t limit = std::min(to_kill, t_.apu_watchdog_cycles);
   std::uint64_t n = 0;
   {
     // Cycle by cycle: the swap interrupt comes in the cycle the APU takes the bank.
     HostTimer timer(stats_.apu_host_seconds);
-    // Not past the kill time: the processor stops there.
-    const std::uint64_t limit =
-        kill_at_ == ~Picos{0} ? ~std::uint64_t{0} : kill_at_ > apu_time_ ? (kill_at_ - apu_time_) / cycle_ps_ : 0;
     while (driver_.data_ready() && engine_->state() == apu::RunState::Running && n < limit) n += driver_.run(1);
   }
   stats_.apu_cycles += n;
   apu_time_ += n * cycle_ps_;
-  if (driver_.data_ready() && engine_->state() == apu::RunState::Running) {  // the kill time came first
+  if (driver_.data_ready() && engine_->state() == apu::RunState::Running) {
+    if (t_.apu_watchdog_cycles < to_kill) watchdog_expired("took no data bank in " + std::to_string(n) + " cycles");
     const Picos t = now();
-    advance(kill_at_ > t ? kill_at_ - t : 0);  // throws Killed
+    advance(kill_at_ > t ? kill_at_ - t : 0);  // the kill time came first: throws Killed
   }
   check_fault();
   if (driver_.data_ready())
@@ -227,18 +229,22 @@ void NodeComputer::apu_wait_halt() {
   mark(Activity::Busy, now());
   catch_up();
   if (engine_->state() != apu::RunState::Running) return;
-  // Generous: the longest legal stream is bounded by the program, not by this.
   std::uint64_t n = 0;
+  std::string runaway;  // the driver's account of a run the watchdog stops
   {
     HostTimer timer(stats_.apu_host_seconds);
     try {
-      n = driver_.run_until_done(std::uint64_t{1} << 40);
+      n = driver_.run_until_done(t_.apu_watchdog_cycles);
     } catch (const apu::ApuError& e) {
-      throw std::runtime_error("NC " + std::to_string(id_) + ": " + e.what());
+      if (e.kind() != apu::ApuError::Kind::CycleLimit)
+        throw std::runtime_error("NC " + std::to_string(id_) + ": " + e.what());
+      n = t_.apu_watchdog_cycles;
+      runaway = e.what();
     }
   }
   stats_.apu_cycles += n;
   apu_time_ += n * cycle_ps_;
+  if (!runaway.empty()) watchdog_expired("no HALT: " + runaway);
   apu_stopped(apu_time_);
   const Picos t = now();
   if (apu_time_ > t) advance(apu_time_ - t);
@@ -306,6 +312,19 @@ void NodeComputer::die() {
   mark(Activity::Dead, t);
   stats_.killed = true;
   stats_.killed_at = t;
+}
+
+// The APU watchdog (docs/reliability.md): the kernel ran the whole budget
+// without the swap or HALT the MPU waits for. The NC's processor stops where
+// the APU's time has got to, and its HDLC station with it; the RC's link
+// supervision then takes the NC as lost, as after --kill-node.
+void NodeComputer::watchdog_expired(const std::string& what) {
+  stats_.watchdog = true;
+  stats_.fault = "APU watchdog (" + std::to_string(t_.apu_watchdog_cycles) + " cycles): " + what;
+  kill_at_ = std::min(kill_at_, std::max(apu_time_, now()));
+  if (on_stop_) on_stop_(kill_at_);
+  advance(kill_at_ - now());  // reaches the stop: throws Killed
+  throw Killed{};
 }
 
 void NodeComputer::close(Picos frame_end) {

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <systemc>
@@ -68,6 +69,8 @@ struct NcStats {
   Picos finished_at = 0;
   bool killed = false;
   Picos killed_at = 0;
+  bool watchdog = false;  // stopped by the APU watchdog (killed is set too)
+  std::string fault;      // what the watchdog saw
   std::vector<std::pair<std::string, Picos>> milestones;  // in the order reached
   Picos mpu_busy = 0;               // MPU work annotated (copies, commands, interrupts)
   double apu_host_seconds = 0;      // host time spent clocking the APU engine
@@ -89,6 +92,9 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
 
   // Stop the processor at `t` (before sc_start()).
   void kill_at(Picos t) { kill_at_ = t; }
+  // Called with the time the processor stops on its own (the APU watchdog),
+  // so that the machine can stop the NC's HDLC station with it.
+  void on_stop(std::function<void(Picos)> f) { on_stop_ = std::move(f); }
   bool killed() const { return stats_.killed; }
 
   // After the simulation: the last span runs to `frame_end` (>= finished_at).
@@ -125,6 +131,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   void mark(Activity a, Picos at);     // from `at` on, the NC does `a`
   void check_alive();                  // throws Killed at or after the kill time
   void die();
+  [[noreturn]] void watchdog_expired(const std::string& what);
 
   TimingParams t_;
   unsigned id_;
@@ -148,6 +155,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   NcStats stats_;
   bool finished_ = false;
   Picos kill_at_ = ~Picos{0};
+  std::function<void(Picos)> on_stop_;
 
   tlm::tlm_generic_payload pixels_;
   std::vector<std::uint8_t> pixel_bytes_;

@@ -31,6 +31,8 @@ const std::vector<Entry>& entries() {
        &TimingParams::mpu_cycles_per_apu_command},
       {{"mpu_cycles_per_interrupt", "cycles", 0, kBig, "MPU interrupt entry and exit"},
        &TimingParams::mpu_cycles_per_interrupt},
+      {{"apu_watchdog_cycles", "APU cycles", 1, kBig, "NC's APU watchdog: longest wait for a swap or HALT"},
+       &TimingParams::apu_watchdog_cycles},
       {{"hdlc_bit_rate_bps", "bit/s", 1, kBig, "HDLC line bit rate"},
        &TimingParams::hdlc_bit_rate_bps},
       {{"hdlc_turnaround_ns", "ns", 0, kBig, "end of I-frame to start of its acknowledgement"},

@@ -31,6 +31,10 @@ struct TimingParams {
   std::uint64_t mpu_cycles_per_apu_command = 14;   // write one command word to the APU
   std::uint64_t mpu_cycles_per_interrupt = 85;     // entry + exit of an interrupt
 
+  // The NC's APU watchdog (docs/reliability.md): APU cycles the MPU waits for
+  // a swap or a HALT before it takes the kernel as runaway and stops.
+  std::uint64_t apu_watchdog_cycles = 16'777'216;
+
   // HDLC lines RC <-> NC (s2: 4 Mbps).
   std::uint64_t hdlc_bit_rate_bps = 4'000'000;
   std::uint64_t hdlc_turnaround_ns = 10'000;     // end of I-frame -> start of its ack

@@ -1,0 +1,48 @@
+# CTest check of `mc1`'s exit codes and outputs (docs/reliability.md):
+# 2 for bad input naming it, 1 for a failed write with nothing left behind,
+# --help and --version 0.
+#   cmake -DMC1=... -DSCENES=... -DWORK_DIR=... -P mc1_cli_errors.cmake
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+
+# expect(NAME RC PATTERN ARGS...): exit RC, stderr (or stdout for 0) matching PATTERN.
+function(expect name want pattern)
+  execute_process(COMMAND ${MC1} ${ARGN} OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+  if(NOT rc EQUAL want OR NOT "${out}${err}" MATCHES "${pattern}")
+    message(SEND_ERROR "case ${name}: exit ${rc} (wanted ${want}), output '${out}${err}' (wanted '${pattern}')")
+  endif()
+endfunction()
+
+set(tiny ${SCENES}/tiny.json --size 16x16 --nodes 2 --quiet)
+expect(version 0 "^mc1 [0-9]+\\.[0-9]+\\.[0-9]+" --version)
+expect(help 0 "usage: mc1" --help)
+expect(missing_scene 2 "mc1 render: ${WORK_DIR}/none.json: cannot open scene file" render ${WORK_DIR}/none.json)
+expect(scene_is_dir 2 "is a directory" render ${WORK_DIR})
+expect(params_is_dir 2 "is a directory \\(expected a parameter file\\)" render ${tiny} --params ${WORK_DIR})
+expect(bad_kernel 2 "--kernel: ${WORK_DIR}: is a directory" diag --nodes 2 --kernel ${WORK_DIR})
+expect(bad_option 2 "unknown option" render ${tiny} --bogus)
+
+# A failed write: exit 1, and none of the run's outputs is left behind.
+expect(stats_full 1 "/dev/full: .*No space left on device" render ${tiny}
+       --out ${WORK_DIR}/a.png --gantt ${WORK_DIR}/a.svg --stats /dev/full)
+foreach(f a.png a.svg)
+  if(EXISTS ${WORK_DIR}/${f})
+    message(SEND_ERROR "case stats_full: ${f} was left behind")
+  endif()
+endforeach()
+expect(out_full 1 "/dev/full: .*No space left on device" diag --nodes 2 --stats ${WORK_DIR}/d.json --out /dev/full)
+if(EXISTS ${WORK_DIR}/d.json)
+  message(SEND_ERROR "case out_full: d.json was left behind")
+endif()
+file(GLOB leftovers ${WORK_DIR}/.*)
+if(leftovers)
+  message(SEND_ERROR "temporary files left behind: ${leftovers}")
+endif()
+
+# All outputs written: each present.
+expect(good 0 "" render ${tiny} --out ${WORK_DIR}/g.png --stats ${WORK_DIR}/g.json --gantt ${WORK_DIR}/g.svg)
+foreach(f g.png g.json g.svg)
+  if(NOT EXISTS ${WORK_DIR}/${f})
+    message(SEND_ERROR "case good: ${f} missing")
+  endif()
+endforeach()
