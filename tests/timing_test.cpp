@@ -46,7 +46,7 @@ TEST(Timing, DefaultsAndDerivedDurations) {
 
 TEST(Timing, TableListsEveryKeyOnceAndTextRoundTrips) {
   const auto& table = timing_param_table();
-  EXPECT_EQ(table.size(), 22u);
+  EXPECT_EQ(table.size(), 23u);
   TimingParams t;
   for (const ParamInfo& p : table) {
     EXPECT_GE(t.get(p.key), p.min) << p.key;
