@@ -23,7 +23,7 @@ struct Options {
 
 void add_options(CLI::App& app, Options& o) {
   app.add_option("FILES", o.files, "the two PNG files A.png B.png")->required()->expected(2)->check(cli::input_file());
-  app.add_option("--diff", o.diff_path, "write the difference image min(255, K |a - b|) to FILE");
+  app.add_option("--diff", o.diff_path, "write the difference image min(255, K |a - b|) to FILE")->type_name("FILE");
   app.add_option("--scale", o.scale, "K, the difference image's gain")
       ->transform(cli::unsigned_in(1, 255))
       ->capture_default_str();

@@ -29,7 +29,7 @@ void parse_size(Options& o) {
 void add_options(CLI::App& app, Options& o) {
   app.add_option("SCENE", o.scene_path, "the scene (JSON, docs/scene-format.md)")->required()->check(cli::input_file());
   app.add_option("--size", o.size, "image size instead of the camera's (each side 1 to 8192)")->type_name("WxH");
-  app.add_option("--out", o.out_path, "the PNG to write")->required();
+  app.add_option("--out", o.out_path, "the PNG to write")->required()->type_name("FILE");
 }
 
 }  // namespace

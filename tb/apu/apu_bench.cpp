@@ -29,23 +29,17 @@ namespace {
 
 using namespace mc1::apu;
 namespace fp = mc1::fp24;
+namespace cli = mc1::cli;
 
-constexpr const char* kUsage =
-    "usage: apu-bench [--kernel PATH] [--engines iss,rtl] [--iss-cycles N] [--rtl-cycles N] [--check]\n"
-    "Runs the xform4 vertex-transform stream (blocks of 1000 vertices; the built-in\n"
+constexpr const char* kDescription =
+    "apu-bench: the xform4 vertex-transform stream (blocks of 1000 vertices; the built-in\n"
     "firmware/kernels/xform4.apu, or --kernel's .apu/.bin with its interface) on each engine through\n"
     "the MPU driver, the MPU polling every 64 cycles. Prints APU cycles, cycles per vertex, unit\n"
-    "utilization and host speed; --check exits 1 if the ISS is below 20 M cycles/s or the RTL\n"
-    "below 2 M cycles/s (or a result is wrong, always).\n";
+    "utilization and host speed.";
 
 constexpr int kVertices = 1000;  // per block (the kernel allows up to 1015)
 constexpr int kCount = 0, kMatrix = 16, kVerts = 32;
 constexpr double kIssTarget = 20e6, kRtlTarget = 2e6;
-
-[[noreturn]] void usage_error(const std::string& msg) {
-  std::cerr << "apu-bench: " << msg << "\n" << kUsage;
-  std::exit(2);
-}
 
 // FP24 values of moderate size: sign, exponent 60..66, random fraction.
 std::uint32_t moderate(Rng& rng) {
@@ -150,40 +144,44 @@ Result bench(const std::string& name, const std::vector<Encoded>& kernel, std::u
   return r;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   std::string kernel_path;  // empty: the embedded xform4.apu
   std::vector<std::string> engines = {"iss", "rtl"};
   std::uint64_t iss_cycles = 40'000'000, rtl_cycles = 4'000'000;
   bool check = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage_error(a + " wants a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      return 0;
-    } else if (a == "--kernel") {
-      kernel_path = value();
-    } else if (a == "--engines") {
-      engines.clear();
-      std::stringstream ss(value());
-      for (std::string e; std::getline(ss, e, ',');) engines.push_back(e);
-    } else if (a == "--iss-cycles" || a == "--rtl-cycles") {
-      char* end = nullptr;
-      const std::string v = value();
-      const unsigned long long n = std::strtoull(v.c_str(), &end, 0);
-      if (v.empty() || *end) usage_error(a + " wants a number, not '" + v + "'");
-      (a == "--iss-cycles" ? iss_cycles : rtl_cycles) = n;
-    } else if (a == "--check") {
-      check = true;
-    } else {
-      usage_error("unknown argument " + a);
-    }
-  }
+};
+
+void add_options(CLI::App& app, Options& o) {
+  app.add_option("--kernel", o.kernel_path, "another kernel with xform4's interface (.apu or .bin)")
+      ->check(cli::input_file());
+  app.add_option("--engines", o.engines, "the engines to run, in order")
+      ->delimiter(',')
+      ->check(CLI::IsMember(tools::engine_names()))
+      ->allow_extra_args(false)
+      ->type_name("E,...")
+      ->capture_default_str();
+  app.add_option("--iss-cycles", o.iss_cycles, "APU cycles of the ISS's timed run")
+      ->transform(cli::unsigned_in(1, UINT64_MAX >> 2))
+      ->capture_default_str();
+  app.add_option("--rtl-cycles", o.rtl_cycles, "APU cycles of the RTL's timed run")
+      ->transform(cli::unsigned_in(1, UINT64_MAX >> 2))
+      ->capture_default_str();
+  app.add_flag("--check", o.check, "exit 1 if the ISS is below 20 M cycles/s or the RTL below 2 M");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{kDescription, "apu-bench"};
+  cli::conventions(app, "Exit status: 0 done; 1 a wrong result (always) or, with --check, an engine below its\n"
+                        "target speed; 2 usage or input error.");
+  Options o;
+  add_options(app, o);
+  if (auto rc = cli::parse(app, argc, argv)) return *rc;
+  std::string kernel_path = o.kernel_path;
+  const std::vector<std::string>& engines = o.engines;
+  const std::uint64_t iss_cycles = o.iss_cycles, rtl_cycles = o.rtl_cycles;
+  const bool check = o.check;
   try {
     const std::vector<Encoded> kernel =
         kernel_path.empty()
