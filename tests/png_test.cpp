@@ -208,8 +208,8 @@ TEST(PngRead, BadFilesAreNamed) {
   corrupt = good;
   corrupt[60] ^= 0x40;  // inside the deflate data: inflate fails before the CRC is seen
   write_bytes(d / "data.png", corrupt);
-  EXPECT_EQ(error_of([&] { imgcmp::read_png((d / "data.png").string()); }).rfind((d / "data.png").string() + ": IDAT: ", 0),
-            0u);
+  const std::string data_error = error_of([&] { imgcmp::read_png((d / "data.png").string()); });
+  EXPECT_EQ(data_error.rfind((d / "data.png").string() + ": IDAT: ", 0), 0u) << data_error;
 
   write_bytes(d / "text.png", Bytes{'h', 'e', 'l', 'l', 'o', ' ', 'w', 'o', 'r', 'l', 'd', '\n'});
   EXPECT_EQ(error_of([&] { imgcmp::read_png((d / "text.png").string()); }),

@@ -116,7 +116,7 @@ CLI::Validator unsigned_in(std::uint64_t min, std::uint64_t max) {
         if (err.empty()) text = std::to_string(v);
         return err;
       },
-      "UINT in " + range_text(min, max));
+      range_text(min, max));  // help: UINT:[min, max]
 }
 
 CLI::Validator real_in(double min, double max) {
@@ -125,7 +125,7 @@ CLI::Validator real_in(double min, double max) {
         double v = 0;
         return read_real(text, min, max, v);
       },
-      "NUMBER in [" + real_text(min) + ", " + real_text(max) + "]");
+      "[" + real_text(min) + ", " + real_text(max) + "]");  // help: FLOAT:[min, max]
 }
 
 CLI::Validator input_file() {

@@ -169,31 +169,20 @@ void add_options(CLI::App& app, Options& o) {
   app.add_flag("--check", o.check, "exit 1 if the ISS is below 20 M cycles/s or the RTL below 2 M");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{kDescription, "apu-bench"};
-  cli::conventions(app, "Exit status: 0 done; 1 a wrong result (always) or, with --check, an engine below its\n"
-                        "target speed; 2 usage or input error.");
-  Options o;
-  add_options(app, o);
-  if (auto rc = cli::parse(app, argc, argv)) return *rc;
-  std::string kernel_path = o.kernel_path;
-  const std::vector<std::string>& engines = o.engines;
-  const std::uint64_t iss_cycles = o.iss_cycles, rtl_cycles = o.rtl_cycles;
-  const bool check = o.check;
+int run(Options o) {
   try {
     const std::vector<Encoded> kernel =
-        kernel_path.empty()
+        o.kernel_path.empty()
             ? mc1::apuasm::parse_image(std::string(reinterpret_cast<const char*>(mc1_xform4_kernel_image),
                                               mc1_xform4_kernel_image_size),
                                   "xform4.bin (embedded)")
-            : tools::load_program_file(kernel_path);
-    if (kernel_path.empty()) kernel_path = "xform4.apu (built in)";
+            : tools::load_program_file(o.kernel_path);
+    if (o.kernel_path.empty()) o.kernel_path = "xform4.apu (built in)";
     std::vector<Result> results;
-    for (const auto& e : engines) results.push_back(bench(e, kernel, e == "rtl" ? rtl_cycles : iss_cycles));
+    for (const auto& e : o.engines)
+      results.push_back(bench(e, kernel, e == "rtl" ? o.rtl_cycles : o.iss_cycles));
 
-    std::printf("apu-bench: %s, blocks of %d vertices, MPU polling every 64 cycles\n", kernel_path.c_str(),
+    std::printf("apu-bench: %s, blocks of %d vertices, MPU polling every 64 cycles\n", o.kernel_path.c_str(),
                 kVertices);
     std::printf("engine  result  APU cycles  vertices  cyc/vertex  mul%%   add%%   func%%  MFLOPS  host s   cycles/s\n");
     bool ok = true;
@@ -207,7 +196,7 @@ int main(int argc, char** argv) {
       if (!r.correct) ok = false;
       if (rate < target) {
         std::printf("  %s below its target of %.0f M cycles/s\n", r.engine.c_str(), target / 1e6);
-        if (check) ok = false;
+        if (o.check) ok = false;
       }
       std::printf("  stall cycles (2-block profile):");
       for (int k = 1; k < kStallKinds; ++k)
@@ -222,4 +211,16 @@ int main(int argc, char** argv) {
     std::cerr << "apu-bench: " << ex.what() << "\n";
     return 2;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{kDescription, "apu-bench"};
+  cli::conventions(app, "Exit status: 0 done; 1 a wrong result (always) or, with --check, an engine below its\n"
+                        "target speed; 2 usage or input error.");
+  Options o;
+  add_options(app, o);
+  if (auto rc = cli::parse(app, argc, argv)) return *rc;
+  return run(o);
 }

@@ -47,7 +47,9 @@ std::pair<std::uint16_t, std::uint16_t> parse_read(const std::string& text) {
 
 void add_options(CLI::App& app, Options& o) {
   tools::add_program_option(app, o.program)->required();
-  app.add_option("--engine", o.engine, "the engine")->check(CLI::IsMember(tools::engine_names()))->capture_default_str();
+  app.add_option("--engine", o.engine, "the engine")
+      ->check(CLI::IsMember(tools::engine_names()))
+      ->capture_default_str();
   tools::add_data_option(app, o.data);
   app.add_option("--trace", o.trace, "rtl only: write an FST waveform of the core to FILE")->type_name("FILE");
   app.add_flag("--profile", o.profile, "print the cycle profile");
