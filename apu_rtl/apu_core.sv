@@ -113,13 +113,19 @@ module apu_core
   logic [WORD_W-1:0] fetch_word;
   microword_t        w;
 
-  apu_pmem #(.WORD_W(WORD_W), .ADDR_W(PC_W)) u_pmem (
+  // The sequencer only fetches; the MPU only writes program words.
+  apu_banks #(.DATA_W(WORD_W), .ADDR_W(PC_W)) u_pmem (
       .clk      (clk),
       .sel      (psel),
       .apu_addr (pc),
       .apu_rdata(fetch_word),
-      .mpu_we   (mpu2apu_pmem_we),
+      .apu_we   (1'b0),
+      .apu_wdata({WORD_W{1'b0}}),
       .mpu_addr (mpu2apu_pmem_addr),
+      /* verilator lint_off PINCONNECTEMPTY */
+      .mpu_rdata(),
+      /* verilator lint_on PINCONNECTEMPTY */
+      .mpu_we   (mpu2apu_pmem_we),
       .mpu_wdata(mpu2apu_pmem_wdata)
   );
 
@@ -343,20 +349,46 @@ module apu_core
     wi_data[1] = (w.i_op == I_MOVAF) ? {8'h00, aop[AR_S]} : {w.i_imm, 8'h00};
   end
 
-  apu_fregs #(.DATA_W(FP_W), .ADDR_W(FREG_AW), .N_RD(N_RD), .N_WB(N_WB), .N_WI(2)) u_fregs (
+  // *_v: a register file's ports as flat vectors, port i at [i*W +: W]
+  // (apu_regfile). F write ports: the completions first (write-first), then
+  // the issue writes.
+  logic [N_RD*FREG_AW-1:0]     f_rd_addr_v;
+  logic [N_RD*FP_W-1:0]        f_rd_data_v;
+  logic [N_WB+1:0]             f_wr_en_v;
+  logic [(N_WB+2)*FREG_AW-1:0] f_wr_addr_v;
+  logic [(N_WB+2)*FP_W-1:0]    f_wr_data_v;
+
+  always_comb begin
+    for (int i = 0; i < N_RD; i++) f_rd_addr_v[i*FREG_AW +: FREG_AW] = src_addr[i];
+  end
+  always_comb begin
+    for (int i = 0; i < N_RD; i++) fop[i] = f_rd_data_v[i*FP_W +: FP_W];
+  end
+  always_comb begin
+    for (int i = 0; i < N_WB + 2; i++) begin
+      f_wr_en_v[i]                      = (i < N_WB) ? wb_en[i]   : wi_en[i-N_WB];
+      f_wr_addr_v[i*FREG_AW +: FREG_AW] = (i < N_WB) ? wb_addr[i] : wi_addr[i-N_WB];
+      f_wr_data_v[i*FP_W +: FP_W]       = (i < N_WB) ? wb_data[i] : wi_data[i-N_WB];
+    end
+  end
+
+  apu_regfile #(
+      .DATA_W    (FP_W),
+      .ADDR_W    (FREG_AW),
+      .N_RD      (N_RD),
+      .N_WR      (N_WB + 2),
+      .N_WR_FIRST(N_WB)
+  ) u_fregs (
       .clk    (clk),
       .rst_n  (rst_n),
-      .rd_addr(src_addr),
-      .rd_data(fop),
-      .wb_en  (wb_en),
-      .wb_addr(wb_addr),
-      .wb_data(wb_data),
-      .wi_en  (wi_en),
-      .wi_addr(wi_addr),
-      .wi_data(wi_data)
+      .rd_addr(f_rd_addr_v),
+      .rd_data(f_rd_data_v),
+      .wr_en  (f_wr_en_v),
+      .wr_addr(f_wr_addr_v),
+      .wr_data(f_wr_data_v)
   );
 
-  apu_dmem #(.DATA_W(FP_W), .ADDR_W(DADDR_W)) u_dmem (
+  apu_banks #(.DATA_W(FP_W), .ADDR_W(DADDR_W)) u_dmem (
       .clk      (clk),
       .sel      (dsel_q),
       .apu_addr (mem_addr[DADDR_W-1:0]),
@@ -400,14 +432,42 @@ module apu_core
     awr_en[1] = issue && (w.s_op == S_DBNZ); awr_addr[1] = w.s_r;              awr_data[1] = dbnz_value;
   end
 
-  apu_aregs #(.DATA_W(INT_W), .ADDR_W(AREG_AW), .N_RD(N_AR), .N_WR(2)) u_aregs (
+  // A write ports: the I slot, DBNZ (issue writes, no bypass).
+  logic [N_AR*AREG_AW-1:0] a_rd_addr_v;
+  logic [N_AR*INT_W-1:0]   a_rd_data_v;
+  logic [1:0]              a_wr_en_v;
+  logic [2*AREG_AW-1:0]    a_wr_addr_v;
+  logic [2*INT_W-1:0]      a_wr_data_v;
+
+  always_comb begin
+    for (int i = 0; i < N_AR; i++) a_rd_addr_v[i*AREG_AW +: AREG_AW] = a_rd_addr[i];
+  end
+  always_comb begin
+    for (int i = 0; i < N_AR; i++) aop[i] = a_rd_data_v[i*INT_W +: INT_W];
+  end
+  always_comb begin
+    for (int i = 0; i < 2; i++) begin
+      a_wr_en_v[i]                      = awr_en[i];
+      a_wr_addr_v[i*AREG_AW +: AREG_AW] = awr_addr[i];
+      a_wr_data_v[i*INT_W +: INT_W]     = awr_data[i];
+    end
+  end
+
+  apu_regfile #(
+      .DATA_W    (INT_W),
+      .ADDR_W    (AREG_AW),
+      .N_RD      (N_AR),
+      .N_WR      (2),
+      .N_WR_FIRST(0),
+      .ZERO_REG  (1'b1)
+  ) u_aregs (
       .clk    (clk),
       .rst_n  (rst_n),
-      .rd_addr(a_rd_addr),
-      .rd_data(aop),
-      .wr_en  (awr_en),
-      .wr_addr(awr_addr),
-      .wr_data(awr_data)
+      .rd_addr(a_rd_addr_v),
+      .rd_data(a_rd_data_v),
+      .wr_en  (a_wr_en_v),
+      .wr_addr(a_wr_addr_v),
+      .wr_data(a_wr_data_v)
   );
 
   // =========================================================================

@@ -2,13 +2,13 @@
 // (docs/fp24.md, docs/fp24-rtl.md; op codes on in_op[2:0]).
 //
 // Two stages, latency 2, one issue per cycle:
-//   s1: unpack with DAZ; ADD/SUB: order the operands by magnitude, align the
-//       smaller one (guard, round and a sticky bit jammed into the LSB) and
-//       add or subtract; FLOAT: take the integer's magnitude. Both leave an
-//       unnormalised sum for stage 2. CMP, FIX, NEG, ABS and the zero/inf/NaN
+//   s1: unpack with DAZ (fp24_classify); ADD/SUB: order the operands by
+//       magnitude, align the smaller one (guard, round and a sticky bit
+//       jammed into the LSB) and add or subtract; FLOAT: take the integer's
+//       magnitude. Both leave an unnormalised sum for stage 2. CMP, FIX, NEG, ABS and the zero/inf/NaN
 //       cases of ADD/SUB finish here as a "direct" result.
-//   s2: count leading zeros and normalise the sum, round and pack
-//       (fp24_round); or pass the direct result on.
+//   s2: count leading zeros and normalise the sum, round and pack; or pass
+//       the direct result (or an exact zero sum) on (fp24_result_stage).
 // rst_n is synchronous and clears only the valid bits. The unused op code 7
 // gives result 0, flags 0.
 module fp24_add #(
@@ -57,17 +57,14 @@ module fp24_add #(
   logic [W-2:0]      a_mag, b_mag;      // |x| after DAZ, ordered like the value
   logic [SIG_W-1:0]  a_sig, b_sig;      // 1.f, or 0 for a zero
 
+  fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class_a (
+      .x(in_a), .sign(a_sign), .exp(a_exp), .frac(a_frac), .zero(a_zero), .inf(a_inf), .nan(a_nan));
+  fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class_b (
+      .x(in_b), .sign(b_sign), .exp(b_exp), .frac(b_frac), .zero(b_zero), .inf(b_inf), .nan(b_nan));
+
   always_comb begin
-    {a_sign, a_exp, a_frac} = in_a;
-    {b_sign, b_exp, b_frac} = in_b;
-    a_zero = (a_exp == '0);
-    b_zero = (b_exp == '0);
-    a_inf  = (a_exp == EXP_ONES) && (a_frac == '0);
-    b_inf  = (b_exp == EXP_ONES) && (b_frac == '0);
-    a_nan  = (a_exp == EXP_ONES) && (a_frac != '0);
-    b_nan  = (b_exp == EXP_ONES) && (b_frac != '0);
-    a_mag  = a_zero ? '0 : in_a[W-2:0];
-    b_mag  = b_zero ? '0 : in_b[W-2:0];
+    a_mag  = a_zero ? '0 : {a_exp, a_frac};
+    b_mag  = b_zero ? '0 : {b_exp, b_frac};
     a_sig  = {!a_zero, a_mag[FRAC_W-1:0]};
     b_sig  = {!b_zero, b_mag[FRAC_W-1:0]};
   end
@@ -230,8 +227,6 @@ module fp24_add #(
   logic [4:0]        lzc;
   logic              sum_zero;
   logic [SEXP_W-1:0] rnd_exp;
-  logic [W-1:0]      rnd_result;
-  logic [4:0]        rnd_flags;
 
   always_comb begin
     // Leading-zero count and left shift in one pass, 16/8/4/2/1.
@@ -250,40 +245,20 @@ module fp24_add #(
     rnd_exp  = s1_exp - {{(SEXP_W - 5) {1'b0}}, lzc};
   end
 
-  fp24_round #(
-      .EXP_W (EXP_W),
-      .FRAC_W(FRAC_W),
-      .SEXP_W(SEXP_W)
-  ) u_round (
-      .sign  (s1_sign),
-      .exp   (rnd_exp),
-      .frac  (n0[NORM_W-2-:FRAC_W]),
-      .guard (n0[NORM_W-2-FRAC_W]),
-      .sticky(n0[NORM_W-3-FRAC_W:0] != '0),
-      .result(rnd_result),
-      .flags (rnd_flags)
-  );
-
   logic         s2_valid;
   logic [W-1:0] s2_result;
   logic [4:0]   s2_flags;
 
-  always_ff @(posedge clk) begin
-    if (!rst_n) s2_valid <= 1'b0;
-    else        s2_valid <= s1_valid;
-    if (s1_valid) begin
-      if (s1_direct) begin
-        s2_result <= s1_result;
-        s2_flags  <= s1_flags;
-      end else if (sum_zero) begin
-        s2_result <= {s1_zero_sign, {(W - 1) {1'b0}}};
-        s2_flags  <= 5'b00000;
-      end else begin
-        s2_result <= rnd_result;
-        s2_flags  <= rnd_flags;
-      end
-    end
-  end
+  // An exact zero sum has no leading one to round: it is the special case
+  // here, with the sign stage 1 chose for it.
+  fp24_result_stage #(.EXP_W(EXP_W), .FRAC_W(FRAC_W), .SEXP_W(SEXP_W)) u_s2 (
+      .clk(clk), .rst_n(rst_n), .in_valid(s1_valid),
+      .special(s1_direct || sum_zero),
+      .special_result(s1_direct ? s1_result : {s1_zero_sign, {(W - 1) {1'b0}}}),
+      .special_flags(s1_direct ? s1_flags : 5'b00000),
+      .sign(s1_sign), .exp(rnd_exp), .frac(n0[NORM_W-2-:FRAC_W]), .guard(n0[NORM_W-2-FRAC_W]),
+      .sticky(n0[NORM_W-3-FRAC_W:0] != '0),
+      .out_valid(s2_valid), .out_result(s2_result), .out_flags(s2_flags));
 
   assign out_valid  = s2_valid;
   assign out_result = s2_result;

@@ -1,10 +1,10 @@
 // FP24 multiplier: the MUL pipeline of the APU (docs/fp24.md, docs/fp24-rtl.md).
 //
 // Two stages, latency 2, one issue per cycle:
-//   s1: unpack with DAZ, classify zero/inf/NaN, multiply the significands
-//       exactly, add the exponents;
-//   s2: normalise (the product is in [1, 4)), round and pack (fp24_round),
-//       or substitute the special-case result.
+//   s1: unpack with DAZ, classify zero/inf/NaN (fp24_classify), multiply
+//       the significands exactly, add the exponents;
+//   s2: normalise (the product is in [1, 4)), round and pack, or substitute
+//       the special-case result (fp24_result_stage).
 // rst_n is synchronous and clears only the valid bits.
 module fp24_mul #(
     parameter int EXP_W  = 7,
@@ -24,6 +24,7 @@ module fp24_mul #(
   localparam int SEXP_W = EXP_W + 2;    // holds e_a + e_b - bias + 2 unbounded
   localparam logic [EXP_W-1:0]  EXP_ONES = '1;
   localparam logic [SEXP_W-1:0] BIAS     = SEXP_W'((1 << (EXP_W - 1)) - 1);
+  localparam logic [EXP_W+FRAC_W:0] CANON_NAN = {1'b0, EXP_ONES, 1'b1, {(FRAC_W - 1) {1'b0}}};
 
   // ---- stage 1: unpack, classify, multiply ---------------------------------
   logic              a_sign, b_sign;
@@ -31,17 +32,10 @@ module fp24_mul #(
   logic [FRAC_W-1:0] a_frac, b_frac;
   logic              a_zero, b_zero, a_inf, b_inf, a_nan, b_nan;
 
-  always_comb begin
-    {a_sign, a_exp, a_frac} = in_a;
-    {b_sign, b_exp, b_frac} = in_b;
-    // e = 0 reads as zero whatever f holds (DAZ).
-    a_zero = (a_exp == '0);
-    b_zero = (b_exp == '0);
-    a_inf  = (a_exp == EXP_ONES) && (a_frac == '0);
-    b_inf  = (b_exp == EXP_ONES) && (b_frac == '0);
-    a_nan  = (a_exp == EXP_ONES) && (a_frac != '0);
-    b_nan  = (b_exp == EXP_ONES) && (b_frac != '0);
-  end
+  fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class_a (
+      .x(in_a), .sign(a_sign), .exp(a_exp), .frac(a_frac), .zero(a_zero), .inf(a_inf), .nan(a_nan));
+  fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class_b (
+      .x(in_b), .sign(b_sign), .exp(b_exp), .frac(b_frac), .zero(b_zero), .inf(b_inf), .nan(b_nan));
 
   logic              s1_valid;
   logic              s1_sign;
@@ -67,56 +61,40 @@ module fp24_mul #(
   end
 
   // ---- stage 2: normalise, round, pack -------------------------------------
-  logic              norm;      // product in [2, 4): one more exponent
-  logic [PROD_W-2:0] prod_n;    // product with its leading one at the top
-  logic [SEXP_W-1:0] rnd_exp;
-  logic [EXP_W+FRAC_W:0] rnd_result;
-  logic [4:0]        rnd_flags;
+  logic                  norm;      // product in [2, 4): one more exponent
+  logic [PROD_W-2:0]     prod_n;    // product with its leading one at the top
+  logic [SEXP_W-1:0]     rnd_exp;
+  logic                  special;   // NaN, inf or zero: no rounding
+  logic [EXP_W+FRAC_W:0] special_result;
+  logic [4:0]            special_flags;
 
   always_comb begin
     norm    = s1_prod[PROD_W-1];
     prod_n  = norm ? s1_prod[PROD_W-2:0] : {s1_prod[PROD_W-3:0], 1'b0};
     rnd_exp = s1_exp + {{(SEXP_W - 1) {1'b0}}, norm};
+    // NaN wins over inf wins over zero (0 * inf is already NaN).
+    special       = s1_nan || s1_inf || s1_zero;
+    special_flags = 5'b00000;
+    if (s1_nan) begin
+      special_result = CANON_NAN;
+      special_flags  = {s1_nv, 4'b0000};
+    end else if (s1_inf) begin
+      special_result = {s1_sign, EXP_ONES, {FRAC_W{1'b0}}};
+    end else begin
+      special_result = {s1_sign, {(EXP_W + FRAC_W) {1'b0}}};
+    end
   end
-
-  fp24_round #(
-      .EXP_W (EXP_W),
-      .FRAC_W(FRAC_W),
-      .SEXP_W(SEXP_W)
-  ) u_round (
-      .sign  (s1_sign),
-      .exp   (rnd_exp),
-      .frac  (prod_n[PROD_W-2-:FRAC_W]),
-      .guard (prod_n[PROD_W-2-FRAC_W]),
-      .sticky(|prod_n[PROD_W-3-FRAC_W:0]),
-      .result(rnd_result),
-      .flags (rnd_flags)
-  );
 
   logic                  s2_valid;
   logic [EXP_W+FRAC_W:0] s2_result;
   logic [4:0]            s2_flags;
 
-  always_ff @(posedge clk) begin
-    if (!rst_n) s2_valid <= 1'b0;
-    else        s2_valid <= s1_valid;
-    if (s1_valid) begin
-      // NaN wins over inf wins over zero (0 * inf is already NaN).
-      if (s1_nan) begin
-        s2_result <= {1'b0, EXP_ONES, 1'b1, {(FRAC_W - 1) {1'b0}}};
-        s2_flags  <= {s1_nv, 4'b0000};
-      end else if (s1_inf) begin
-        s2_result <= {s1_sign, EXP_ONES, {FRAC_W{1'b0}}};
-        s2_flags  <= 5'b00000;
-      end else if (s1_zero) begin
-        s2_result <= {s1_sign, {(EXP_W + FRAC_W) {1'b0}}};
-        s2_flags  <= 5'b00000;
-      end else begin
-        s2_result <= rnd_result;
-        s2_flags  <= rnd_flags;
-      end
-    end
-  end
+  fp24_result_stage #(.EXP_W(EXP_W), .FRAC_W(FRAC_W), .SEXP_W(SEXP_W)) u_s2 (
+      .clk(clk), .rst_n(rst_n), .in_valid(s1_valid),
+      .special(special), .special_result(special_result), .special_flags(special_flags),
+      .sign(s1_sign), .exp(rnd_exp), .frac(prod_n[PROD_W-2-:FRAC_W]), .guard(prod_n[PROD_W-2-FRAC_W]),
+      .sticky(|prod_n[PROD_W-3-FRAC_W:0]),
+      .out_valid(s2_valid), .out_result(s2_result), .out_flags(s2_flags));
 
   assign out_valid  = s2_valid;
   assign out_result = s2_result;

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "cmdline.hpp"
 #include "fp24.hpp"
 #include "fp24_rtl.hpp"
 
@@ -15,7 +15,7 @@ namespace {
 
 using namespace mc1::fp24;
 using namespace mc1::fp24::tb;
-namespace cli = mc1::cli;
+namespace cli = mc1::cmdline;
 
 // The machine is shared, so rates are per second of this thread's CPU time,
 // not wall time: a busy neighbour then does not halve the figures.

@@ -20,7 +20,7 @@
 #include <thread>
 #include <vector>
 
-#include "cli.hpp"
+#include "cmdline.hpp"
 #include "fp24.hpp"
 #include "fp24_oracle.hpp"
 #include "fp24_rtl.hpp"
@@ -31,7 +31,7 @@ namespace {
 using namespace mc1::fp24;
 using namespace mc1::fp24::tb;
 using Clock = std::chrono::steady_clock;
-namespace cli = mc1::cli;
+namespace cli = mc1::cmdline;
 
 constexpr const char* kDescription =
     "fp24-regress: the FP24 regression (docs/fp24-verification.md).\n"

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "cmdline.hpp"
 #include "fp24.hpp"
 #include "fp24_oracle.hpp"
 #include "fp24_rtl.hpp"
@@ -18,7 +18,7 @@ namespace {
 
 using namespace mc1::fp24;
 using namespace mc1::fp24::tb;
-namespace cli = mc1::cli;
+namespace cli = mc1::cmdline;
 
 constexpr const char* kDescription =
     "fp24-run: the FP24 vector interface of docs/fp24.md over one engine.\n"

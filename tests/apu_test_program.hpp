@@ -1,13 +1,13 @@
-// What the hand-timed APU tests of both engines share (tests/apu_iss_test.cpp,
-// tests/apu_rtl_test.cpp): microword builders and a program runner that keeps
-// every cycle's record. The expected timings stay in each test file, each
-// derived from docs/apu-isa.md on its own.
+// What the hand-timed APU tests share (tests/apu_hand_timed_test.cpp runs
+// them on both engines; tests/apu_iss_test.cpp, tests/apu_rtl_test.cpp hold
+// what only one engine has): microword builders and a program runner that
+// keeps every cycle's record. The expected timings are derived from
+// docs/apu-isa.md, not from either engine.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <memory>
-#include <utility>
 #include <vector>
 
 #include "apu_driver.hpp"
@@ -71,18 +71,15 @@ inline std::vector<Encoded> encode(const std::vector<MicroWord>& prog) {
   return out;
 }
 
-// A program loaded into the MPU's bank, handed over and started at 0 on an
-// engine built from `engine_args`; every stepped cycle's record is kept.
-template <class Engine>
+// A program loaded into the MPU's bank of `engine`, handed over and started
+// at 0; every stepped cycle's record is kept. The engine outlives it.
 struct EngineProgram {
-  std::unique_ptr<Engine> apu;
+  ApuEngine* apu;
   std::unique_ptr<ApuDriver> drv;
   std::vector<CycleRecord> recs;
 
-  template <class... Args>
-  explicit EngineProgram(const std::vector<MicroWord>& prog, Args&&... engine_args)
-      : apu(std::make_unique<Engine>(std::forward<Args>(engine_args)...)),
-        drv(std::make_unique<ApuDriver>(*apu)) {
+  EngineProgram(ApuEngine& engine, const std::vector<MicroWord>& prog)
+      : apu(&engine), drv(std::make_unique<ApuDriver>(engine)) {
     drv->load_program(encode(prog));
     drv->hand_over_program();
     drv->start(0);

@@ -2,14 +2,23 @@
 // diagnostics, round trips, directives, listing and image formats.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <dirent.h>
 #include <fstream>
+#include <iterator>
 #include <random>
+#include <set>
 #include <string>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include "apu_image.hpp"
 #include "apuasm.hpp"
+#include "apuasm_macros.hpp"
 #include "disasm.hpp"
 
 namespace mc1::apuasm {
@@ -391,7 +400,8 @@ TEST(ApuAsmDirectives, IncludeRelativeToIncludingFile) {
   const auto p = assemble_file(top);
   ASSERT_EQ(p.words.size(), 1u);
   EXPECT_EQ(MicroWord::decode(p.words[0]).i.imm, 13);
-  EXPECT_EQ(first_error(".include \"no/such.inc\"\n"), "e.apu:1:10: error: cannot read include file 'no/such.inc'");
+  EXPECT_EQ(first_error(".include \"no/such.inc\"\n"),
+            "e.apu:1:10: error: cannot read include file 'no/such.inc': No such file or directory");
 }
 
 TEST(ApuAsmDirectives, Macros) {
@@ -427,6 +437,250 @@ TEST(ApuAsmDirectives, Macros) {
             "e.apu:2:10: error: immediate 70000 out of range -32768..65535 (in macro 'm' invoked at e.apu:4:3)");
   EXPECT_EQ(first_error(".macro m a\n nop\n"), "e.apu:1:8: error: .macro without .endm");
   EXPECT_EQ(first_error(".macro mul a\n.endm\n"), "e.apu:1:8: error: macro name 'mul' is an instruction mnemonic");
+}
+
+// ---------------------------------------------------------------------------
+// Hostile input: every integer operation checked, expansion bounded,
+// directories refused (issue 11).
+
+// A source that must not assemble and its first diagnostic.
+struct BadSource {
+  const char* src;
+  const char* error;
+};
+
+TEST(ApuAsmLimits, ExpressionOverflowIsALocatedError) {
+  const BadSource cases[] = {
+      // INT64_MIN / -1 used to kill the assembler with SIGFPE.
+      {".equ X, -(1<<62)*2/-1\n",
+       "e.apu:1:19: error: integer overflow: -9223372036854775808 / -1 does not fit in 64 bits"},
+      // (1<<62)*4 wrapped to 0, so this loaded 5.
+      {"li a1, (1<<62)*4+5\n", "e.apu:1:15: error: integer overflow: 4611686018427387904 * 4 does not fit in 64 bits"},
+      {".equ X, 0x7fffffffffffffff + 1\n",
+       "e.apu:1:28: error: integer overflow: 9223372036854775807 + 1 does not fit in 64 bits"},
+      {".equ X, -0x7fffffffffffffff - 2\n",
+       "e.apu:1:29: error: integer overflow: -9223372036854775807 - 2 does not fit in 64 bits"},
+      {".equ M, -0x7fffffffffffffff - 1\n.equ X, -M\n",
+       "e.apu:2:9: error: integer overflow: -(-9223372036854775808) does not fit in 64 bits"},
+      {".equ X, 3 << 62\n", "e.apu:1:11: error: integer overflow: 3 << 62 does not fit in 64 bits"},
+      {".equ X, 1 << 63\n", "e.apu:1:11: error: integer overflow: 1 << 63 does not fit in 64 bits"},
+      {"ld f1, [a1-(-0x7fffffffffffffff-1)]\n",
+       "e.apu:1:11: error: integer overflow: -(-9223372036854775808) does not fit in 64 bits"},
+      {".equ X, 9223372036854775808\n", "e.apu:1:9: error: number too large (the largest is 9223372036854775807)"},
+      {".equ X, 4 / (2 - 2)\n", "e.apu:1:11: error: division by zero"},
+      {".equ X, 4 % 0\n", "e.apu:1:11: error: modulo by zero"},
+      {".equ X, 1 << 64\n", "e.apu:1:11: error: shift count 64 out of range 0..63"},
+      {".equ X, 8 >> -1\n", "e.apu:1:11: error: shift count -1 out of range 0..63"},
+  };
+  for (const auto& c : cases) EXPECT_EQ(first_error(c.src), c.error) << c.src;
+}
+
+TEST(ApuAsmLimits, ExpressionEdgesAreValues) {
+  const auto p = assemble(
+      ".equ MIN, -0x7fffffffffffffff - 1\n"
+      ".equ MAX, 9223372036854775807\n"
+      ".equ A, MIN % -1\n"
+      ".equ B, -1 << 63\n"
+      ".equ C, MIN >> 63\n"
+      ".equ D, MAX / -1\n"
+      ".equ E, -7 / 2\n"
+      ".equ F, -7 % 2\n",
+      "t.apu");
+  EXPECT_EQ(p.symbols.at("MIN"), INT64_MIN);
+  EXPECT_EQ(p.symbols.at("MAX"), INT64_MAX);
+  EXPECT_EQ(p.symbols.at("A"), 0);
+  EXPECT_EQ(p.symbols.at("B"), INT64_MIN);
+  EXPECT_EQ(p.symbols.at("C"), -1);
+  EXPECT_EQ(p.symbols.at("D"), -INT64_MAX);
+  EXPECT_EQ(p.symbols.at("E"), -3);  // C: truncation toward zero
+  EXPECT_EQ(p.symbols.at("F"), -1);
+}
+
+TEST(ApuAsmLimits, SelfInvokingMacroStopsAtTheNestingLimit) {
+  // Two self-invocations per level: 2^32 expansions without the limit.
+  const auto e = errors(".macro m\n m\n m\n.endm\nm\n");
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0].rfind("e.apu:2:2: error: expanding macro 'm' nests macros deeper than 32 (in macro 'm' invoked at", 0),
+            0u)
+      << e[0];
+  TempDir dir;
+  const auto self = dir.write("self.apu", ".include \"self.apu\"\n.include \"self.apu\"\n");
+  try {
+    assemble_file(self);
+    FAIL() << "assembled";
+  } catch (const AsmError& e) {
+    EXPECT_STREQ(e.what(), (self + ":1:10: error: .include nested deeper than 32").c_str());
+  }
+}
+
+// A macro `a` that expands to 16 + 16*16 + 16*16*16 = 4368 lines, all comments.
+std::string wide_macro() {
+  std::string s = ".macro c\n";
+  for (int k = 0; k < 16; ++k) s += " ; c\n";
+  s += ".endm\n.macro b\n";
+  for (int k = 0; k < 16; ++k) s += " c\n";
+  s += ".endm\n.macro a\n";
+  for (int k = 0; k < 16; ++k) s += " b\n";
+  return s + ".endm\n";
+}
+
+TEST(ApuAsmLimits, TotalExpansionIsBounded) {
+  ASSERT_EQ(detail::kMaxExpandedLines, 65536u);
+  std::string src = wide_macro();
+  for (int k = 0; k < 15; ++k) src += "a\n";  // 15 * 4368 = 65520 lines: within
+  EXPECT_EQ(assemble(src + "halt\n", "t.apu").words.size(), 1u);
+  const auto e = errors(src + "a\n");  // the 16th goes over
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_NE(e[0].find("error: expanding macro '"), std::string::npos) << e[0];
+  EXPECT_NE(e[0].find("exceeds the limit of 65536 lines that macro expansions and .include may add"), std::string::npos)
+      << e[0];
+  EXPECT_NE(e[0].find("(in macro 'a' invoked at e.apu:" + std::to_string(std::count(src.begin(), src.end(), '\n') + 1) +
+                      ":1)"),
+            std::string::npos)
+      << e[0];
+}
+
+TEST(ApuAsmLimits, DirectoriesAreRefused) {
+  TempDir dir;
+  dir.write("sub/x.inc", "nop\n");
+  try {
+    assemble_file(dir.path());
+    FAIL() << "a directory assembled";
+  } catch (const AsmError& e) {
+    EXPECT_STREQ(e.what(), (dir.path() + ": error: cannot read file: is a directory").c_str());
+  }
+  const auto top = dir.write("top.apu", "nop\n.include \"sub\"\n");
+  try {
+    assemble_file(top);
+    FAIL() << ".include of a directory assembled";
+  } catch (const AsmError& e) {
+    EXPECT_STREQ(e.what(), (top + ":2:10: error: cannot read include file '" + dir.path() + "/sub': is a directory").c_str());
+  }
+}
+
+// ---------------------------------------------------------------------------
+// The program: exit status 0 / 1 (an output not written, none left) / 2
+// (usage or input), the options of docs/apu-asm.md.
+
+// build/bin/apuasm, beside this test program.
+std::string apuasm_program() {
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) return "apuasm";
+  const std::string self(buf, static_cast<size_t>(n));
+  return self.substr(0, self.find_last_of('/')) + "/apuasm";
+}
+
+struct Run {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// Runs apuasm with `args` (shell words), in `dir` for its output files.
+Run run_apuasm(const TempDir& dir, const std::string& args) {
+  const std::string out = dir.path() + "/.stdout", err = dir.path() + "/.stderr";
+  const std::string cmd = "cd '" + dir.path() + "' && '" + apuasm_program() + "' " + args + " >'" + out + "' 2>'" + err + "'";
+  const int rc = std::system(cmd.c_str());
+  Run r;
+  r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  std::remove(out.c_str());
+  std::remove(err.c_str());
+  return r;
+}
+
+std::set<std::string> names_in(const std::string& path) {
+  std::set<std::string> out;
+  DIR* d = opendir(path.c_str());
+  if (!d) return out;
+  while (const dirent* e = readdir(d))
+    if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") out.insert(e->d_name);
+  closedir(d);
+  return out;
+}
+
+bool exists(const std::string& path) {
+  struct stat st {};
+  return stat(path.c_str(), &st) == 0;
+}
+
+TEST(ApuAsmProgram, WritesImageListingAndHex) {
+  TempDir dir;
+  const std::string src = "start: mul f1, f2, f3\n  halt\n";
+  dir.write("k.apu", src);
+  const auto r = run_apuasm(dir, "-l k.lst -x k.hex k.apu");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto p = assemble(src, "k.apu");
+  EXPECT_EQ(slurp(dir.path() + "/k.bin"), image_bytes(p.words));  // default: the source name with .bin
+  EXPECT_EQ(slurp(dir.path() + "/k.lst"), listing_text(p));
+  EXPECT_EQ(slurp(dir.path() + "/k.hex"), readmemh_text(p.words));
+  const auto d = run_apuasm(dir, "-d k.bin");
+  EXPECT_EQ(d.status, 0) << d.err;
+  EXPECT_EQ(d.out, disassembly_text(p.words));
+  for (const char* f : {"/k.bin", "/k.lst", "/k.hex"}) std::remove((dir.path() + f).c_str());
+}
+
+TEST(ApuAsmProgram, FailedWriteExitsOneAndLeavesNoOutput) {
+  TempDir dir;
+  dir.write("k.apu", "halt\n");
+  auto r = run_apuasm(dir, "-o /dev/full k.apu");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "apuasm: /dev/full: cannot write: No space left on device\n");
+  struct stat st {};
+  ASSERT_EQ(stat("/dev/full", &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode)) << "the device was replaced";
+  // The image is written, the listing is not: neither is left.
+  r = run_apuasm(dir, "-o k.bin -l /dev/full k.apu");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_FALSE(exists(dir.path() + "/k.bin"));
+  r = run_apuasm(dir, "-o no/such/dir/k.bin k.apu");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("no/such/dir/k.bin: cannot create a temporary file beside it"), std::string::npos) << r.err;
+  EXPECT_EQ(names_in(dir.path()), std::set<std::string>{"k.apu"}) << "a temporary file was left";
+}
+
+TEST(ApuAsmProgram, UsageAndInputErrorsExitTwo) {
+  TempDir dir;
+  dir.write("bad.apu", "frob\n");
+  dir.write("sub/x.inc", "nop\n");
+  auto r = run_apuasm(dir, "bad.apu");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "bad.apu:1:1: error: unknown mnemonic 'frob'\n");
+  EXPECT_FALSE(exists(dir.path() + "/bad.bin"));
+  r = run_apuasm(dir, "sub");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "sub: error: cannot read file: is a directory\n");
+  r = run_apuasm(dir, "missing.apu");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "missing.apu: error: cannot read file: No such file or directory\n");
+  r = run_apuasm(dir, "-d bad.apu");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "apuasm: bad.apu: not an APU image (no \"APU1\" header)\n");
+  for (const char* args : {"", "--frob bad.apu", "-o", "a.apu b.apu", "-d x.bin bad.apu", "-d x.bin -o y.bin"}) {
+    r = run_apuasm(dir, args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(r.err.rfind("apuasm: ", 0), 0u) << args << ": " << r.err;
+  }
+}
+
+TEST(ApuAsmProgram, HelpAndVersion) {
+  TempDir dir;
+  auto r = run_apuasm(dir, "--help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* opt : {"-o FILE", "-l FILE", "-x FILE", "-d FILE", "--version", "SOURCE.apu"})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt << " missing from\n" << r.out;
+  r = run_apuasm(dir, "--version");
+  EXPECT_EQ(r.status, 0);
+  ASSERT_EQ(r.out.rfind("apuasm (mc1) ", 0), 0u) << r.out;
+  const std::string version = r.out.substr(13);  // CMake's project(VERSION), e.g. "0.1.0\n"
+  EXPECT_GE(version.size(), 6u) << r.out;
+  EXPECT_EQ(version.find_first_not_of("0123456789.\n"), std::string::npos) << r.out;
 }
 
 // ---------------------------------------------------------------------------
@@ -623,7 +877,7 @@ TEST(ApuAsmOutput, ListingFormat) {
 
 TEST(ApuAsmOutput, ImageBytes) {
   const std::vector<Encoded> words = {{0x0123456789ABCDEFull, 0xFEDCBA9876543210ull}, {1, 2}};
-  const std::string b = image_bytes(words);
+  const std::string b = apu::image_bytes(words);
   ASSERT_EQ(b.size(), 8u + 32u);
   EXPECT_EQ(b.substr(0, 4), "APU1");
   EXPECT_EQ(static_cast<unsigned char>(b[4]), 2);
@@ -631,14 +885,14 @@ TEST(ApuAsmOutput, ImageBytes) {
   EXPECT_EQ(static_cast<unsigned char>(b[16]), 0x10);  // hi
   EXPECT_EQ(static_cast<unsigned char>(b[24]), 1);
   EXPECT_EQ(static_cast<unsigned char>(b[32]), 2);
-  EXPECT_EQ(parse_image(b), words);
-  EXPECT_THROW(parse_image("APU0" + b.substr(4)), std::runtime_error);
-  EXPECT_THROW(parse_image(b.substr(0, b.size() - 1)), std::runtime_error);
+  EXPECT_EQ(apu::parse_image(b), words);
+  EXPECT_THROW(apu::parse_image("APU0" + b.substr(4)), std::runtime_error);
+  EXPECT_THROW(apu::parse_image(b.substr(0, b.size() - 1)), std::runtime_error);
 
   TempDir dir;
   const std::string path = dir.path() + "/x.bin";
-  write_image(path, words);
-  EXPECT_EQ(load_image(path), words);
+  apu::write_image(path, words);
+  EXPECT_EQ(apu::load_image(path), words);
   std::remove(path.c_str());
 }
 

@@ -103,7 +103,7 @@ elseif(PROGRAM STREQUAL "mc1-ref")
   expect(size_too_big RC 2 ERR "--size 10x99999: '99999' is out of range \\[1, 8192\\]"
          ARGS ${SRC}/scenes/tiny.json --size 10x99999 --out r.png)
   expect(size_not_pair RC 2 ERR "--size: expected WxH" ARGS ${SRC}/scenes/tiny.json --size 10 --out r.png)
-  expect(write_failed RC 1 ERR "/dev/full: write failed: No space left on device"
+  expect(write_failed RC 1 ERR "/dev/full: cannot write: No space left on device"
          ARGS ${SRC}/scenes/tiny.json --size 8x8 --out /dev/full)
   expect(renders RC 0 ERR "8x8, 3 primitives" ARGS ${SRC}/scenes/tiny.json --size 8x8 --out tiny8.png)
 elseif(PROGRAM STREQUAL "mc1-psnr")
@@ -117,7 +117,7 @@ elseif(PROGRAM STREQUAL "mc1-psnr")
   expect(scale_too_big RC 2 ERR "--scale: '99999999999' is out of range \\[1, 255\\]"
          ARGS tiny8.png tiny8.png --scale 99999999999)
   expect(min_nan RC 2 ERR "--min: 'nan' is out of range" ARGS tiny8.png tiny8.png --min nan)
-  expect(diff_failed RC 1 ERR "/dev/full: write failed" ARGS tiny8.png tiny8.png --diff /dev/full)
+  expect(diff_failed RC 1 ERR "/dev/full: cannot write" ARGS tiny8.png tiny8.png --diff /dev/full)
 else()
   message(FATAL_ERROR "cli_test.cmake: no cases for ${PROGRAM}")
 endif()

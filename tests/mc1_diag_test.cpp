@@ -8,7 +8,10 @@
 #include <set>
 
 #include "diag.hpp"
+#include "mc1_diag.hpp"
+#include "mc1_engines.hpp"
 #include "mc1_system.hpp"
+#include "report_writers.hpp"
 #include "sc_test_harness.hpp"
 
 using namespace mc1;
@@ -127,6 +130,7 @@ TEST(DiagFrame, SameFrameWhateverTheNodeCount) {
 TEST(DiagFrame, RtlEngine) {
   SystemConfig c = config(3, 32, 8);
   c.engine = EngineKind::Rtl;
+  c.engines = make_engine;
   const FrameReport rtl = run(c);
   EXPECT_EQ(rtl.rgb, diag::expected_image(32, 32));
   c.engine = EngineKind::Iss;

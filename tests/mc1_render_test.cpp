@@ -14,11 +14,13 @@
 
 #include "apuasm.hpp"
 #include "image.hpp"
+#include "mc1_engines.hpp"
 #include "mc1_render.hpp"
 #include "png_writer.hpp"
 #include "refrender.hpp"
 #include "render_kernels.hpp"
 #include "render_nc.hpp"
+#include "report_writers.hpp"
 #include "sc_test_harness.hpp"
 #include "scene.hpp"
 #include "scene_image.hpp"
@@ -495,6 +497,7 @@ TEST_F(Mc1Render, RtlEngineGivesTheSameFrameAndTimes) {
   const FrameReport iss = render_frame(config(4)).report;
   SystemConfig c = config(4);
   c.engine = EngineKind::Rtl;
+  c.engines = make_engine;
   const FrameReport rtl = render_frame(c).report;
   EXPECT_EQ(rtl.rgb, iss.rgb);
   EXPECT_EQ(rtl.frame_time, iss.frame_time);

@@ -12,6 +12,8 @@
 #include "frame_memory.hpp"
 #include "hdlc_channel.hpp"
 #include "image_bus.hpp"
+#include "mc1_diag.hpp"
+#include "mc1_engines.hpp"
 #include "mc1_system.hpp"
 #include "node_computer.hpp"
 #include "rc_protocol.hpp"
@@ -189,6 +191,7 @@ DiagBlock diag_block(EngineKind e) {
   SystemConfig cfg;
   cfg.nodes = 1;
   cfg.engine = e;
+  cfg.engines = make_engine;
   cfg.width = 8;
   cfg.height = 4;
   cfg.block_w = 8;

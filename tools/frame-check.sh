@@ -15,7 +15,7 @@ for scene in "$here"/scenes/*.json; do
   for n in 1 16; do
     "$mc1" render "$scene" --size 96x64 --nodes "$n" --quiet \
       --out "$out/$name-$n.png" --stats "$out/$name-$n.json" --gantt "$out/$name-$n.svg"
-    grep -v -i 'host' "$out/$name-$n.json" > "$out/$name-$n.sim.json" && rm "$out/$name-$n.json"
+    grep -v -i -e host -e "\"scene\"" "$out/$name-$n.json" > "$out/$name-$n.sim.json" && rm "$out/$name-$n.json"
   done
 done
 "$mc1" diag --nodes 16 --stats "$out/diag-16.json" >/dev/null

@@ -6,7 +6,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "apuasm.hpp"
+#include "apu_image.hpp"
 #include "render_kernels.hpp"
 #include "render_layout.hpp"
 
@@ -40,7 +40,7 @@ const std::vector<apu::Encoded>& kernel_words(const std::string& name) {
   for (const auto& k : kernel_images()) {
     if (name == k.name) {
       std::string bytes(reinterpret_cast<const char*>(k.bytes), k.size);
-      return cache.emplace(name, apuasm::parse_image(bytes, name)).first->second;
+      return cache.emplace(name, apu::parse_image(bytes, name)).first->second;
     }
   }
   throw std::out_of_range("no renderer kernel named " + name);

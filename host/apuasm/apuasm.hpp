@@ -1,6 +1,7 @@
 // The APU assembler as a library (docs/apu-asm.md): source text to microwords,
-// binary images in and out, listings. The `apuasm` program, the co-simulator
-// and the MPU firmware loader all go through this interface.
+// listings, $readmemh text, disassembly. The `apuasm` program and the
+// co-simulator go through this interface; the binary image format is the
+// APU's own (hw/apu/apu_image.hpp).
 #pragma once
 
 #include <cstdint>
@@ -59,13 +60,6 @@ Program assemble_file(const std::string& path);
 // The listing: "AAAA  hhhhhhhhhhhhhhhh_llllllllllllllll  source" per emitting
 // line, blank address and encoding columns for the others.
 std::string listing_text(const Program& p);
-
-// Binary image: "APU1", word count (u32 LE), then per word lo (u64 LE) and hi
-// (u64 LE). Readers throw std::runtime_error naming the file on a bad image.
-std::string image_bytes(const std::vector<apu::Encoded>& words);
-std::vector<apu::Encoded> parse_image(const std::string& bytes, const std::string& name = "<image>");
-void write_image(const std::string& path, const std::vector<apu::Encoded>& words);
-std::vector<apu::Encoded> load_image(const std::string& path);
 
 // Verilog $readmemh text: one word per line, 32 hex digits, bit 127 first.
 std::string readmemh_text(const std::vector<apu::Encoded>& words);

@@ -1,92 +1,109 @@
 // apuasm: the APU assembler and image disassembler (docs/apu-asm.md).
-#include <cstdio>
-#include <cstring>
-#include <fstream>
+// Exit status: 0 done; 2 usage or input error (bad option, unreadable or bad
+// source or image, assembly error); 1 an output could not be written, in
+// which case no output of the run is left behind.
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <string>
+#include <vector>
 
+#include "apu_image.hpp"
 #include "apuasm.hpp"
+#include "atomic_file.hpp"
 
 namespace {
 
-const char kUsage[] =
-    "usage: apuasm [-o image.bin] [-l listing.lst] [-x image.hex] source.apu\n"
-    "       apuasm -d image.bin\n"
-    "\n"
-    "Assembles APU microcode (docs/apu-asm.md) into a binary image.\n"
-    "  -o FILE   image to write (default: the source name with .bin)\n"
-    "  -l FILE   also write a listing: address, 128-bit encoding, source line\n"
-    "  -x FILE   also write the image as Verilog $readmemh text (32 hex digits a word)\n"
-    "  -d FILE   disassemble a binary image to standard output instead\n"
-    "  --help    show this text\n"
-    "Errors go to standard error as file:line:col: error: message; exit status 1.\n";
+constexpr int kExitWrite = 1;
+constexpr int kExitInput = 2;
 
-bool write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) std::cerr << "apuasm: " << path << ": cannot write\n";
-  return static_cast<bool>(out);
+struct Options {
+  std::string source, image, listing, hex, disasm;
+};
+
+// The image's default name: the source's, with .bin for its extension.
+std::string default_image(const std::string& source) {
+  const auto dot = source.find_last_of('.');
+  const auto slash = source.find_last_of('/');
+  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  return (has_ext ? source.substr(0, dot) : source) + ".bin";
 }
 
-int usage_error(const std::string& msg) {
-  std::cerr << "apuasm: " << msg << "\n" << kUsage;
-  return 1;
+int disassemble(const std::string& image) {
+  std::string text;
+  try {
+    text = mc1::apuasm::disassembly_text(mc1::apu::load_image(image));
+  } catch (const std::exception& e) {
+    std::cerr << "apuasm: " << e.what() << "\n";
+    return kExitInput;
+  }
+  if (!(std::cout << text << std::flush)) {
+    std::cerr << "apuasm: standard output: cannot write\n";
+    return kExitWrite;
+  }
+  return 0;
+}
+
+// Every output is staged before any is committed, so a failed one leaves none.
+int assemble(const Options& o) {
+  mc1::apuasm::Program program;
+  try {
+    program = mc1::apuasm::assemble_file(o.source);
+  } catch (const mc1::apuasm::AsmError& e) {
+    for (const auto& d : e.diagnostics()) std::cerr << d.str() << "\n";
+    return kExitInput;
+  }
+  try {
+    std::vector<mc1::StagedFile> staged;
+    staged.reserve(3);
+    staged.emplace_back(o.image.empty() ? default_image(o.source) : o.image, mc1::apu::image_bytes(program.words));
+    if (!o.listing.empty()) staged.emplace_back(o.listing, mc1::apuasm::listing_text(program));
+    if (!o.hex.empty()) staged.emplace_back(o.hex, mc1::apuasm::readmemh_text(program.words));
+    for (auto& f : staged) f.commit();
+  } catch (const std::exception& e) {
+    std::cerr << "apuasm: " << e.what() << "\n";
+    return kExitWrite;
+  }
+  return 0;
+}
+
+void describe(CLI::App& app, Options& o) {
+  app.footer(
+      "Errors go to standard error as file:line:col: error: message.\n"
+      "Exit status: 0 done, 2 usage or input error, 1 an output could not be written (none is left).");
+  app.set_version_flag("--version", std::string("apuasm (mc1) ") + MC1_VERSION);
+  auto* source = app.add_option("source", o.source, "APU assembly source (docs/apu-asm.md)")->type_name("SOURCE.apu");
+  auto* image = app.add_option("-o", o.image, "image to write (default: the source name with .bin)")->type_name("FILE");
+  auto* listing =
+      app.add_option("-l", o.listing, "also write a listing: address, 128-bit encoding, source line")->type_name("FILE");
+  auto* hex = app.add_option("-x", o.hex, "also write the image as Verilog $readmemh text (32 hex digits a word)")
+                  ->type_name("FILE");
+  app.add_option("-d", o.disasm, "disassemble a binary image to standard output instead")
+      ->type_name("FILE")
+      ->excludes(source)
+      ->excludes(image)
+      ->excludes(listing)
+      ->excludes(hex);
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "apuasm: " + std::string(e.what()) + "\nRun with --help for more information.\n";
+  });
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string source, image, listing, hex, disasm;
-  for (int k = 1; k < argc; ++k) {
-    const std::string a = argv[k];
-    auto value = [&](std::string& dst) {
-      if (k + 1 >= argc) return false;
-      dst = argv[++k];
-      return true;
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      return 0;
-    } else if (a == "-o") {
-      if (!value(image)) return usage_error("-o needs a file name");
-    } else if (a == "-l") {
-      if (!value(listing)) return usage_error("-l needs a file name");
-    } else if (a == "-x") {
-      if (!value(hex)) return usage_error("-x needs a file name");
-    } else if (a == "-d") {
-      if (!value(disasm)) return usage_error("-d needs a file name");
-    } else if (!a.empty() && a[0] == '-') {
-      return usage_error("unknown option '" + a + "'");
-    } else if (source.empty()) {
-      source = a;
-    } else {
-      return usage_error("more than one source file");
-    }
-  }
-
+  CLI::App app("apuasm: assembles APU microcode into a binary image, or disassembles one.", "apuasm");
+  Options o;
+  describe(app, o);
   try {
-    if (!disasm.empty()) {
-      if (!source.empty()) return usage_error("-d takes no source file");
-      std::cout << mc1::apuasm::disassembly_text(mc1::apuasm::load_image(disasm));
-      return 0;
-    }
-    if (source.empty()) return usage_error("no source file");
-    if (image.empty()) {
-      const auto dot = source.find_last_of('.');
-      const auto slash = source.find_last_of('/');
-      const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
-      image = (has_ext ? source.substr(0, dot) : source) + ".bin";
-    }
-    const auto program = mc1::apuasm::assemble_file(source);
-    mc1::apuasm::write_image(image, program.words);
-    if (!listing.empty() && !write_text(listing, mc1::apuasm::listing_text(program))) return 1;
-    if (!hex.empty() && !write_text(hex, mc1::apuasm::readmemh_text(program.words))) return 1;
-    return 0;
-  } catch (const mc1::apuasm::AsmError& e) {
-    for (const auto& d : e.diagnostics()) std::cerr << d.str() << "\n";
-    return 1;
+    app.parse(argc, argv);
+    if (o.disasm.empty() && o.source.empty()) throw CLI::RequiredError("a source file (or -d IMAGE)");
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : kExitInput;
+  }
+  try {
+    return o.disasm.empty() ? assemble(o) : disassemble(o.disasm);
   } catch (const std::exception& e) {
     std::cerr << "apuasm: " << e.what() << "\n";
-    return 1;
+    return kExitInput;
   }
 }

@@ -1,12 +1,10 @@
 // PNG through libpng. libpng reports an error by longjmp to the caller's
 // setjmp; the functions that call setjmp (write_png_rows, read_png_header,
-// read_png_rows) hold only C data and call only libpng, so no C++ destructor
-// is ever jumped over. The C++ around them owns the memory.
+// set_rgb8_transforms, read_png_rows) hold only C data and call only libpng,
+// so no C++ destructor is ever jumped over. The C++ around them owns the memory.
 #include "png.hpp"
 
-#include <fcntl.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <png.h>
 #include <zlib.h>
@@ -17,6 +15,9 @@
 #include <cstring>
 #include <memory>
 #include <stdexcept>
+#include <string_view>
+
+#include "atomic_file.hpp"
 
 namespace mc1::imgcmp {
 namespace {
@@ -149,22 +150,6 @@ Image decode(PngIo& io, const std::string& name) {
   throw ImageError(path + ": " + what + ": " + std::strerror(err));
 }
 
-// Writes all bytes to `fd` and closes it; false (errno set) on any failure.
-bool write_all_and_close(int fd, const std::vector<std::uint8_t>& bytes) {
-  std::size_t done = 0;
-  bool ok = true;
-  while (ok && done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    ok = n > 0;
-    if (ok) done += static_cast<std::size_t>(n);
-  }
-  const int write_errno = errno;
-  const bool closed = ::close(fd) == 0;
-  if (!ok) errno = write_errno;
-  return ok && closed;
-}
-
 }  // namespace
 
 std::vector<std::uint8_t> encode_png_rgb8(std::uint32_t width, std::uint32_t height, const std::uint8_t* rgb) {
@@ -194,32 +179,8 @@ std::vector<std::uint8_t> encode_png(const Image& img) {
                          img.rgb.data());
 }
 
-// A private stand-in for the project's atomic file writer (host/common,
-// being written): temporary file, checked write and close, rename.
 void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  struct stat st {};
-  const bool exists = ::stat(path.c_str(), &st) == 0;
-  if (exists && S_ISDIR(st.st_mode)) throw ImageError(path + ": is a directory");
-  if (exists && !S_ISREG(st.st_mode)) {  // a device or pipe: nothing to rename over
-    const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
-    if (fd < 0) file_error(path, "cannot open for writing", errno);
-    if (!write_all_and_close(fd, bytes)) file_error(path, "write failed", errno);
-    return;
-  }
-  // Beside the target, so the rename stays in one file system.
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) file_error(path, "cannot open for writing", errno);
-  if (!write_all_and_close(fd, bytes)) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    file_error(path, "write failed", err);
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    file_error(path, "cannot replace", err);
-  }
+  write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 void write_png(const std::string& path, const Image& img) { write_file(path, encode_png(img)); }

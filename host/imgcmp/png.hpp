@@ -18,7 +18,7 @@ constexpr std::uint64_t kMaxPngPixels = std::uint64_t{1} << 26;
 
 // Written: 8-bit RGB, no interlace, filter type None on every row, one IDAT
 // deflated at zlib level 6 (window 2^15, memory level 8), no other chunks:
-// the bytes the zlib encoder hw/fm/png_writer wrote whenever the image data,
+// the bytes the zlib encoder before it (hw/fm/png_writer) wrote whenever the image data,
 // (3 W + 1) H bytes, is over 16384 (every mc1 frame of 96x64 and up). Up to
 // 16384 libpng writes the smallest zlib window that holds the data into the
 // 2-byte zlib header (Debian builds it with PNG_WRITE_OPTIMIZE_CMF, no
@@ -29,10 +29,10 @@ constexpr std::uint64_t kMaxPngPixels = std::uint64_t{1} << 26;
 std::vector<std::uint8_t> encode_png_rgb8(std::uint32_t width, std::uint32_t height, const std::uint8_t* rgb);
 std::vector<std::uint8_t> encode_png(const Image& img);
 
-// Replaces `path` only once every byte is written: a temporary file beside
-// it, flush and close checked, then rename (a device such as /dev/null or
-// /dev/full is written in place, with the same checks). Throws ImageError
-// naming the path; a failed write leaves nothing behind.
+// Replaces `path` only once every byte is written (host/common/atomic_file:
+// a temporary file beside it, every write and the close checked, rename; a
+// device such as /dev/null or /dev/full is written in place). Throws
+// std::runtime_error naming the path; a failed write leaves nothing behind.
 void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes);
 void write_png(const std::string& path, const Image& img);
 

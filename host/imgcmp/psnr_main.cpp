@@ -6,13 +6,13 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "cmdline.hpp"
 #include "image.hpp"
 
 namespace {
 
 using namespace mc1::imgcmp;
-namespace cli = mc1::cli;
+namespace cli = mc1::cmdline;
 
 struct Options {
   std::vector<std::string> files;

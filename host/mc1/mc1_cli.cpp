@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "mc1_engines.hpp"
+
 namespace mc1::cli {
 
 Args::Args(const std::vector<std::string>& args, const std::vector<std::string>& with_value,
@@ -155,6 +157,12 @@ EngineKind parse_engine(const std::string& s) {
   if (s == "iss") return EngineKind::Iss;
   if (s == "rtl") return EngineKind::Rtl;
   throw CliError("--engine: bad value '" + s + "' (expected iss or rtl)");
+}
+
+SystemConfig machine_config() {
+  SystemConfig cfg;
+  cfg.engines = make_engine;
+  return cfg;
 }
 
 bool wants_help(const std::vector<std::string>& args) {

@@ -48,8 +48,11 @@ NodeKill parse_kill(const std::string& text);
 CutLine parse_cut_line(const std::string& text);
 // The --kill-node and --cut-line options of a frame command, checked against cfg.nodes.
 void fault_options(const std::vector<std::string>& kills, const std::vector<std::string>& cuts, SystemConfig& cfg);
-// "iss" or "rtl" (an error if this build has no RTL engine).
+// "iss" or "rtl".
 EngineKind parse_engine(const std::string& text);
+// A machine of the default configuration whose NCs can run either engine
+// (SystemConfig::engines = make_engine).
+SystemConfig machine_config();
 
 // Helpers of the commands.
 bool wants_help(const std::vector<std::string>& args);

@@ -13,12 +13,14 @@
 #include <systemc>
 #include <vector>
 
-#include "apuasm.hpp"
+#include "apu_image.hpp"
 #include "diag.hpp"
 #include "mc1_cli.hpp"
+#include "mc1_diag.hpp"
+#include "mc1_render_cmd.hpp"
 #include "mc1_system.hpp"
 #include "png_writer.hpp"
-#include "mc1_render_cmd.hpp"
+#include "report_writers.hpp"
 
 namespace {
 
@@ -142,7 +144,7 @@ int cmd_diag(const std::vector<std::string>& argv) {
     std::cout << kDiagUsage;
     return 0;
   }
-  SystemConfig cfg;
+  SystemConfig cfg = cli::machine_config();
   const cli::Args a(take_params(cfg.timing, argv),
                     {"nodes", "engine", "size", "block", "ber", "seed", "dead-link", "kill-node", "cut-line", "kernel",
                      "out", "stats", "gantt", "vcd"},
@@ -159,7 +161,7 @@ int cmd_diag(const std::vector<std::string>& argv) {
   cli::fault_options(a.all("kill-node"), a.all("cut-line"), cfg);
   const bool quiet = a.has("quiet");
   const std::vector<apu::Encoded> program =
-      a.has("kernel") ? apuasm::load_image(a.get("kernel")) : diag::kernel();
+      a.has("kernel") ? apu::load_image(a.get("kernel")) : diag::kernel();
 
   const FrameReport r = run_frame(cfg, program, diag::nc_main, a.get("vcd"));
   const Check c = compare(r);
@@ -198,7 +200,7 @@ int cmd_bench(const std::vector<std::string>& argv) {
     std::cout << kBenchUsage;
     return 0;
   }
-  SystemConfig base;
+  SystemConfig base = cli::machine_config();
   const cli::Args a(take_params(base.timing, argv), {"nodes", "engine", "size", "block", "json"}, {});
   frame_options(a, base);
   const std::vector<unsigned> nodes = cli::parse_list("--nodes", a.get("nodes", "16,256"), 1, 4096);

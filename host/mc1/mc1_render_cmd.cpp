@@ -16,6 +16,7 @@
 #include "mc1_render.hpp"
 #include "png_writer.hpp"
 #include "refrender.hpp"
+#include "report_writers.hpp"
 #include "scene.hpp"
 
 namespace mc1::cli {
@@ -179,7 +180,7 @@ int cmd_render(const std::vector<std::string>& argv_in) {
     job.scene = argv[0];
     argv.erase(argv.begin());
   }
-  SystemConfig cfg;
+  SystemConfig cfg = machine_config();
   cfg.nodes = 16;
   const Args a(take_params(cfg.timing, argv),
                {"nodes", "size", "block", "engine", "schedule", "kill-node", "cut-line", "ber", "seed", "dead-link", "out",
@@ -255,7 +256,7 @@ int cmd_bench_render(const std::vector<std::string>& argv) {
     std::cout << kBenchRenderUsage;
     return 0;
   }
-  SystemConfig base;
+  SystemConfig base = machine_config();
   const Args a(take_params(base.timing, argv),
                {"scene", "size", "nodes", "static-nodes", "block", "big", "big-nodes", "json"}, {"rtl"});
   const std::string scene = a.get("scene", MC1_SOURCE_DIR "/scenes/whitted.json");

@@ -4,12 +4,12 @@
 #include <cstdio>
 #include <string>
 
-#include "cli.hpp"
+#include "cmdline.hpp"
 #include "refrender.hpp"
 
 namespace {
 
-namespace cli = mc1::cli;
+namespace cli = mc1::cmdline;
 
 constexpr int kMaxSide = 8192;
 

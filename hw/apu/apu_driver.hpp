@@ -86,7 +86,6 @@ class ApuDriver {
   }
   int psel() const { return psel_; }
   std::uint16_t pc() const { return pc_; }
-  const CycleRecord& last_record() const { return rec_; }
 
  private:
   std::uint64_t clock(std::uint64_t cycles);  // stops when not running

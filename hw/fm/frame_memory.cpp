@@ -3,7 +3,6 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "png_writer.hpp"
 #include "sc_time_conv.hpp"
 
 namespace mc1 {
@@ -59,11 +58,5 @@ void FrameMemory::b_transport(tlm::tlm_generic_payload& p, sc_core::sc_time& del
   }
   p.set_response_status(tlm::TLM_OK_RESPONSE);
 }
-
-std::vector<std::uint8_t> FrameMemory::png() const {
-  return encode_png_rgb8(width_, height_, mem_.data());
-}
-
-void FrameMemory::write_png(const std::string& path) const { write_file(path, png()); }
 
 }  // namespace mc1

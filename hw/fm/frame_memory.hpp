@@ -6,7 +6,6 @@
 // supported. The DMI is not offered: every access is timed.
 #pragma once
 
-#include <string>
 #include <systemc>
 #include <tlm>
 #include <tlm_utils/simple_target_socket.h>
@@ -28,8 +27,6 @@ class FrameMemory : public sc_core::sc_module {
   Rgb8 pixel(unsigned x, unsigned y) const;
   void set_pixel(unsigned x, unsigned y, Rgb8 c);
   const std::vector<std::uint8_t>& rgb() const { return mem_; }  // rows top first
-  std::vector<std::uint8_t> png() const;
-  void write_png(const std::string& path) const;
   std::uint64_t pixels_written() const { return pixels_written_; }
 
  private:

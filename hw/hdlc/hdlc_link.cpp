@@ -742,9 +742,6 @@ const ReceiverStats& Network::receiver_at_nc(unsigned nc) const {
 const ReceiverStats& Network::broadcast_receiver_at_nc(unsigned nc) const {
   return bcast_at_nc_.at(nc - 1)->stats;
 }
-const ReceiverStats& Network::receiver_at_rc(unsigned nc) const {
-  return at_rc_.at(nc - 1)->stats;
-}
 const SupervisionStats& Network::supervision(unsigned nc) const { return stations_.at(nc - 1).stats; }
 
 }  // namespace mc1::hdlc

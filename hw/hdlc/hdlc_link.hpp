@@ -65,7 +65,6 @@ class FaultyWire {
   explicit FaultyWire(LinkFaults f);
   // Bit i of `sent` is on the wire from start + i * 1e12 / bit_rate_bps.
   Bits receive(const Bits& sent, Picos start, std::uint64_t bit_rate_bps);
-  std::uint64_t bits_seen() const { return seen_; }
   std::uint64_t bits_flipped() const { return flipped_; }
   std::uint64_t bits_dead() const { return dead_; }
 
@@ -190,7 +189,6 @@ class Network {
   const SenderStats& sender_to_rc(unsigned nc) const;
   const ReceiverStats& receiver_at_nc(unsigned nc) const;  // RC -> NC link
   const ReceiverStats& broadcast_receiver_at_nc(unsigned nc) const;
-  const ReceiverStats& receiver_at_rc(unsigned nc) const;  // NC -> RC link
   const SupervisionStats& supervision(unsigned nc) const;
   // Every frame put on any line, for tracing: (start time, line, frame); line 0 = down.
   void set_trace(std::function<void(Picos, unsigned, const Frame&)> fn) { trace_ = std::move(fn); }

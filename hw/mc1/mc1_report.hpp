@@ -1,6 +1,7 @@
 // What one frame on the machine produced: the image, statistics of every unit
-// and the activity timeline; written as the statistics JSON and the Gantt
-// SVG (docs/platform.md gives both formats).
+// and the activity timeline, as the machine fills it in (Mc1System::report).
+// The application writes it as the statistics JSON and the Gantt SVG
+// (host/mc1/report_writers.hpp; docs/platform.md gives both formats).
 #pragma once
 
 #include <cstdint>
@@ -101,14 +102,6 @@ struct FrameReport {
   std::uint64_t rays = 0, shadow_rays = 0, secondary_rays = 0;
   std::uint64_t fm_pixels_written = 0;
   std::vector<std::uint8_t> rgb;  // the frame memory, rows top first
-  std::vector<std::uint8_t> png;
 };
-
-std::string stats_json(const FrameReport& r);
-// The latest time any live NC reached milestone `name` (0: none did).
-Picos milestone_time(const FrameReport& r, const std::string& name);
-// Mean over NCs of apu_busy / T.
-double apu_utilization_mean(const FrameReport& r);
-std::string gantt_svg(const FrameReport& r);
 
 }  // namespace mc1

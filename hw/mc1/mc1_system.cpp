@@ -6,19 +6,18 @@
 #include <tlm_utils/tlm_quantumkeeper.h>
 
 #include "apu_iss.hpp"
-#include "diag.hpp"
-#include "png_writer.hpp"
 #include "rc_protocol.hpp"
 #include "sc_time_conv.hpp"
-#include "apu_rtl_engine.hpp"
 
 namespace mc1 {
 
 const char* engine_name(EngineKind e) { return e == EngineKind::Rtl ? "rtl" : "iss"; }
 
-std::unique_ptr<apu::ApuEngine> make_engine(EngineKind e, const std::string& fst_path) {
+std::unique_ptr<apu::ApuEngine> iss_engine(EngineKind e, const std::string& fst_path) {
   if (e == EngineKind::Iss && fst_path.empty()) return std::make_unique<apu::Iss>();
-  return std::make_unique<apu::RtlEngine>(fst_path.empty() ? nullptr : fst_path.c_str());
+  throw std::invalid_argument(std::string(e == EngineKind::Rtl ? "the RTL engine" : "an APU waveform") +
+                              " needs SystemConfig::engines to know the RTL engine (make_engine, "
+                              "host/mc1/mc1_engines.hpp)");
 }
 
 namespace {
@@ -65,7 +64,7 @@ Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::
   for (unsigned k = 1; k <= cfg.nodes; ++k) {
     const std::string fst = k == cfg.trace_node ? cfg.trace_path : std::string();
     ncs_.push_back(std::make_unique<nc::NodeComputer>(("nc" + std::to_string(k)).c_str(), t, k,
-                                                      make_engine(cfg.engine, fst), firmware));
+                                                      cfg.engines(cfg.engine, fst), firmware));
     nc::NodeComputer& n = *ncs_.back();
     n.nc2rc_hdlc.bind(hdlc_->nc2rc_hdlc);
     hdlc_->hdlc2nc.bind(n.hdlc2nc);
@@ -279,10 +278,6 @@ FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_pa
 }
 
 }  // namespace
-
-FrameReport run_diag(const SystemConfig& cfg, const std::string& vcd_path) {
-  return run_frame(cfg, diag::kernel(), diag::nc_main, vcd_path);
-}
 
 void fresh_systemc_kernel() {
   sc_core::sc_curr_simcontext = new sc_core::sc_simcontext();

@@ -26,8 +26,14 @@ namespace mc1 {
 
 enum class EngineKind { Iss, Rtl };
 const char* engine_name(EngineKind e);
-// `fst_path` (RTL only): every cycle of this engine into an FST waveform.
-std::unique_ptr<apu::ApuEngine> make_engine(EngineKind e, const std::string& fst_path = "");
+// Makes the APU engine of one NC. `fst_path` not empty: an engine that writes
+// every cycle into this FST waveform (only the RTL engine can). The machine
+// knows the ISS only; a factory that also knows the verilated RTL engine is
+// the application's (make_engine, host/mc1/mc1_engines.hpp).
+using EngineFactory = std::function<std::unique_ptr<apu::ApuEngine>(EngineKind e, const std::string& fst_path)>;
+// The default of SystemConfig::engines: the ISS; throws std::invalid_argument
+// for the RTL engine or a waveform.
+std::unique_ptr<apu::ApuEngine> iss_engine(EngineKind e, const std::string& fst_path);
 
 struct DeadLink {
   unsigned nc = 0;  // both directions of this NC's link are dead in [begin, end)
@@ -47,6 +53,7 @@ struct CutLine {
 struct SystemConfig {
   unsigned nodes = 4;
   EngineKind engine = EngineKind::Iss;
+  EngineFactory engines = iss_engine;  // asked for `engine` (or the traced RTL engine) once per NC
   unsigned width = 256, height = 256;
   unsigned block_w = 16, block_h = 16;
   double ber = 0.0;        // every receiving end of every line, both directions
@@ -100,9 +107,6 @@ FrameReport run_frame(const SystemConfig& cfg, const std::vector<apu::Encoded>& 
 FrameReport run_plan(const SystemConfig& cfg, rc::FramePlan plan, const nc::Firmware& firmware,
                      const std::string& vcd_path = "",
                      std::function<void(const rc::Progress&)> progress = {});
-
-// The machine's self-test frame: diag.apu on every NC (firmware/diag).
-FrameReport run_diag(const SystemConfig& cfg, const std::string& vcd_path = "");
 
 // SystemC elaborates once per kernel: a fresh one for the next run_frame().
 void fresh_systemc_kernel();

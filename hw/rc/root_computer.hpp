@@ -53,9 +53,6 @@
 
 namespace mc1 {
 
-// TLM address of a message to every NC (NC ids are 1..N).
-constexpr sc_dt::uint64 kHdlcBroadcast = 0xFFFFFFFFu;
-
 namespace rc {
 
 // Step 3's assignment of blocks to NCs.

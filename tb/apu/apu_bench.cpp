@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "apu_driver.hpp"
+#include "apu_image.hpp"
 #include "apu_lockstep.hpp"
 #include "apu_profile.hpp"
 #include "apu_random.hpp"
 #include "apu_tools.hpp"
-#include "apuasm.hpp"
 #include "fp24.hpp"
 
 // firmware/kernels/xform4.apu, assembled at build time (tb/apu/CMakeLists.txt).
@@ -29,7 +29,7 @@ namespace {
 
 using namespace mc1::apu;
 namespace fp = mc1::fp24;
-namespace cli = mc1::cli;
+namespace cli = mc1::cmdline;
 
 constexpr const char* kDescription =
     "apu-bench: the xform4 vertex-transform stream (blocks of 1000 vertices; the built-in\n"
@@ -173,7 +173,7 @@ int run(Options o) {
   try {
     const std::vector<Encoded> kernel =
         o.kernel_path.empty()
-            ? mc1::apuasm::parse_image(std::string(reinterpret_cast<const char*>(mc1_xform4_kernel_image),
+            ? mc1::apu::parse_image(std::string(reinterpret_cast<const char*>(mc1_xform4_kernel_image),
                                               mc1_xform4_kernel_image_size),
                                   "xform4.bin (embedded)")
             : tools::load_program_file(o.kernel_path);

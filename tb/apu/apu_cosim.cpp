@@ -16,7 +16,7 @@
 namespace {
 
 using namespace mc1::apu;
-namespace cli = mc1::cli;
+namespace cli = mc1::cmdline;
 
 constexpr const char* kDescription =
     "apu-cosim: two APU engines in lockstep, stopping at the first cycle they disagree on.\n"

@@ -15,7 +15,7 @@
 namespace {
 
 using namespace mc1::apu;
-namespace cli = mc1::cli;
+namespace cli = mc1::cmdline;
 
 constexpr const char* kDescription =
     "apu-run: runs one APU program on the ISS or the RTL core through the MPU driver.\n"

@@ -12,8 +12,9 @@
 #include "apu_engine.hpp"
 #include "apu_iss.hpp"
 #include "apu_rtl_engine.hpp"
+#include "apu_image.hpp"
 #include "apuasm.hpp"
-#include "cli.hpp"
+#include "cmdline.hpp"
 #include "microword.hpp"
 
 namespace mc1::apu::tools {
@@ -25,7 +26,7 @@ inline const std::vector<std::string>& engine_names() {
 
 inline CLI::Option* add_program_option(CLI::App& app, std::string& path) {
   return app.add_option("PROGRAM", path, "the program: .apu source, or an APU1 image (apuasm -o)")
-      ->check(cli::input_file());
+      ->check(cmdline::input_file());
 }
 
 inline CLI::Option* add_data_option(CLI::App& app, std::vector<std::string>& files) {
@@ -33,12 +34,12 @@ inline CLI::Option* add_data_option(CLI::App& app, std::vector<std::string>& fil
       .add_option("--data", files,
                   "data file (hex words, @ADDR); several form a stream, the next handed over\n"
                   "when the APU has taken the last (SWAPD)")
-      ->check(cli::input_file())
+      ->check(cmdline::input_file())
       ->allow_extra_args(false);
 }
 
 inline CLI::Option* add_max_cycles_option(CLI::App& app, std::uint64_t& cycles, const std::string& what) {
-  return app.add_option("--max-cycles", cycles, what)->transform(cli::unsigned_in(1, UINT64_MAX));
+  return app.add_option("--max-cycles", cycles, what)->transform(cmdline::unsigned_in(1, UINT64_MAX));
 }
 
 // "iss" or "rtl"; `trace` (an FST path) only means something to the RTL.
@@ -55,7 +56,7 @@ inline bool ends_with(const std::string& s, const char* suffix) {
 
 inline std::vector<Encoded> load_program_file(const std::string& path) {
   if (ends_with(path, ".apu")) return apuasm::assemble_file(path).words;
-  return apuasm::load_image(path);
+  return apu::load_image(path);
 }
 
 }  // namespace mc1::apu::tools

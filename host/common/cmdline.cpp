@@ -1,4 +1,4 @@
-#include "cli.hpp"
+#include "cmdline.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include <cstring>
 #include <iostream>
 
-namespace mc1::cli {
+namespace mc1::cmdline {
 namespace {
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
@@ -146,4 +146,4 @@ void require_stdin_not_directory() {
     throw UsageError("standard input is a directory, not a file");
 }
 
-}  // namespace mc1::cli
+}  // namespace mc1::cmdline

@@ -1,6 +1,7 @@
-// What the RC's processor and its HDLC controller tell each other besides
-// messages (docs/hdlc.md "Supervision"), as a generic-payload extension
-// with no data:
+// The TLM side of the HDLC lines besides message bytes: the address of a
+// broadcast, and what the RC's processor and its HDLC controller tell each
+// other (docs/hdlc.md "Supervision"), as a generic-payload extension with
+// no data:
 //   on hdlc2rc      LinkDown: NC <address>'s link is down (retry limit N2 or
 //                   a poll unanswered); the controller has dropped what was
 //                   queued on it;
@@ -14,6 +15,9 @@
 #include "timing_params.hpp"
 
 namespace mc1 {
+
+// TLM address of a message to every NC (NC ids are 1..N).
+constexpr sc_dt::uint64 kHdlcBroadcast = 0xFFFFFFFFu;
 
 struct HdlcLinkEvent : tlm::tlm_extension<HdlcLinkEvent> {
   enum class Kind : std::uint8_t { LinkDown, SuperviseOn, SuperviseOff };

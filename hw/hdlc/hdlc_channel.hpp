@@ -7,8 +7,8 @@
 // Each port is one bit-level go-back-N hdlc::Network; a broadcast goes out on
 // every port at once.
 //
-// Unlike hdlc::HdlcLine (whose b_transport runs a message to completion and
-// so serialises independent lines), sends are posted: b_transport queues the
+// Sends are posted (a b_transport that ran a message to completion would
+// serialise independent lines): b_transport queues the
 // message at the caller's local time (sc_time_stamp() + delay, temporal
 // decoupling allowed) and returns at once, as a processor hands a buffer to
 // its HDLC controller. A pump process advances the networks with SystemC time
@@ -43,7 +43,7 @@
 #include <vector>
 
 #include "hdlc_link.hpp"
-#include "root_computer.hpp"
+#include "hdlc_link_event.hpp"
 #include "timing_params.hpp"
 
 namespace mc1 {

@@ -1,4 +1,4 @@
-#include "mc1_report.hpp"
+#include "report_writers.hpp"
 
 #include <algorithm>
 #include <cmath>

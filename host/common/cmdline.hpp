@@ -12,7 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
-namespace mc1::cli {
+namespace mc1::cmdline {
 
 constexpr int kExitOk = 0;
 constexpr int kExitFailed = 1;  // a check or a simulation failed
@@ -60,4 +60,4 @@ CLI::Validator input_file();
 // which a stream would otherwise read as empty.
 void require_stdin_not_directory();
 
-}  // namespace mc1::cli
+}  // namespace mc1::cmdline

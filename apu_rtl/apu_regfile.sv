@@ -1,0 +1,67 @@
+// APU register file, used twice by apu_core (docs/apu-rtl.md "Register
+// files"): the F registers (64 x 24, 7 read ports, 4 write-first completion
+// ports and 2 issue ports) and the A registers (16 x 16, 4 read ports, 2
+// issue ports, A0 hardwired to 0).
+//
+// Read ports are combinational. Write ports 0 .. N_WR_FIRST-1 are
+// write-first: a read of the register one of them writes in this cycle
+// already returns the new value (the F file's bypass that makes a unit's
+// result usable by the word issued in its completion cycle). The others are
+// written at the end of the cycle only (usable from the next word on). When
+// two ports write one register in one cycle, the higher-numbered port wins.
+// With ZERO_REG, register 0 reads 0 and drops writes. Synchronous reset
+// clears every register (the ISA's reset state).
+//
+// Ports are flat vectors, port i at [i*W +: W] (Yosys 0.23 takes neither
+// unpacked nor multi-dimensional packed ports).
+module apu_regfile #(
+    parameter int DATA_W     = 24,
+    parameter int ADDR_W     = 6,
+    parameter int N_RD       = 7,
+    parameter int N_WR       = 6,
+    parameter int N_WR_FIRST = 4,
+    parameter bit ZERO_REG   = 1'b0
+) (
+    input  logic                     clk,
+    input  logic                     rst_n,
+    input  logic [N_RD*ADDR_W-1:0]   rd_addr,
+    output logic [N_RD*DATA_W-1:0]   rd_data,
+    input  logic [N_WR-1:0]          wr_en,
+    input  logic [N_WR*ADDR_W-1:0]   wr_addr,
+    input  logic [N_WR*DATA_W-1:0]   wr_data
+);
+  localparam int N_REGS = 1 << ADDR_W;
+
+  logic [DATA_W-1:0] regs [0:N_REGS-1] /*verilator public_flat_rd*/;
+
+  // Port w writes this cycle (register 0 of a ZERO_REG file takes no write).
+  logic [N_WR-1:0] wr_take;
+
+  always_comb begin
+    for (int w = 0; w < N_WR; w++) begin
+      wr_take[w] = wr_en[w] && !(ZERO_REG && wr_addr[w*ADDR_W +: ADDR_W] == '0);
+    end
+  end
+
+  always_comb begin
+    for (int r = 0; r < N_RD; r++) begin
+      rd_data[r*DATA_W +: DATA_W] = regs[rd_addr[r*ADDR_W +: ADDR_W]];
+      for (int w = 0; w < N_WR_FIRST; w++) begin
+        if (wr_take[w] && wr_addr[w*ADDR_W +: ADDR_W] == rd_addr[r*ADDR_W +: ADDR_W]) begin
+          rd_data[r*DATA_W +: DATA_W] = wr_data[w*DATA_W +: DATA_W];
+        end
+      end
+    end
+  end
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) begin
+      for (int i = 0; i < N_REGS; i++) regs[i] <= '0;
+    end else begin
+      for (int w = 0; w < N_WR; w++) begin
+        if (wr_take[w]) regs[wr_addr[w*ADDR_W +: ADDR_W]] <= wr_data[w*DATA_W +: DATA_W];
+      end
+    end
+  end
+
+endmodule

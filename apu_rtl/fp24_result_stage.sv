@@ -1,0 +1,48 @@
+// FP24 result stage, shared by the multiplier and the adder unit: the last
+// pipeline register of a unit and the logic in front of it.
+//
+// In the cycle an op is here (in_valid), either its result is already known
+// (`special`: a NaN, an infinity, an exact zero, an op that needs no
+// rounding; the unit decides which, and with which flags) or stage 1 left a
+// normalised nonzero value, which fp24_round rounds and packs. The result and
+// its flags are registered at the edge that ends the cycle and drive out_*
+// from then on (docs/fp24-rtl.md "Timing"). rst_n is synchronous and clears
+// only the valid bit.
+module fp24_result_stage #(
+    parameter int EXP_W  = 7,
+    parameter int FRAC_W = 16,
+    parameter int SEXP_W = EXP_W + 2
+) (
+    input  logic                  clk,
+    input  logic                  rst_n,
+    input  logic                  in_valid,
+    // a result that needs no rounding wins
+    input  logic                  special,
+    input  logic [EXP_W+FRAC_W:0] special_result,
+    input  logic [4:0]            special_flags,
+    // else: (-1)^sign * 1.frac * 2^(exp - bias), exp unbounded (fp24_round)
+    input  logic                  sign,
+    input  logic [SEXP_W-1:0]     exp,
+    input  logic [FRAC_W-1:0]     frac,
+    input  logic                  guard,
+    input  logic                  sticky,
+    output logic                  out_valid,
+    output logic [EXP_W+FRAC_W:0] out_result,
+    output logic [4:0]            out_flags
+);
+  logic [EXP_W+FRAC_W:0] rnd_result;
+  logic [4:0]            rnd_flags;
+
+  fp24_round #(.EXP_W(EXP_W), .FRAC_W(FRAC_W), .SEXP_W(SEXP_W)) u_round (
+      .sign(sign), .exp(exp), .frac(frac), .guard(guard), .sticky(sticky),
+      .result(rnd_result), .flags(rnd_flags));
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) out_valid <= 1'b0;
+    else        out_valid <= in_valid;
+    if (in_valid) begin
+      out_result <= special ? special_result : rnd_result;
+      out_flags  <= special ? special_flags : rnd_flags;
+    end
+  end
+endmodule

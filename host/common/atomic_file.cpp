@@ -1,0 +1,112 @@
+// Staged output files (atomic_file.hpp). POSIX calls rather than streams: a
+// std::ofstream reports neither which call failed nor why, and its
+// destructor's close() (where a small file's write happens) not at all.
+#include "atomic_file.hpp"
+
+#include <atomic>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <stdexcept>
+#include <string>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <utility>
+
+namespace mc1 {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const char* what, int err) {
+  throw std::runtime_error(path + ": " + what + ": " + std::strerror(err));
+}
+
+// Writes all of `bytes` to `fd` and closes it; false (errno set) on failure.
+bool write_and_close(int fd, std::string_view bytes) {
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : EIO;
+      ::close(fd);
+      errno = err;
+      return false;
+    }
+    done += static_cast<size_t>(n);
+  }
+  return ::close(fd) == 0;
+}
+
+// The target with symbolic links resolved, so that the rename replaces the
+// file a link points to rather than the link; `path` itself when it does not
+// exist yet.
+std::string resolve(const std::string& path) {
+  char* real = ::realpath(path.c_str(), nullptr);
+  if (!real) return path;
+  std::string out = real;
+  std::free(real);
+  return out;
+}
+
+// Creates "DIR.NAME.tmp.PID.N" exclusively (N counts up past names in use),
+// with mode 0666 so that open(2) applies the umask as for any new file;
+// returns the descriptor and sets `temp`, or -1 with errno set.
+int create_temp(const std::string& dir, const std::string& name, std::string& temp) {
+  static std::atomic<unsigned> counter{0};
+  for (int tries = 0; tries < 1000; ++tries) {
+    temp = dir + "." + name + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0 || errno != EEXIST) return fd;
+  }
+  return -1;
+}
+
+}  // namespace
+
+StagedFile::StagedFile(const std::string& path, std::string_view bytes) : path_(path), target_(resolve(path)) {
+  struct stat st {};
+  const bool exists = ::stat(target_.c_str(), &st) == 0;
+  if (exists && S_ISDIR(st.st_mode)) throw std::runtime_error(path_ + ": is a directory");
+  if (exists && !S_ISREG(st.st_mode)) {
+    const int fd = ::open(target_.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0) fail(path_, "cannot open", errno);
+    if (!write_and_close(fd, bytes)) fail(path_, "cannot write", errno);
+    return;
+  }
+  const auto slash = target_.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "" : target_.substr(0, slash + 1);
+  const std::string name = slash == std::string::npos ? target_ : target_.substr(slash + 1);
+  std::string temp;
+  const int fd = create_temp(dir, name, temp);
+  if (fd < 0) fail(path_, "cannot create a temporary file beside it", errno);
+  // A replaced file keeps its mode.
+  if ((exists && ::fchmod(fd, st.st_mode & 07777) != 0) || !write_and_close(fd, bytes)) {
+    const int err = errno;
+    ::unlink(temp.c_str());
+    fail(path_, "cannot write", err);
+  }
+  temp_ = std::move(temp);
+}
+
+StagedFile::StagedFile(StagedFile&& other) noexcept
+    : path_(std::move(other.path_)), target_(std::move(other.target_)), temp_(std::exchange(other.temp_, {})) {}
+
+StagedFile::~StagedFile() {
+  if (!temp_.empty()) ::unlink(temp_.c_str());
+}
+
+void StagedFile::commit() {
+  if (temp_.empty()) return;
+  if (::rename(temp_.c_str(), target_.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(temp_.c_str());
+    temp_.clear();
+    fail(path_, "cannot rename the temporary file onto it", err);
+  }
+  temp_.clear();
+}
+
+void write_file_atomically(const std::string& path, std::string_view bytes) { StagedFile(path, bytes).commit(); }
+
+}  // namespace mc1

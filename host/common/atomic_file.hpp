@@ -1,0 +1,43 @@
+// Output files that appear whole or not at all. A program that writes with
+// these either leaves its complete output or, on any error (disk full, a
+// write or close that fails), leaves nothing and reports the file and reason.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace mc1 {
+
+// `bytes` written beside `path` under a temporary name (".NAME.tmp.PID.N"),
+// every write and the close checked; commit() renames it onto `path`. Until
+// then `path` is untouched, and a StagedFile destroyed without commit()
+// removes its temporary file, so several outputs can be staged first and
+// committed only when all of them were written.
+//
+// A target that exists and is not a regular file (/dev/null, /dev/full, a
+// FIFO) is written in place by the constructor, because renaming over it
+// would replace the device; its write errors are reported all the same.
+// Errors: std::runtime_error "PATH: what failed: reason". There is no fsync:
+// this guards against writes that fail, not against a machine that crashes.
+class StagedFile {
+ public:
+  StagedFile(const std::string& path, std::string_view bytes);
+  StagedFile(StagedFile&& other) noexcept;
+  StagedFile& operator=(StagedFile&&) = delete;
+  StagedFile(const StagedFile&) = delete;
+  StagedFile& operator=(const StagedFile&) = delete;
+  ~StagedFile();
+
+  void commit();
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;    // as the caller named it, for messages
+  std::string target_;  // path_ with symbolic links resolved
+  std::string temp_;    // the staged file; empty once committed or when written in place
+};
+
+// StagedFile(path, bytes).commit().
+void write_file_atomically(const std::string& path, std::string_view bytes);
+
+}  // namespace mc1

@@ -1,0 +1,172 @@
+// Output files that appear whole or not at all (host/common/atomic_file).
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <cstdio>
+#include <dirent.h>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "atomic_file.hpp"
+
+namespace mc1 {
+namespace {
+
+// A scratch directory, emptied and removed at the end.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    char tmpl[] = "/tmp/atomic_file_test_XXXXXX";
+    path_ = mkdtemp(tmpl);
+  }
+  ~ScratchDir() {
+    for (const auto& n : names()) std::remove((path_ + "/" + n).c_str());
+    rmdir(path_.c_str());
+  }
+  std::set<std::string> names() const {
+    std::set<std::string> out;
+    DIR* d = opendir(path_.c_str());
+    while (const dirent* e = d ? readdir(d) : nullptr)
+      if (std::string(e->d_name) != "." && std::string(e->d_name) != "..") out.insert(e->d_name);
+    if (d) closedir(d);
+    return out;
+  }
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+
+ private:
+  std::string path_;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+mode_t mode_of(const std::string& path) {
+  struct stat st {};
+  stat(path.c_str(), &st);
+  return st.st_mode;
+}
+
+// Files may grow to `bytes` only, while it lives: a write beyond fails with
+// EFBIG (SIGXFSZ ignored), a disk that fills up in the middle of a file.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &saved_);
+    old_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit lim = saved_;
+    lim.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &lim);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, old_handler_);
+  }
+
+ private:
+  rlimit saved_{};
+  void (*old_handler_)(int) = nullptr;
+};
+
+TEST(AtomicFile, GoodWriteRenamesIntoPlace) {
+  ScratchDir dir;
+  const std::string path = dir.file("out.bin");
+  const mode_t old_mask = umask(027);
+  write_file_atomically(path, "first");
+  umask(old_mask);
+  EXPECT_EQ(slurp(path), "first");
+  EXPECT_EQ(mode_of(path) & 07777, 0640u) << "a new file gets 0666 less the umask, as from open(2)";
+  chmod(path.c_str(), 0604);
+  EXPECT_EQ(dir.names(), std::set<std::string>{"out.bin"});
+  write_file_atomically(path, std::string("second\0bytes", 12));
+  EXPECT_EQ(slurp(path), std::string("second\0bytes", 12));
+  EXPECT_EQ(mode_of(path) & 07777, 0604u) << "an existing file keeps its mode";
+  EXPECT_EQ(dir.names(), std::set<std::string>{"out.bin"});
+}
+
+TEST(AtomicFile, StagedFilesAppearOnlyOnCommit) {
+  ScratchDir dir;
+  {
+    StagedFile a(dir.file("a"), "A");
+    EXPECT_EQ(dir.names().count("a"), 0u);
+    EXPECT_EQ(dir.names().size(), 1u);  // the temporary file
+  }
+  EXPECT_TRUE(dir.names().empty()) << "an uncommitted file is removed";
+  StagedFile a(dir.file("a"), "A");
+  StagedFile b(std::move(a));
+  b.commit();
+  EXPECT_EQ(slurp(dir.file("a")), "A");
+  EXPECT_EQ(dir.names(), std::set<std::string>{"a"});
+}
+
+TEST(AtomicFile, WriteToDevFullThrows) {
+  try {
+    write_file_atomically("/dev/full", "x");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "/dev/full: cannot write: No space left on device");
+  }
+  struct stat st {};
+  ASSERT_EQ(stat("/dev/full", &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode)) << "the device must be written, never replaced";
+  write_file_atomically("/dev/null", "x");  // devices that take the bytes are fine
+  EXPECT_TRUE(S_ISCHR(mode_of("/dev/null")));
+}
+
+TEST(AtomicFile, FailedWriteLeavesNoFile) {
+  ScratchDir dir;
+  const std::string big(4096, 'x');
+  {
+    FileSizeLimit limit(100);
+    EXPECT_THROW(write_file_atomically(dir.file("new.bin"), big), std::runtime_error);
+  }
+  EXPECT_TRUE(dir.names().empty()) << "neither the file nor its temporary file may remain";
+
+  write_file_atomically(dir.file("old.bin"), "old");
+  {
+    FileSizeLimit limit(100);
+    EXPECT_THROW(write_file_atomically(dir.file("old.bin"), big), std::runtime_error);
+  }
+  EXPECT_EQ(slurp(dir.file("old.bin")), "old") << "a failed write leaves the old file as it was";
+  EXPECT_EQ(dir.names(), std::set<std::string>{"old.bin"});
+}
+
+TEST(AtomicFile, ErrorsNameThePath) {
+  ScratchDir dir;
+  try {
+    write_file_atomically(dir.file("no/such/x.bin"), "x");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              dir.file("no/such/x.bin") + ": cannot create a temporary file beside it: No such file or directory");
+  }
+  mkdir(dir.file("d").c_str(), 0700);
+  try {
+    write_file_atomically(dir.file("d"), "x");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), dir.file("d") + ": is a directory");
+  }
+  rmdir(dir.file("d").c_str());
+}
+
+TEST(AtomicFile, WritesThroughASymbolicLink) {
+  ScratchDir dir;
+  write_file_atomically(dir.file("real"), "old");
+  ASSERT_EQ(symlink("real", dir.file("link").c_str()), 0);
+  write_file_atomically(dir.file("link"), "new");
+  EXPECT_EQ(slurp(dir.file("real")), "new");
+  struct stat st {};
+  ASSERT_EQ(lstat(dir.file("link").c_str(), &st), 0);
+  EXPECT_TRUE(S_ISLNK(st.st_mode)) << "the link stays a link";
+}
+
+}  // namespace
+}  // namespace mc1
