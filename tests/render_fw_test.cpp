@@ -245,7 +245,7 @@ TEST(RenderCast, EyeRaysFindTheNearestSphereOrTriangle) {
   for (int j = 0; j < s.height; ++j)
     for (int i = 0; i < s.width; ++i) {
       RenderFirmware::Ray r;
-      r.rec[R_KIND] = 2;
+      r.rec[R_KIND] = RK_EYE;
       r.rec[R_ARG] = static_cast<Word>(i);
       r.rec[R_ARG2] = static_cast<Word>(j);
       r.rec[R_ID] = kNoHit;
@@ -440,7 +440,7 @@ void expect_block_lists_conservative(const scene::Scene& sc, int bs, std::size_t
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
       RenderFirmware::Ray r;
-      r.rec[R_KIND] = 2;
+      r.rec[R_KIND] = RK_EYE;
       r.rec[R_ARG] = static_cast<Word>(i);
       r.rec[R_ARG2] = static_cast<Word>(j);
       r.rec[R_ID] = kNoHit;
@@ -603,7 +603,7 @@ ScanAgreement scan_against_casting(const std::string& name, int w, int h, int bs
       for (int j = 0; j < bl.block.h; ++j)
         for (int i = 0; i < bl.block.w; ++i) {
           RenderFirmware::Ray r;
-          r.rec[R_KIND] = 2;
+          r.rec[R_KIND] = RK_EYE;
           r.rec[R_ARG] = static_cast<Word>(x0 + i);
           r.rec[R_ARG2] = static_cast<Word>(y0 + j);
           r.rec[R_ID] = kNoHit;
@@ -889,12 +889,12 @@ std::vector<RenderFirmware::Ray> eye_rays(int w, int h) {
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
       RenderFirmware::Ray r;
-      r.rec[R_KIND] = 2;
+      r.rec[R_KIND] = RK_EYE;
       r.rec[R_ARG] = static_cast<Word>(i);
       r.rec[R_ARG2] = static_cast<Word>(j);
       r.rec[R_ID] = kNoHit;
       r.rec[R_W] = r.rec[R_W + 1] = r.rec[R_W + 2] = fp24_from_double(1.0);
-      r.rec[R_CHILD] = 3;
+      r.rec[R_CHILD] = CHILD_BOTH;
       rays.push_back(r);
     }
   return rays;
@@ -974,7 +974,7 @@ TEST(RenderSolids, RefractedRaysGoPastSurfacesInsideTheSolid) {
   rig.fw.shade(rays, Step::Shading);  // no shadow rays: R_SHADOW 0 does not change the directions
   std::vector<RenderFirmware::Ray> refracted;  // as render_block makes them
   for (const auto& r : rays) {
-    if (!(r.rec[R_CHILD] & 2)) continue;
+    if (!(r.rec[R_CHILD] & CHILD_TD)) continue;
     RenderFirmware::Ray k;
     std::copy(r.rec.begin() + R_P, r.rec.begin() + R_P + 3, k.rec.begin() + R_O);
     std::copy(r.rec.begin() + R_TD, r.rec.begin() + R_TD + 3, k.rec.begin() + R_D);

@@ -4,7 +4,7 @@
 // SystemC: it reaches the APU only through an ApuLink (ApuDriver plus the
 // NC's notion of waiting), so the same code runs standalone on the ISS and
 // inside the platform's node computer. docs/renderer.md describes the data
-// layouts and the steps.
+// layouts and the steps; render_fw.cpp lists the files of the steps.
 #pragma once
 
 #include <array>
@@ -144,17 +144,17 @@ class RenderFirmware {
   // Another program used the APU: forget what the banks hold.
   void invalidate_banks();
 
-  // One ray as the MPU keeps it: the 48-word record of r_layout.inc plus
-  // integer bookkeeping.
+  // One ray as the MPU keeps it: the R_SIZE-word record of r_layout.inc
+  // plus integer bookkeeping.
   struct Ray {
-    std::array<std::uint32_t, 48> rec{};
+    std::array<std::uint32_t, layout::R_SIZE> rec{};
     int list = 0;    // candidate list (index into the lists it is cast with)
     int pixel = 0;   // index in the block
     int depth = 0;   // 0: eye ray
     int from = -1;   // primitive the ray leaves (R_FROM): shadow and secondary rays
   };
   // s1's eye rays of a block, row-major, with their nearest hits: r_scan's
-  // Z-buffer over the block's triangles, then r_cast (kind 5) against its
+  // Z-buffer over the block's triangles, then r_cast (RK_EYE_SCAN) against its
   // ellipsoids and quadrics (per-pixel ray-surface intersection).
   std::vector<Ray> hidden_surface(const BlockList& list);
   // s1/s2/s4 intersection pass over `rays` (r_cast); public for tests.
@@ -164,7 +164,7 @@ class RenderFirmware {
   // inside another region primitive of that solid (r_inside) is not on the
   // solid's boundary; the ray is cast again (against lists[ray.list]) past
   // it, ignoring t <= the hidden hit's t (R_TMIN), until its hit is visible
-  // or it has none. Shadow rays (kinds 1, 4) are left alone: the reference's
+  // or it has none. Shadow rays (RK_SHADOW*) are left alone: the reference's
   // s2 counts every crossing. R_TMIN of a ray that went on keeps the t of its
   // last hidden hit.
   void solid_rule(std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, Step step);
@@ -172,7 +172,7 @@ class RenderFirmware {
   void surface(std::vector<Ray>& rays, Step step);
   // s2: shadow rays to every light (r_cast), R_SHADOW bits.
   void shadows(std::vector<Ray>& rays);
-  // The shadow ray (kind 1) from a hit's point toward `light`, leaving the
+  // The shadow ray (RK_SHADOW) from a hit's point toward `light`, leaving the
   // hit's primitive; its list is the caller's.
   static Ray shadow_ray(const Ray& hit, int light);
   // s3/s4 (r_shade): weighted local colour and the secondary rays' data.
@@ -190,49 +190,109 @@ class RenderFirmware {
     bool scene_valid = false;
     std::vector<int> slot_prim;  // primitive cached in each PRIMS slot, -1 none
   };
+  using Box = std::array<std::int32_t, 6>;  // min xyz, max xyz as order_key()s
+  StepCost& cost(Step s) { return stats_.step[static_cast<int>(s)]; }
+
+  // ---- bank streaming (render_stream.cpp)
+  const std::vector<apu::Encoded>& kernel(const std::string& name) const;
   void use_kernel(const std::string& name, Step step);
   // The stream protocol over `items` batches: fill(i) writes batch i into the
   // MPU's bank, drain(i) reads its results back.
-  template <class Fill, class Drain>
-  void stream(const std::string& kernel, int items, Step step, Fill fill, Drain drain);
+  using BatchFn = std::function<void(int)>;
+  void stream(const std::string& kernel, int items, Step step, const BatchFn& fill, const BatchFn& drain);
+  // The stream of most kernels: `count` items in batches of at most
+  // `per_batch`; item j of a batch at base + stride j. A batch is filled by
+  // the scene words if `scene`, begin(first, n), put(item, address) for each
+  // of its items, end(first, n) and its COUNT; drained by get(item, address)
+  // for each.
+  struct ItemStream {
+    ItemStream(int count, int per_batch, int base, int stride, bool scene)
+        : count(count), per_batch(per_batch), base(base), stride(stride), scene(scene) {}
+    int count, per_batch, base, stride;
+    bool scene;
+    std::function<void(int, int)> begin, end;  // optional
+    std::function<void(int, std::uint16_t)> put, get;
+  };
+  void stream_items(const std::string& kernel, Step step, const ItemStream& s);
   Bank& mpu_bank() { return banks_[mpu_bank_]; }
+  void forget_bank_data();  // neither bank holds the scene or a primitive
   void write(std::uint16_t addr, const std::uint32_t* w, std::size_t n, Step step);
+  void write_count(int n, Step step);  // the batch's COUNT word
   std::vector<std::uint32_t> read(std::uint16_t addr, std::size_t n, Step step);
   void ensure_scene(Step step);
   std::vector<int> place_prims(const std::vector<int>& prims, Step step);  // slots
-  std::vector<Rgb8> sum(const std::vector<std::vector<std::array<std::uint32_t, 3>>>& contrib);
 
-  // Step 2's product (r_box): a screen rectangle in pixel indices, padded.
+  // ---- step 1 (render_step1.cpp)
+  void xform_camera(const SceneImage& img, std::array<std::uint32_t, 9>& rot, ViewScene::Constants& cam);
+  void build_triangle_boxes();  // object_tri_box_
+
+  // ---- step 2 (render_blocklist.cpp): r_box's screen rectangle in pixel
+  // indices, padded.
   struct ScreenRect {
-    enum Status : int { kBounded = 0, kWholeScreen = 1, kBehind = 2 };
+    enum Status : int { kBounded = layout::BS_BOUNDED, kWholeScreen = layout::BS_WHOLE, kBehind = layout::BS_BEHIND };
     int status = kWholeScreen;
     int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
     bool overlaps(const Block& b) const;
   };
   void project_boxes();  // r_box over every object box and triangle
-  using Box = std::array<std::int32_t, 6>;  // min xyz, max xyz as order_key()s
-  std::vector<int> shadow_candidates(int object, int light, const Box& hits);
-  std::vector<int> narrow_shadow_list(const std::vector<int>& candidates, int light, const Box& hits);
-  void build_shadow_lists();  // r_slist over every (object, light, object)
-  // The solid rule: per object, the region primitives a hit on it must be
-  // tested against (empty unless a solid with a region and another primitive).
+
+  // ---- r_cast's and r_inside's batches (render_cast.cpp)
+  struct BatchPlan {
+    int first = 0, n = 0;                  // items first .. first + n - 1
+    std::vector<int> keys;                 // distinct candidate lists, in first use order
+    std::vector<std::vector<int>> chunks;  // the keys' primitives, <= kPrimSlots per chunk
+    int key_index(int key) const;          // of a key among keys
+  };
+  std::vector<BatchPlan> plan_batches(int items, const std::function<int(int)>& key_of,
+                                      const std::function<const std::vector<int>&(int)>& prims_of, bool always_run,
+                                      StepCost& cost);
+  using ChunkFill = std::function<void(const BatchPlan&, std::size_t, const std::vector<int>&)>;
+  void stream_chunks(const std::string& kernel, const std::vector<BatchPlan>& plans, Step step, const ChunkFill& fill,
+                     const std::function<void(const BatchPlan&)>& drain);
+  static std::uint16_t list_addr(int k);  // candidate list k of a batch
+  // Writes a batch's candidate lists (slots_of(k): list k's PRIMS slots);
+  // returns their lengths.
+  std::vector<int> write_lists(std::size_t keys, const std::function<std::vector<std::uint32_t>(std::size_t)>& slots_of,
+                               Step step);
+  void fill_cast(const std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, const BatchPlan& p,
+                 std::size_t c, const std::vector<int>& slots, Step step);
+
+  // ---- s1 (render_s1.cpp): r_scan's tiles
+  struct ScanEntry {
+    int prim = 0, i0 = 0, j0 = 0, ncol = 0, nrow = 0;
+  };
+  struct ScanTile {
+    Block rect;
+    std::vector<std::vector<ScanEntry>> chunks;
+    std::vector<std::uint32_t> zbuf;  // ZB_SIZE words per pixel, row-major
+  };
+  void clip_to_tile(ScanTile& t, const std::vector<int>& triangles);
+  void fill_scan(const ScanTile& t, std::size_t c, Step step);
+
+  // ---- the solid rule (render_solid.cpp)
+  // Per object, the region primitives a hit on it must be tested against
+  // (empty unless a solid with a region and another primitive).
   void build_solid_regions();
   bool may_be_hidden(const Ray& r) const;
   // r_inside over rays[which[k]]: the hits strictly inside another region of
   // their solid get R_TMIN = R_T; returns them (indices into rays).
   std::vector<int> hidden_hits(std::vector<Ray>& rays, const std::vector<int>& which, Step step);
-  // r_cast's and r_inside's batches (plan_batches in render_fw.cpp).
-  struct BatchPlan {
-    int first = 0, n = 0;                  // items first .. first + n - 1
-    std::vector<int> keys;                 // distinct candidate lists, in first use order
-    std::vector<std::vector<int>> chunks;  // the keys' primitives, <= kPrimSlots per chunk
+  std::vector<int> cast_past(std::vector<Ray>& rays, const std::vector<int>& hidden,
+                             const std::vector<std::vector<int>>& lists, Step step);
+
+  // ---- s2 (render_s2.cpp)
+  void build_shadow_lists();  // r_slist over every (object, light, object)
+  std::vector<int> shadow_candidates(int object, int light, const Box& hits);
+  std::vector<int> narrow_shadow_list(const std::vector<int>& candidates, int light, const Box& hits);
+  struct ShadowGroups {
+    std::vector<int> group_of;  // per ray: its group of hits, -1 a miss
+    std::vector<std::vector<int>> lists;
+    std::map<std::pair<int, int>, int> list_of;  // (group, object * lights + light) -> index in lists
   };
-  template <class Fill, class Drain>
-  void stream_chunks(const std::string& kernel, const std::vector<BatchPlan>& plans, Step step, Fill fill,
-                     Drain drain);
-  std::vector<BatchPlan> plan_batches(int items, const std::function<int(int)>& key_of,
-                                      const std::function<const std::vector<int>&(int)>& prims_of, bool always_run,
-                                      StepCost& cost);
+  ShadowGroups shadow_groups(const std::vector<Ray>& rays);
+
+  // ---- output (render_output.cpp)
+  std::vector<Rgb8> sum(const std::vector<std::vector<std::array<std::uint32_t, 3>>>& contrib);
 
   std::unique_ptr<DirectLink> own_link_;  // before link_: it may refer to it
   ApuLink& link_;
@@ -247,7 +307,7 @@ class RenderFirmware {
   // primitive in file order. s2 (shadows) and s4 (secondary_candidates)
   // make their own per group of rays.
   std::vector<std::vector<int>> lists_;
-  std::vector<std::uint32_t> scene_words_;  // words C_D0 .. PRIMS-1 of every bank
+  std::vector<std::uint32_t> scene_words_;  // words C_D0 .. PRIMS - 1 of every bank
   std::array<Bank, 2> banks_;
   int mpu_bank_ = 0;  // which of banks_ the MPU owns (relative naming)
   std::string apu_prog_, mpu_prog_;

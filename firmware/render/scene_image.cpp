@@ -1,15 +1,22 @@
 #include "scene_image.hpp"
 
+#include "render_layout.hpp"
+
 #ifdef MC1_RENDER_HAVE_SCENE
 #include <stdexcept>
 #include <string>
 
 #include "fp24_convert.hpp"
-#include "render_layout.hpp"
 #include "scene.hpp"
 #endif
 
 namespace mc1::render {
+
+bool spawns_secondary(const MaterialImage& m) {
+  // A positive FP24 number: sign clear, exponent field not zero.
+  auto positive = [](Word w) { return !(w & 0x800000) && (w & 0x7F0000); };
+  return positive(m.w[layout::M_KS]) || positive(m.w[layout::M_KT]);
+}
 
 #ifdef MC1_RENDER_HAVE_SCENE
 namespace {
@@ -28,6 +35,7 @@ void put(std::array<Word, N>& w, int at, const glm::dvec3& v) {
 
 SceneImage make_scene_image(const scene::Scene& s) {
   using namespace layout;
+  using namespace image_words;
   SceneImage img;
   img.eye = v3(s.camera.eye);
   img.look_at = v3(s.camera.look_at);
@@ -39,15 +47,15 @@ SceneImage make_scene_image(const scene::Scene& s) {
   img.background = v3(s.render.background);
   img.epsilon = fp24_from_double(s.render.epsilon);
   if (s.lights.size() > static_cast<std::size_t>(kMaxLights))
-    throw std::invalid_argument(s.source + ": the renderer takes at most 8 lights, not " +
-                                std::to_string(s.lights.size()));
+    throw std::invalid_argument(s.source + ": the renderer takes at most " + std::to_string(kMaxLights) +
+                                " lights, not " + std::to_string(s.lights.size()));
   if (s.materials.size() > static_cast<std::size_t>(kMaxMaterials))
-    throw std::invalid_argument(s.source + ": the renderer takes at most 16 materials, not " +
-                                std::to_string(s.materials.size()));
+    throw std::invalid_argument(s.source + ": the renderer takes at most " + std::to_string(kMaxMaterials) +
+                                " materials, not " + std::to_string(s.materials.size()));
   for (const auto& l : s.lights) {
-    std::array<Word, 6> w{};
-    put(w, 0, l.position);
-    put(w, 3, l.intensity);
+    std::array<Word, kLightWords> w{};
+    put(w, kLightPos, l.position);
+    put(w, kLightI, l.intensity);
     img.lights.push_back(w);
   }
   for (const auto& m : s.materials) {
@@ -57,10 +65,10 @@ SceneImage make_scene_image(const scene::Scene& s) {
     mi.w[M_KD] = fp24_from_double(m.kd);
     mi.w[M_KM] = fp24_from_double(m.km);
     const double n = m.n < 0 ? 0 : m.n > 32767 ? 32767 : m.n;
-    // n = M_N + M_NF / 256 (docs/renderer.md: cos^n by squaring and square roots)
-    const Word fixed = static_cast<Word>(n * 256 + 0.5);
-    mi.w[M_N] = fixed >> 8;
-    mi.w[M_NF] = fixed & 0xFF;
+    // n = M_N + M_NF / 2^M_NF_BITS (docs/renderer.md: cos^n by squaring and square roots)
+    const Word fixed = static_cast<Word>(n * (1 << M_NF_BITS) + 0.5);
+    mi.w[M_N] = fixed >> M_NF_BITS;
+    mi.w[M_NF] = fixed & ((1u << M_NF_BITS) - 1);
     mi.w[M_KS] = fp24_from_double(m.ks);
     mi.w[M_KT] = fp24_from_double(m.kt);
     mi.w[M_ETA] = fp24_from_double(m.index);
@@ -96,10 +104,10 @@ SceneImage make_scene_image(const scene::Scene& s) {
           for (int t = 0; t + 2 < p.vertex_count; ++t) {
             const int idx[3] = {0, t + 1, t + 2};
             for (int k = 0; k < 3; ++k) {
-              put(pi.w, 3 * k, p.vertices[idx[k]]);
-              put(pi.w, 12 + 3 * k, pseudo ? p.vertex_normals[idx[k]] : p.normal);
+              put(pi.w, kV0 + 3 * k, p.vertices[idx[k]]);
+              put(pi.w, kVN + 3 * k, pseudo ? p.vertex_normals[idx[k]] : p.normal);
             }
-            put(pi.w, 9, p.normal);
+            put(pi.w, kN, p.normal);
             img.prims.push_back(pi);
           }
           continue;
@@ -107,14 +115,14 @@ SceneImage make_scene_image(const scene::Scene& s) {
         case scene::PrimitiveKind::ellipsoid:
           pi.type = kEllipsoid;
           for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) pi.w[3 * r + c] = fp24_from_double(p.A[c][r]);
-          put(pi.w, 9, p.centre);
+            for (int c = 0; c < 3; ++c) pi.w[kEllA + 3 * r + c] = fp24_from_double(p.A[c][r]);
+          put(pi.w, kEllB, p.centre);
           break;
         case scene::PrimitiveKind::quadric:
           pi.type = kQuadric;
-          for (int k = 0; k < 10; ++k) pi.w[k] = fp24_from_double(p.coefficients[k]);
-          put(pi.w, 10, p.box_min);
-          put(pi.w, 13, p.box_max);
+          for (int k = 0; k < 10; ++k) pi.w[kQ + k] = fp24_from_double(p.coefficients[k]);
+          put(pi.w, kBMin, p.box_min);
+          put(pi.w, kBMax, p.box_max);
           break;
       }
       img.prims.push_back(pi);

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "render_layout.hpp"
+
 namespace mc1::scene {
 struct Scene;
 }
@@ -17,28 +19,43 @@ namespace mc1::render {
 using Word = std::uint32_t;  // one 24-bit data-bank word
 using Vec3w = std::array<Word, 3>;
 
-constexpr int kMaxLights = 8;
-constexpr int kMaxMaterials = 16;
-constexpr int kPrimSlots = 48;
-constexpr int kRaysPerBatch = 32;
-constexpr std::uint32_t kNoHit = 0xFFFF;
+// The sizes of the data bank's areas (r_layout.inc).
+constexpr int kMaxLights = layout::L_SLOTS;
+constexpr int kMaxMaterials = layout::M_SLOTS;
+constexpr int kPrimSlots = layout::P_SLOTS;
+constexpr int kRaysPerBatch = layout::R_SLOTS;
+constexpr std::uint32_t kNoHit = layout::NO_HIT;
 
-enum PrimType : int { kTriangle = 1, kPseudoTriangle = 2, kEllipsoid = 3, kQuadric = 4 };
+enum PrimType : int {
+  kTriangle = layout::PT_TRIANGLE,
+  kPseudoTriangle = layout::PT_PSEUDO,
+  kEllipsoid = layout::PT_ELLIPSOID,
+  kQuadric = layout::PT_QUADRIC
+};
+
+// The words of SceneImage's lights and of PrimImage::w (world coordinates).
+namespace image_words {
+constexpr int kLightPos = 0, kLightI = 3, kLightWords = 6;  // position, intensity
+constexpr int kV0 = 0, kN = 9, kVN = 12, kTriWords = 21;    // triangle: v0 v1 v2, normal, 3 vertex normals
+constexpr int kEllA = 0, kEllB = 9;                         // ellipsoid: A row-major, centre b
+constexpr int kQ = 0, kBMin = 10, kBMax = 13;               // quadric: a1..a10, clip box
+}  // namespace image_words
 
 // World-coordinate primitive as broadcast: polygons are split into triangles
 // (a quad is (v0, v1, v2) and (v0, v2, v3), docs/scene-format.md).
 struct PrimImage {
   int type = kTriangle;
   int object = 0;
-  // Triangle: v0, v1, v2, plane normal, vertex normals (pseudo): 21 words.
-  // Ellipsoid: A row-major (9), b (3). Quadric: a1..a10, box min, box max.
-  std::array<Word, 21> w{};
+  std::array<Word, image_words::kTriWords> w{};  // image_words
 };
 
 struct MaterialImage {
-  std::array<Word, 32> w{};  // r_layout.inc M_* layout; checker frame in world (M_CKO, M_CKU, M_CKV)
-  Word checker_scale = 0;    // r_xform divides M_CKU, M_CKV by it
+  std::array<Word, layout::M_SIZE> w{};  // r_layout.inc M_* layout; checker frame in world (M_CKO, M_CKU, M_CKV)
+  Word checker_scale = 0;                // r_xform divides M_CKU, M_CKV by it
 };
+// ks > 0 or kt > 0: the pixels of an object of this material get s4 rays
+// (FP24 signs and exponents compared as integers).
+bool spawns_secondary(const MaterialImage& m);
 
 struct ObjectImage {
   bool solid = false;
@@ -54,7 +71,7 @@ struct SceneImage {
   int max_depth = 5;
   Vec3w background{};
   Word epsilon = 0;
-  std::vector<std::array<Word, 6>> lights;  // position, intensity
+  std::vector<std::array<Word, image_words::kLightWords>> lights;  // position, intensity
   std::vector<MaterialImage> materials;
   std::vector<ObjectImage> objects;
   std::vector<PrimImage> prims;
@@ -62,11 +79,15 @@ struct SceneImage {
 
 // Step 1's product.
 struct ViewScene {
+  using Constants = std::array<Word, layout::LIGHTS - layout::C_D0>;  // words C_D0 .. LIGHTS - 1 (C_*)
+  using Light = std::array<Word, layout::L_SIZE>;
+  using Material = std::array<Word, layout::M_SIZE>;
+  using Prim = std::array<Word, layout::P_SIZE>;
   int width = 0, height = 0, max_depth = 5;
-  std::array<Word, 32> constants{};             // words 32..63 (C_*)
-  std::vector<std::array<Word, 8>> lights;      // LIGHTS records
-  std::vector<std::array<Word, 32>> materials;  // MATS records
-  std::vector<std::array<Word, 32>> prims;      // PRIMS records, P_ID = index
+  Constants constants{};
+  std::vector<Light> lights;        // LIGHTS records
+  std::vector<Material> materials;  // MATS records
+  std::vector<Prim> prims;          // PRIMS records, P_ID = index
   struct Object {
     bool solid = false;
     bool secondary = false;  // ks > 0 or kt > 0: its pixels get s4 rays

@@ -3,7 +3,6 @@
 #include <string>
 
 #include "render_kernels.hpp"
-#include "render_layout.hpp"
 #include "render_nc.hpp"
 
 namespace mc1::render_nc {
@@ -151,7 +150,7 @@ render::SceneImage decode_scene(const rc::Bytes& b) {
     r.words(o.box_max);
   }
   const std::uint32_t prims = r.u32();
-  r.count_check(prims, 3 + 3 * 21);
+  r.count_check(prims, 3 + 3 * render::image_words::kTriWords);
   s.prims.resize(prims);
   for (auto& p : s.prims) {
     p.type = static_cast<int>(r.u8());
@@ -196,12 +195,9 @@ KernelDownload decode_kernel(const rc::Bytes& b) {
 }
 
 std::vector<std::uint32_t> object_work(const render::SceneImage& scene) {
-  // A positive FP24 number: sign clear, exponent field not zero.
-  auto positive = [](render::Word w) { return !(w & 0x800000) && (w & 0x7F0000); };
   std::vector<std::uint32_t> work;
   for (const render::ObjectImage& o : scene.objects) {
-    const auto& m = scene.materials.at(static_cast<std::size_t>(o.material)).w;
-    const bool secondary = positive(m[render::layout::M_KS]) || positive(m[render::layout::M_KT]);
+    const bool secondary = render::spawns_secondary(scene.materials.at(static_cast<std::size_t>(o.material)));
     work.push_back(static_cast<std::uint32_t>(o.prim_count) * (secondary ? 4 : 1));
   }
   return work;
