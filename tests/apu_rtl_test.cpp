@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "Vapu_core.h"
+#include "apu_core_ports.hpp"
 #include "apu_driver.hpp"
 #include "apu_rtl_engine.hpp"
 #include "apu_test_program.hpp"
@@ -23,57 +23,24 @@ using namespace apu_test;
 TEST(ApuRtl, MpuPortsOfTheCoreFillAndReadTheIdleBanks) {
   // The core's own MPU ports, clocked, without RtlEngine: program and data
   // into bank 1, hand over, start; refill bank 0 while the APU runs.
-  VerilatedContext ctx;
-  ctx.randReset(0);
-  Vapu_core top(&ctx);
-  const auto edge = [&] {
-    top.clk = 1;
-    top.eval();
-    top.mpu2apu_pmem_we = top.mpu2apu_dmem_we = 0;
-    top.mpu2apu_hand_over_program = top.mpu2apu_hand_over_data = 0;
-    top.mpu2apu_start = top.mpu2apu_start_new_program = 0;
-    top.clk = 0;
-    top.eval();
-  };
-  top.rst_n = 0;
-  edge();
-  top.rst_n = 1;
-  top.eval();
-  const auto put_data = [&](int addr, std::uint32_t v) {
-    top.mpu2apu_dmem_we = 1;
-    top.mpu2apu_dmem_addr = addr;
-    top.mpu2apu_dmem_wdata = v;
-    edge();
-  };
-  const auto get_data = [&](int addr) {
-    top.mpu2apu_dmem_addr = addr;
-    top.eval();
-    return top.apu2mpu_dmem_rdata;
-  };
+  CorePorts core;
+  Vapu_core& top = core.top;
   const auto prog = encode({seq(SeqOp::Swapd), mem(MemOp::Ld, 1, 0, 7), mul(2, 1, 1), nop(),
                             mem(MemOp::St, 2, 0, 8), seq(SeqOp::Swapd), halt()});
-  for (std::size_t i = 0; i < prog.size(); ++i) {
-    top.mpu2apu_pmem_we = 1;
-    top.mpu2apu_pmem_addr = i;
-    top.mpu2apu_pmem_wdata[0] = static_cast<std::uint32_t>(prog[i].lo);
-    top.mpu2apu_pmem_wdata[1] = static_cast<std::uint32_t>(prog[i].lo >> 32);
-    top.mpu2apu_pmem_wdata[2] = static_cast<std::uint32_t>(prog[i].hi);
-    top.mpu2apu_pmem_wdata[3] = static_cast<std::uint32_t>(prog[i].hi >> 32);
-    edge();
-  }
-  put_data(7, kTwo);
-  EXPECT_EQ(get_data(7), kTwo);
+  for (std::size_t i = 0; i < prog.size(); ++i) core.write_program(static_cast<std::uint16_t>(i), prog[i]);
+  core.write_data(7, kTwo);
+  EXPECT_EQ(core.read_data(7), kTwo);
   top.mpu2apu_hand_over_program = top.mpu2apu_hand_over_data = 1;
-  edge();
+  core.edge();
   EXPECT_TRUE(top.apu2mpu_program_ready && top.apu2mpu_data_ready);
   top.mpu2apu_start = top.mpu2apu_start_new_program = 1;
   top.mpu2apu_start_pc = 0;
   top.eval();
   EXPECT_EQ(top.apu2mpu_psel, 1);
   EXPECT_TRUE(top.dbg_issue);  // the SWAPD issues in the start cycle
-  edge();
+  core.edge();
   EXPECT_EQ(top.apu2mpu_dsel, 1);
-  put_data(7, 0x123456);  // the MPU owns bank 0 now: the APU does not see this
+  core.write_data(7, 0x123456);  // the MPU owns bank 0 now: the APU does not see this
   // (that port write was APU cycle 1, the LD.) The second SWAPD (cycle 5)
   // waits for a hand-over; presented in that cycle, it lets it issue there.
   int cycles = 2, bank_stalls = 0;
@@ -85,16 +52,15 @@ TEST(ApuRtl, MpuPortsOfTheCoreFillAndReadTheIdleBanks) {
       top.eval();
       EXPECT_TRUE(top.dbg_issue);
     }
-    edge();
+    core.edge();
   }
   EXPECT_EQ(top.apu2mpu_run_state, 2);  // halted
   EXPECT_EQ(cycles, 7);                 // 7 words, no stall left
   EXPECT_EQ(bank_stalls, 1);
   EXPECT_EQ(top.apu2mpu_dsel, 0);
-  EXPECT_EQ(get_data(8), 0x410000u);  // 2 * 2, stored in bank 1, handed back
-  EXPECT_EQ(get_data(7), kTwo);
+  EXPECT_EQ(core.read_data(8), 0x410000u);  // 2 * 2, stored in bank 1, handed back
+  EXPECT_EQ(core.read_data(7), kTwo);
   EXPECT_FALSE(top.dbg_unit_mismatch);
-  top.final();
 }
 
 TEST(ApuRtl, WaveformHasTheDocumentedSignals) {

@@ -3,8 +3,11 @@
 // and line, and the Bezier/B-spline tessellation.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <ctime>
 #include <string>
 
+#include "json.hpp"
 #include "scene.hpp"
 
 using namespace mc1::scene;
@@ -50,6 +53,18 @@ const std::string kSphere =
 std::string object_with(const std::string& primitive) {
   return "{\"kind\": \"surface\", \"material\": \"m\", \"primitives\": [\n" + primitive + "\n]}";
 }
+
+// `count` copies of `primitive`, comma-separated, one per line.
+std::string repeated(const std::string& primitive, std::size_t count) {
+  std::string out;
+  out.reserve((primitive.size() + 2) * count);
+  for (std::size_t i = 0; i < count; ++i) out += (i ? ",\n" : "") + primitive;
+  return out;
+}
+
+const std::string kTriangle = "{\"type\": \"triangle\", \"vertices\": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}";
+const std::string kQuad = "{\"type\": \"quad\", \"vertices\": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]}";
+const char* const kFp24Range = "0 or a magnitude in [2.168e-19, 1.8447e19], FP24's range";
 
 }  // namespace
 
@@ -156,7 +171,42 @@ TEST(SceneErrors, MissingKeyWrongTypeRange) {
 TEST(SceneErrors, JsonSyntaxHasLineAndColumn) {
   EXPECT_EQ(error_of("{\n  \"camera\": {\"eye\": [0, 0 5]}\n}"), "t.json:2:27: JSON syntax: expected ',' or ']'");
   EXPECT_EQ(error_of("{\"a\": 1, \"a\": 2}"), "t.json:1:10: JSON syntax: duplicate key \"a\"");
-  EXPECT_EQ(error_of("{\"a\": tru}"), "t.json:1:7: JSON syntax: unexpected character 't'");
+  EXPECT_EQ(error_of("{\"a\": tru}"), "t.json:1:7: JSON syntax: invalid literal 'tru' (expected true, false or null)");
+  EXPECT_EQ(error_of("{\"a\": @}"), "t.json:1:7: JSON syntax: unexpected character '@'");
+  EXPECT_EQ(error_of("{\"a\" 1}"), "t.json:1:6: JSON syntax: expected ':'");
+  EXPECT_EQ(error_of("{\"a\": 1,\n }"), "t.json:2:2: JSON syntax: expected a key string");
+  EXPECT_EQ(error_of("{\"a\": [1,,2]}"), "t.json:1:10: JSON syntax: expected a value");
+  EXPECT_EQ(error_of("{\"a\": [01]}"), "t.json:1:9: JSON syntax: expected ',' or ']'");
+  EXPECT_EQ(error_of("{\"a\": 1} {"), "t.json:1:10: JSON syntax: unexpected text after the JSON value");
+  EXPECT_EQ(error_of("{\"a\": [1,\n"), "t.json:2:1: JSON syntax: unexpected end of input");
+  EXPECT_EQ(error_of("{\"a\": 1e400}"), "t.json:1:7: JSON syntax: number out of range");
+  EXPECT_EQ(error_of("{\"a\":\n  \"x\\qy\"}"), "t.json:2:3: JSON syntax: invalid string: forbidden character after backslash");
+  EXPECT_EQ(error_of(std::string(70, '[') + std::string(70, ']')),
+            "t.json:1:65: JSON syntax: nesting too deep (over 64 levels)");
+}
+
+// The duplicate check was quadratic (5.8 s for 40,000 keys; 0.1 s now, measured
+// by hand: tests assert values, not speed).
+TEST(SceneErrors, DuplicateKeyInALargeObject) {
+  std::string text = "{";
+  for (int i = 0; i < 40000; ++i) text += "\"k" + std::to_string(i) + "\": " + std::to_string(i) + ",\n";
+  text += "\"k39999\": 0}";
+  EXPECT_EQ(error_of(text), "t.json:40001:1: JSON syntax: duplicate key \"k39999\"");
+}
+
+TEST(SceneJson, ValuesKeepTheirPlaceAndNegativeZero) {
+  json::Value v = json::parse("{\"a\": [1,\n  -0, \"s\"], \"b\": {}}", "t");
+  const json::Value& a = *v.find("a");
+  EXPECT_EQ(a.items[1].line, 2);
+  EXPECT_EQ(a.items[1].column, 3);
+  EXPECT_TRUE(std::signbit(a.items[1].number));  // "-0" stays -0 (its FP24 sign bit)
+  EXPECT_EQ(a.items[2].string, "s");
+  EXPECT_EQ(v.find("b")->column, 18);
+}
+
+TEST(SceneJson, QuoteEscapesForJsonReports) {
+  EXPECT_EQ(json::quote("a\"b\\c\n\x01"), "\"a\\\"b\\\\c\\n\\u0001\"");
+  EXPECT_EQ(json::quote("\xff"), "\"\xEF\xBF\xBD\"");  // not UTF-8: U+FFFD
 }
 
 TEST(SceneErrors, UnknownMaterialAndType) {
@@ -190,6 +240,85 @@ TEST(SceneErrors, DegenerateGeometry) {
 TEST(SceneErrors, MeshFile) {
   EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"bezier_mesh\", \"file\": \"no-such.txt\"}"))),
             "t.json:9: objects[0].primitives[0].file: cannot open \"" + scenes_dir() + "/no-such.txt\"");
+  // A directory opens as a stream and reads as empty ("file ends early").
+  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"bezier_mesh\", \"file\": \"data\"}"))),
+            "t.json:9: objects[0].primitives[0].file: \"" + scenes_dir() + "/data\" is a directory (expected a patch file)");
+}
+
+TEST(SceneErrors, DirectoryIsNotAScene) {
+  try {
+    load_scene(scenes_dir());
+    FAIL() << "a directory was loaded as a scene";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), scenes_dir() + ": is a directory (expected a scene file)");
+  }
+}
+
+// The NC's 16-bit primitive ids: 65535 of them, a quad taking two.
+TEST(SceneLimits, PrimitiveIdsQuadsCountTwice) {
+  Scene s = parse_scene(scene_text(object_with(repeated(kQuad, 32767) + ",\n" + kTriangle)), "t.json", "");
+  EXPECT_EQ(s.primitive_count(), 32768u);
+  EXPECT_EQ(error_of(scene_text(object_with(repeated(kQuad, 32767) + ",\n" + kQuad))),
+            "t.json:32776: objects[0].primitives[32767]: more than 65535 primitives (a quad counts as two "
+            "triangles), the NC's limit");
+}
+
+// Refused at the first entry past the limit, before the rest is read.
+TEST(SceneLimits, AMillionTrianglesRefusedAtTheFirstPastTheLimit) {
+  std::string text = scene_text(object_with(repeated(kTriangle, 1000000)));
+  EXPECT_EQ(error_of(text), "t.json:65544: objects[0].primitives[65535]: more than 65535 primitives (a quad counts as two "
+                   "triangles), the NC's limit");
+}
+
+// Counted after tessellation: a level-64 patch is 4096 pseudo-quads, 8192 ids.
+TEST(SceneLimits, TessellatedPatchesCount) {
+  std::string pts = "[";
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) pts += std::string(r + c ? ", " : "") + "[" + std::to_string(c) + ", " + std::to_string(r) + ", 0]";
+  pts += "]";
+  std::string patch = "{\"type\": \"bezier_patch\", \"level\": 64, \"points\": " + pts + "}";
+  EXPECT_EQ(parse_scene(scene_text(object_with(repeated(patch, 7))), "t.json", "").primitive_count(), 7u * 4096);
+  EXPECT_EQ(error_of(scene_text(object_with(repeated(patch, 8)))),
+            "t.json:16: objects[0].primitives[7]: more than 65535 primitives (a quad counts as two triangles), "
+            "the NC's limit");
+}
+
+// Values the NC would hold as FP24 inf or 0 are refused where the path is known.
+TEST(SceneErrors, ValuesOutsideFp24Range) {
+  const std::string range = std::string(kFp24Range);
+  struct Case {
+    const char* primitive;
+    const char* path;  // below objects[0].primitives[0]
+    const char* got;
+  };
+  for (const Case& c : {
+           Case{"{\"type\": \"quadric\", \"coefficients\": [1, 1, 1, 0, 0, 0, 0, 0, 0, -1], "
+                "\"box\": {\"min\": [-1e300, -1e300, -1e300], \"max\": [1e300, 1e300, 1e300]}}",
+                "box.min[0]", "-1e+300"},
+           Case{"{\"type\": \"triangle\", \"vertices\": [[0, 0, 0], [1e300, 0, 0], [0, 1e300, 0]]}",  // was "zero area"
+                "vertices[1][0]", "1e+300"},
+           Case{"{\"type\": \"ellipsoid\", \"A\": [[1e200, 0, 0], [0, 1e200, 0], [0, 0, 1e200]], "  // was "singular"
+                "\"centre\": [0, 0, 0]}",
+                "A[0][0]", "1e+200"},
+           Case{"{\"type\": \"quadric\", \"coefficients\": [1, 1, 1, 0, 0, 0, 0, 0, 0, -1e20], "
+                "\"box\": {\"min\": [-1, -1, -1], \"max\": [1, 1, 1]}}",
+                "coefficients[9]", "-1e+20"}})
+    EXPECT_EQ(error_of(scene_text(object_with(c.primitive))),
+              std::string("t.json:9: objects[0].primitives[0].") + c.path + ": expected " + range + ", got " + c.got);
+  // Below the smallest normal: it would be flushed to 0.
+  EXPECT_EQ(error_of(scene_text(kSphere, "", ", \"ks\": 1e-20")),
+            "t.json:5: materials[0].ks: expected " + range + ", got 1e-20");
+  std::string eye = scene_text(kSphere);
+  eye.replace(eye.find("[0, 0, 5]"), 9, "[0, 1e-30, 5]");
+  EXPECT_EQ(error_of(eye), "t.json:2: camera.eye[1]: expected " + range + ", got 1e-30");
+  // Derived values the NC holds: A = I / radius, the checker's u / scale.
+  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1e19}"))),
+            "t.json:9: objects[0].primitives[0].radius: expected 1 / radius in FP24's range, got 1e-19");
+  EXPECT_EQ(error_of(scene_text(kSphere, "", ", \"checker\": {\"colours\": [[1, 1, 1], [0, 0, 0]], \"scale\": 1e19}")),
+            "t.json:5: materials[0].checker.scale: expected 1 / scale in FP24's range, got 1e-19");
+  // The highlight exponent is 8.8 fixed point on the NC.
+  EXPECT_EQ(error_of(scene_text(kSphere, "", ", \"n\": 40000")),
+            "t.json:5: materials[0].n: expected at most 32767 (the NC's fixed-point exponent)");
 }
 
 TEST(SceneTessellation, PlanarBezierIsExact) {

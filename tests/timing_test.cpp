@@ -99,6 +99,8 @@ TEST(Timing, FileErrorsNameFileLineKeyAndValue) {
             "h:1: bad value '0' for key 'hdlc_n2_retries' (allowed 1..1000 retries)");
   EXPECT_EQ(error_of([&] { load_params_file(t, "/nonexistent/x.params"); }),
             "/nonexistent/x.params: cannot open parameter file");
+  // A directory reads as an empty file: refused, not taken as "no changes".
+  EXPECT_EQ(error_of([&] { load_params_file(t, "/"); }), "/: is a directory (expected a parameter file)");
   // A failed line leaves the earlier lines applied and the table otherwise intact.
   EXPECT_EQ(t.apu_clock_hz, 4u);
   EXPECT_EQ(t.hdlc_window, 7u);

@@ -4,16 +4,17 @@ CMake link, include directory or source points down a layer, never up.
 
 usage: check_layers.py [ROOT]     (default: the tree this script is in)
 
-Each file belongs to a unit: hw/<unit>, host/<unit> and apu_rtl/rom are units
-of their own, any other top folder (firmware, tb, tests, ...) is one unit.
+Each file belongs to a unit: hw/<unit>, host/<unit>, apu_rtl/rom and
+apu_rtl/isa are units of their own, any other top folder (firmware, tb, tests, ...) is one unit.
 ALLOWED says which units a unit may use besides itself. Checked:
   - `#include "x"` in C/C++ sources, resolved like the build does (includes are
     bare names found through per-target include directories): the including
     file's own folder first, else the one file in the tree whose path ends with
     x (on several, the one in the including unit; else an error). A name no
     tree file has is a system or generated header: generated ones are found
-    from the OUTPUT/BYPRODUCTS of add_custom_command and belong to the unit of
-    that CMakeLists.txt; the rest are outside the rule.
+    from the OUTPUT/BYPRODUCTS of add_custom_command (or the arguments of an
+    execute_process that generates at configure time) and belong to the unit
+    of that CMakeLists.txt; the rest are outside the rule.
   - In every CMakeLists.txt: target_link_libraries (target names mapped to the
     unit whose CMakeLists.txt defines them with add_library/add_executable),
     and the tree paths named in target_include_directories, add_library and
@@ -27,9 +28,9 @@ import os
 import re
 import sys
 
-HW_BASE = {"hw/platform", "hw/apu", "apu_rtl/rom"}
+HW_BASE = {"hw/platform", "hw/apu", "apu_rtl/rom", "apu_rtl/isa"}
 HW_ALL = {"hw/platform", "hw/apu", "hw/hdlc", "hw/image_bus", "hw/dc", "hw/fm", "hw/rc", "hw/nc", "hw/mc1"}
-RTL = {"apu_rtl", "apu_rtl/rom"}
+RTL = {"apu_rtl", "apu_rtl/rom", "apu_rtl/isa"}
 HOST_LIBS = {"host/common", "host/scene", "host/apuasm", "host/imgcmp", "host/refrender"}
 
 # unit -> the units it may use (itself always). From the bottom up.
@@ -39,9 +40,12 @@ ALLOWED = {
     # model (fp24_rom.inc) and the RTL include: the one pair that uses each
     # other, through a generated file, not through code.
     "apu_rtl/rom": {"hw/apu"},
+    # The instruction-set table: microword fields, op codes and latencies,
+    # generated into the core's package and the models' apu_isa.hpp.
+    "apu_rtl/isa": set(),
     "hw/platform": set(),
-    "hw/apu": {"apu_rtl/rom"},
-    "apu_rtl": {"apu_rtl/rom"},
+    "hw/apu": {"apu_rtl/rom", "apu_rtl/isa"},
+    "apu_rtl": {"apu_rtl/rom", "apu_rtl/isa"},
     # The machine's units: each on the platform table, the APU and the
     # transports it talks through, none on another unit's internals.
     "hw/hdlc": {"hw/platform"},
@@ -86,8 +90,8 @@ def unit_of(rel):
         return ""
     if parts[0] in ("hw", "host") and len(parts) > 2:
         return parts[0] + "/" + parts[1]
-    if parts[0] == "apu_rtl" and len(parts) > 2 and parts[1] == "rom":
-        return "apu_rtl/rom"
+    if parts[0] == "apu_rtl" and len(parts) > 2 and parts[1] in ("rom", "isa"):
+        return "apu_rtl/" + parts[1]
     return parts[0]
 
 
@@ -262,7 +266,7 @@ class Checker:
             for cmd, args in self.cmake_commands(rel):
                 if cmd in ("add_library", "add_executable") and args and "$" not in args[0][0]:
                     self.targets[args[0][0]] = unit_of(rel)
-                if cmd == "add_custom_command":
+                if cmd in ("add_custom_command", "execute_process"):
                     for tok, _ in args:
                         if tok.endswith((".h", ".hpp", ".inc")) and "$<" not in tok:
                             self.generated[os.path.basename(tok)] = unit_of(rel)

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "json.hpp"
+
 namespace mc1 {
 namespace {
 
@@ -16,15 +18,7 @@ std::string num(double v) {
 
 double ratio(Picos part, Picos whole) { return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0; }
 
-std::string quoted(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) continue;
-    o += c;
-  }
-  return o + "\"";
-}
+using scene::json::quote;  // the one JSON string escaper (host/scene/json.hpp)
 
 }  // namespace
 
@@ -49,7 +43,7 @@ std::string stats_json(const FrameReport& r) {
   o << "{\n  \"schema\": \"mc1-stats/1\",\n";
   o << "  \"engine\": \"" << r.engine << "\",\n  \"nodes\": " << r.nodes << ",\n";
   if (!r.schedule.empty()) o << "  \"schedule\": \"" << r.schedule << "\",\n";
-  if (!r.scene.empty()) o << "  \"scene\": " << quoted(r.scene) << ",\n";
+  if (!r.scene.empty()) o << "  \"scene\": " << quote(r.scene) << ",\n";
   o << "  \"image\": {\"width\": " << r.width << ", \"height\": " << r.height << ", \"block_width\": " << r.block_w
     << ", \"block_height\": " << r.block_h << ", \"blocks\": " << r.blocks
     << ", \"fm_pixels_written\": " << r.fm_pixels_written << "},\n";
@@ -67,7 +61,7 @@ std::string stats_json(const FrameReport& r) {
   for (std::size_t i = 0; i < r.link_downs.size(); ++i) {
     const rc::LinkDown& x = r.link_downs[i];
     o << (i ? ", " : "") << "{\"time_ps\": " << x.time << ", \"taken_ps\": " << x.taken << ", \"nc\": " << x.nc
-      << ", \"reason\": " << quoted(hdlc::link_down_reason_name(x.reason)) << ", \"requeued\": " << x.requeued << "}";
+      << ", \"reason\": " << quote(hdlc::link_down_reason_name(x.reason)) << ", \"requeued\": " << x.requeued << "}";
   }
   o << "], \"timeouts\": [";
   for (std::size_t i = 0; i < r.timeouts.size(); ++i) {
@@ -106,7 +100,7 @@ std::string stats_json(const FrameReport& r) {
     o << "  \"steps\": [\n";
     for (std::size_t i = 0; i < r.steps.size(); ++i) {
       const StepReport& x = r.steps[i];
-      o << "    {\"step\": " << quoted(x.name) << ", \"apu_cycles\": " << x.apu_cycles << ", \"apu_runs\": " << x.apu_runs
+      o << "    {\"step\": " << quote(x.name) << ", \"apu_cycles\": " << x.apu_cycles << ", \"apu_runs\": " << x.apu_runs
         << ", \"batches\": " << x.batches << ", \"word_copies\": " << x.word_copies
         << ", \"list_elements\": " << x.list_elements << ", \"sort_compares\": " << x.sort_compares
         << ", \"apu_commands\": " << x.apu_commands << "}" << (i + 1 < r.steps.size() ? "," : "") << "\n";
@@ -142,7 +136,7 @@ std::string stats_json(const FrameReport& r) {
     if (!n.milestones.empty()) {
       o << ", \"milestones\": {";
       for (std::size_t m = 0; m < n.milestones.size(); ++m)
-        o << (m ? ", " : "") << quoted(n.milestones[m].first) << ": " << n.milestones[m].second;
+        o << (m ? ", " : "") << quote(n.milestones[m].first) << ": " << n.milestones[m].second;
       o << "}";
     }
     o << "}" << (i + 1 < r.ncs.size() ? "," : "") << "\n";

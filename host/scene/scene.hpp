@@ -110,6 +110,11 @@ struct RenderSettings {
   double epsilon = 1e-3;         // secondary rays ignore hits with t <= epsilon
 };
 
+// The NC names a primitive by a 16-bit id (0xFFFF: no hit) and holds a quad
+// as two triangles: at most this many ids per scene, quads counting twice.
+// The loader refuses a scene beyond it (docs/scene-format.md).
+constexpr std::size_t kMaxPrimitiveIds = 65535;
+
 struct Scene {
   std::string source;  // file the scene was loaded from
   Camera camera;

@@ -2,6 +2,7 @@
 // "file:line: json.path: message", unknown keys included.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <sstream>
@@ -62,6 +63,30 @@ glm::dvec3 checker_colour(const Checker& c, const glm::dvec3& p) {
 
 namespace {
 
+// FP24's magnitudes (docs/fp24.md): largest finite (2 - 2^-16) 2^63, smallest
+// normal 2^-62. A scene value outside them would become inf or 0 on the NC.
+const double kFp24Max = std::ldexp(2.0 - std::ldexp(1.0, -16), 63);
+const double kFp24MinNormal = std::ldexp(1.0, -62);
+const char* const kFp24Range = "0 or a magnitude in [2.168e-19, 1.8447e19], FP24's range";
+
+bool in_fp24_range(double d) {
+  double a = std::abs(d);
+  return a == 0 || (a >= kFp24MinNormal && a <= kFp24Max);
+}
+bool below_fp24_max(const glm::dvec3& v) {
+  return std::abs(v.x) <= kFp24Max && std::abs(v.y) <= kFp24Max && std::abs(v.z) <= kFp24Max;
+}
+
+std::string shortest(double d) {
+  std::ostringstream o;
+  o << d;
+  return o.str();
+}
+
+const char* const kTooManyPrimitives =
+    "more than 65535 primitives (a quad counts as two triangles), the NC's limit";
+std::size_t nc_ids(const Primitive& p) { return p.vertex_count == 4 ? 2 : 1; }
+
 std::string join(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
 }
@@ -103,6 +128,7 @@ class Loader {
  private:
   std::string name_;
   std::string base_dir_;
+  std::size_t ids_ = 0;  // NC primitive ids of the primitives loaded so far
 
   [[noreturn]] void fail(const Value& v, const std::string& path, const std::string& msg) const {
     throw SceneError(name_ + ":" + std::to_string(v.line) + ": " + (path.empty() ? "(top)" : path) +
@@ -144,14 +170,21 @@ class Loader {
     return v.number;
   }
 
-  double non_negative(const Value& v, const std::string& path) const {
+  // A number the NC holds as FP24.
+  double fp24(const Value& v, const std::string& path) const {
     double d = number(v, path);
+    if (!in_fp24_range(d)) fail(v, path, "expected " + std::string(kFp24Range) + ", got " + shortest(d));
+    return d;
+  }
+
+  double non_negative(const Value& v, const std::string& path) const {
+    double d = fp24(v, path);
     if (d < 0) fail(v, path, "must not be negative");
     return d;
   }
 
   double positive(const Value& v, const std::string& path) const {
-    double d = number(v, path);
+    double d = fp24(v, path);
     if (!(d > 0)) fail(v, path, "must be positive");
     return d;
   }
@@ -163,18 +196,23 @@ class Loader {
     return static_cast<int>(d);
   }
 
-  glm::dvec3 vec3(const Value& v, const std::string& path) const {
-    if (v.type != Type::array || v.items.size() != 3 ||
-        std::any_of(v.items.begin(), v.items.end(), [](const Value& e) { return e.type != Type::number; }))
-      fail(v, path, "expected [x, y, z]");
-    return {v.items[0].number, v.items[1].number, v.items[2].number};
+  static bool numbers(const Value& v, std::size_t count) {
+    return v.type == Type::array && v.items.size() == count &&
+           std::all_of(v.items.begin(), v.items.end(), [](const Value& e) { return e.type == Type::number; });
   }
 
+  // Three numbers, each in FP24's range.
+  glm::dvec3 triple(const Value& v, const std::string& path, const char* shape) const {
+    if (!numbers(v, 3)) fail(v, path, std::string("expected ") + shape);
+    glm::dvec3 t;
+    for (int i = 0; i < 3; ++i) t[i] = fp24(v.items[i], index(path, i));
+    return t;
+  }
+
+  glm::dvec3 vec3(const Value& v, const std::string& path) const { return triple(v, path, "[x, y, z]"); }
+
   glm::dvec3 colour(const Value& v, const std::string& path) const {
-    if (v.type != Type::array || v.items.size() != 3 ||
-        std::any_of(v.items.begin(), v.items.end(), [](const Value& e) { return e.type != Type::number; }))
-      fail(v, path, "expected [r, g, b]");
-    glm::dvec3 c(v.items[0].number, v.items[1].number, v.items[2].number);
+    glm::dvec3 c = triple(v, path, "[r, g, b]");
     if (c.r < 0 || c.g < 0 || c.b < 0) fail(v, path, "colour components must not be negative");
     return c;
   }
@@ -188,15 +226,11 @@ class Loader {
   // Rows in the file: [[a11, a12, a13], [a21, ...], ...]; GLM stores A[col][row].
   glm::dmat3 matrix3(const Value& v, const std::string& path) const {
     bool ok = v.type == Type::array && v.items.size() == 3;
-    for (std::size_t r = 0; ok && r < 3; ++r) {
-      const Value& row = v.items[r];
-      ok = row.type == Type::array && row.items.size() == 3 &&
-           std::all_of(row.items.begin(), row.items.end(), [](const Value& e) { return e.type == Type::number; });
-    }
+    for (std::size_t r = 0; ok && r < 3; ++r) ok = numbers(v.items[r], 3);
     if (!ok) fail(v, path, "expected 3x3 matrix");
     glm::dmat3 m;
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) m[c][r] = v.items[r].items[c].number;
+      for (int c = 0; c < 3; ++c) m[c][r] = fp24(v.items[r].items[c], index(index(path, r), c));
     return m;
   }
 
@@ -213,7 +247,7 @@ class Loader {
         fail(*up, join(path, "up"), "parallel to the view direction");
     }
     const Value& fov = required(v, path, "fov");
-    c.fov_deg = number(fov, join(path, "fov"));
+    c.fov_deg = fp24(fov, join(path, "fov"));
     if (!(c.fov_deg > 0 && c.fov_deg < 180)) fail(fov, join(path, "fov"), "expected degrees in (0, 180)");
     c.width = integer(required(v, path, "width"), join(path, "width"), 1, 8192);
     c.height = integer(required(v, path, "height"), join(path, "height"), 1, 8192);
@@ -246,9 +280,15 @@ class Loader {
       const char* key;
       double* dst;
     };
-    for (Field f : {Field{"ko", &m.ko}, Field{"kd", &m.kd}, Field{"km", &m.km}, Field{"n", &m.n},
-                    Field{"ks", &m.ks}, Field{"kt", &m.kt}})
+    for (Field f : {Field{"ko", &m.ko}, Field{"kd", &m.kd}, Field{"km", &m.km}, Field{"ks", &m.ks},
+                    Field{"kt", &m.kt}})
       if (const Value* x = v.find(f.key)) *f.dst = non_negative(*x, join(path, f.key));
+    // Not FP24: the NC holds n as an integer part and 8 fraction bits (docs/renderer.md).
+    if (const Value* x = v.find("n")) {
+      m.n = number(*x, join(path, "n"));
+      if (m.n < 0) fail(*x, join(path, "n"), "must not be negative");
+      if (m.n > 32767) fail(*x, join(path, "n"), "expected at most 32767 (the NC's fixed-point exponent)");
+    }
     if (const Value* x = v.find("index")) m.index = positive(*x, join(path, "index"));
     if (const Value* c = v.find("checker")) {
       m.textured = true;
@@ -263,11 +303,26 @@ class Loader {
     const Value& cols = required(v, path, "colours");
     if (cols.type != Type::array || cols.items.size() != 2) fail(cols, join(path, "colours"), "expected two colours");
     for (int i = 0; i < 2; ++i) c.colours[i] = colour(cols.items[i], index(join(path, "colours"), i));
-    c.scale = positive(required(v, path, "scale"), join(path, "scale"));
+    const Value& sv = required(v, path, "scale");
+    c.scale = positive(sv, join(path, "scale"));
+    // The NC maps with u / scale and v / scale (docs/renderer.md).
+    if (!in_fp24_range(1.0 / c.scale))
+      fail(sv, join(path, "scale"), "expected 1 / scale in FP24's range, got " + shortest(1.0 / c.scale));
     if (const Value* o = v.find("origin")) c.origin = vec3(*o, join(path, "origin"));
     if (const Value* u = v.find("u")) c.u = glm::normalize(direction(*u, join(path, "u")));
     if (const Value* w = v.find("v")) c.v = glm::normalize(direction(*w, join(path, "v")));
     return c;
+  }
+
+  // Counts the NC ids of out[from..] and refuses the scene beyond the limit.
+  void count_ids(const Value& v, const std::string& path, const std::vector<Primitive>& out, std::size_t from) {
+    for (std::size_t i = from; i < out.size(); ++i) ids_ += nc_ids(out[i]);
+    if (ids_ > kMaxPrimitiveIds) fail(v, path, kTooManyPrimitives);
+  }
+
+  void add(const Primitive& p, const Value& v, const std::string& path, std::vector<Primitive>& out) {
+    out.push_back(p);
+    count_ids(v, path, out, out.size() - 1);
   }
 
   Object object(const Value& v, const std::string& path, const std::vector<Material>& materials) {
@@ -302,11 +357,11 @@ class Loader {
     const Value& type = required(v, path, "type");
     std::string t = text(type, join(path, "type"));
     if (t == "triangle" || t == "quad" || t == "pseudo_triangle" || t == "pseudo_quad")
-      out.push_back(polygon(v, path, t));
+      add(polygon(v, path, t), v, path, out);
     else if (t == "ellipsoid" || t == "sphere")
-      out.push_back(ellipsoid(v, path, t == "sphere"));
+      add(ellipsoid(v, path, t == "sphere"), v, path, out);
     else if (t == "quadric")
-      out.push_back(quadric(v, path));
+      add(quadric(v, path), v, path, out);
     else if (t == "bezier_patch")
       bezier_patch(v, path, out);
     else if (t == "bspline_patch")
@@ -374,7 +429,10 @@ class Loader {
     if (sphere) {
       expect_object(v, path, {"type", "centre", "radius"});
       p.centre = vec3(required(v, path, "centre"), join(path, "centre"));
-      double r = positive(required(v, path, "radius"), join(path, "radius"));
+      const Value& rv = required(v, path, "radius");
+      double r = positive(rv, join(path, "radius"));
+      if (!in_fp24_range(1.0 / r))
+        fail(rv, join(path, "radius"), "expected 1 / radius in FP24's range, got " + shortest(1.0 / r));
       p.A = glm::dmat3(1.0 / r);
     } else {
       expect_object(v, path, {"type", "A", "centre"});
@@ -387,6 +445,8 @@ class Loader {
         fail(a, join(path, "A"), "singular matrix A");
     }
     finish_box(p);
+    if (!below_fp24_max(p.box_min) || !below_fp24_max(p.box_max))
+      fail(v, path, "bounding box outside FP24's range (A too small)");
     return p;
   }
 
@@ -397,7 +457,7 @@ class Loader {
     const Value& cv = required(v, path, "coefficients");
     if (cv.type != Type::array || cv.items.size() != 10)
       fail(cv, join(path, "coefficients"), "expected 10 numbers a1..a10");
-    for (std::size_t i = 0; i < 10; ++i) p.coefficients[i] = number(cv.items[i], index(join(path, "coefficients"), i));
+    for (std::size_t i = 0; i < 10; ++i) p.coefficients[i] = fp24(cv.items[i], index(join(path, "coefficients"), i));
     if (std::all_of(p.coefficients.begin(), p.coefficients.begin() + 9, [](double a) { return a == 0; }))
       fail(cv, join(path, "coefficients"), "degenerate quadric (a1..a9 all zero)");
     const Value& box = required(v, path, "box");
@@ -415,7 +475,7 @@ class Loader {
     return l ? integer(*l, join(path, "level"), 1, 64) : 4;
   }
 
-  void bezier_patch(const Value& v, const std::string& path, std::vector<Primitive>& out) const {
+  void bezier_patch(const Value& v, const std::string& path, std::vector<Primitive>& out) {
     expect_object(v, path, {"type", "points", "level"});
     std::vector<glm::dvec3> pts = points(required(v, path, "points"), join(path, "points"), 16);
     BicubicNet net;
@@ -423,7 +483,7 @@ class Loader {
     tessellate_checked(net, Basis::bezier, level(v, path), v, path, out);
   }
 
-  void bspline_patch(const Value& v, const std::string& path, std::vector<Primitive>& out) const {
+  void bspline_patch(const Value& v, const std::string& path, std::vector<Primitive>& out) {
     expect_object(v, path, {"type", "net", "level", "wrap_u", "wrap_v"});
     const Value& nv = required(v, path, "net");
     std::string npath = join(path, "net");
@@ -446,13 +506,14 @@ class Loader {
   }
 
   void tessellate_checked(const BicubicNet& net, Basis basis, int lv, const Value& v,
-                          const std::string& path, std::vector<Primitive>& out) const {
+                          const std::string& path, std::vector<Primitive>& out) {
     std::size_t before = out.size();
     tessellate_patch(net, basis, lv, out);
     if (out.size() == before) fail(v, path, "degenerate patch (no cell has an area)");
+    count_ids(v, path, out, before);
   }
 
-  void bezier_mesh(const Value& v, const std::string& path, std::vector<Primitive>& out) const {
+  void bezier_mesh(const Value& v, const std::string& path, std::vector<Primitive>& out) {
     expect_object(v, path, {"type", "file", "level", "matrix", "offset"});
     const Value& fv = required(v, path, "file");
     std::string file = text(fv, join(path, "file"));
@@ -464,13 +525,20 @@ class Loader {
     glm::dvec3 offset(0.0);
     if (const Value* ov = v.find("offset")) offset = vec3(*ov, join(path, "offset"));
     std::string full = (file.empty() || file[0] == '/' || base_dir_.empty()) ? file : base_dir_ + "/" + file;
+    if (std::filesystem::is_directory(full))
+      fail(fv, join(path, "file"), "\"" + full + "\" is a directory (expected a patch file)");
     std::ifstream in(full);
     if (!in) fail(fv, join(path, "file"), "cannot open \"" + full + "\"");
     std::vector<BicubicNet> patches = read_bezier_file(in, full);
     int lv = level(v, path);
-    for (auto& net : patches) {
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      BicubicNet& net = patches[i];
       for (auto& c : net) c = m * c + offset;
+      if (!std::all_of(net.begin(), net.end(), below_fp24_max))
+        fail(v, path, "patch " + std::to_string(i) + " of \"" + full + "\": matrix and offset take it outside FP24's range");
+      std::size_t before = out.size();
       tessellate_patch(net, Basis::bezier, lv, out);
+      count_ids(v, path, out, before);
     }
   }
 
@@ -508,6 +576,8 @@ class Loader {
       } else {
         glm::dvec3 p;
         if (!(ls >> p.x >> p.y >> p.z)) bad("expected 'x y z'");
+        for (int i = 0; i < 3; ++i)
+          if (!in_fp24_range(p[i])) bad("expected " + std::string(kFp24Range) + ", got " + shortest(p[i]));
         pts.push_back(p);
         if (pts.size() == want_points) state = 4;
       } 
@@ -538,16 +608,34 @@ std::string dirname(const std::string& path) {
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& name, const std::string& base_dir) {
-  Value root = json::parse(text, name);
+  // Every entry of "primitives" is at least one primitive and every object
+  // holds one: a scene past the limit is refused before it is held whole.
+  const std::vector<json::ItemLimit> limits = {
+      {{"objects", "[]", "primitives"}, kMaxPrimitiveIds, kTooManyPrimitives},
+      {{"objects"}, kMaxPrimitiveIds, "more than 65535 objects (each holds a primitive), the NC's limit"}};
+  Value root = json::parse(text, name, limits);
   return Loader(name, base_dir).scene(root);
 }
 
 Scene load_scene(const std::string& path) {
-  std::ifstream in(path);
+  if (std::filesystem::is_directory(path)) throw SceneError(path + ": is a directory (expected a scene file)");
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open scene file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), path, dirname(path));
+  std::string text;
+  std::streamoff size = in.seekg(0, std::ios::end) ? static_cast<std::streamoff>(in.tellg()) : -1;
+  if (size >= 0) {
+    // One read: a huge scene is then refused by the parse within a moment.
+    text.resize(static_cast<std::size_t>(size));
+    in.seekg(0);
+    in.read(text.data(), size);
+  } else {  // a pipe
+    in.clear();
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    text = ss.str();
+  }
+  if (in.bad()) throw SceneError(path + ": read error");
+  return parse_scene(text, path, dirname(path));
 }
 
 }  // namespace mc1::scene

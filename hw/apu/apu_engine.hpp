@@ -10,17 +10,10 @@
 
 namespace mc1::apu {
 
-// Why a cycle issued no word (docs/apu-isa.md, in priority order).
-enum class Stall : std::uint8_t { None = 0, Bank, Raw, Waw, Cc, Drain };
-constexpr int kStallKinds = 6;
-const char* stall_name(Stall s);
-
-enum class Fault : std::uint8_t {
-  None = 0, ReservedOp, DataAddress, PcOverflow, CallOverflow, CallUnderflow
-};
-const char* fault_name(Fault f);
-
-enum class RunState : std::uint8_t { Idle, Running, Halted, Faulted };
+// Stall (why a cycle issued no word, docs/apu-isa.md, in priority order),
+// Fault and RunState, with stall_name() and fault_name(), are generated from
+// the instruction-set table with the RTL's stall_e, fault_e and run_e
+// (apu_isa.hpp, through microword.hpp).
 
 // An architectural state change, stamped with the cycle in which it becomes
 // visible (an FP result's completion cycle, a store's issue cycle, ...).

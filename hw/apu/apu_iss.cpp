@@ -7,30 +7,6 @@
 
 namespace mc1::apu {
 
-const char* stall_name(Stall s) {
-  switch (s) {
-    case Stall::None: return "none";
-    case Stall::Bank: return "bank";
-    case Stall::Raw: return "raw";
-    case Stall::Waw: return "waw";
-    case Stall::Cc: return "cc";
-    case Stall::Drain: return "drain";
-  }
-  return "?";
-}
-
-const char* fault_name(Fault f) {
-  switch (f) {
-    case Fault::None: return "none";
-    case Fault::ReservedOp: return "reserved-op";
-    case Fault::DataAddress: return "data-address";
-    case Fault::PcOverflow: return "pc-overflow";
-    case Fault::CallOverflow: return "call-overflow";
-    case Fault::CallUnderflow: return "call-underflow";
-  }
-  return "?";
-}
-
 namespace {
 
 constexpr std::uint64_t bit(unsigned r) { return std::uint64_t{1} << (r & 63); }
@@ -52,7 +28,7 @@ DecodedWord DecodedWord::from(const Encoded& e) {
     d.dst |= bit(w.m.d);
   }
   if (w.a.en) {
-    if (static_cast<unsigned>(w.a.op) > static_cast<unsigned>(AddOp::Abs)) {
+    if (is_reserved(w.a.op)) {
       d.kind |= kReserved;
     } else {
       d.src |= bit(w.a.a) | (two_operand(w.a.op) ? bit(w.a.b) : 0);
@@ -67,7 +43,7 @@ DecodedWord DecodedWord::from(const Encoded& e) {
     case MemOp::Ld: d.dst |= bit(w.d.f); break;
     case MemOp::St: d.src |= bit(w.d.f); break;
     case MemOp::None: break;
-    default: d.kind |= kReserved; break;
+    case MemOp::Reserved: d.kind |= kReserved; break;
   }
   switch (w.i.op) {
     case IntOp::Movaf:
@@ -82,10 +58,9 @@ DecodedWord DecodedWord::from(const Encoded& e) {
     case SeqOp::Bcc:
     case SeqOp::Bncc: d.kind |= kCcBranch; break;
     case SeqOp::Halt: d.kind |= kHalt; break;
-    case SeqOp::Reserved13:
-    case SeqOp::Reserved14:
-    case SeqOp::Reserved15: d.kind |= kReserved; break;
-    default: break;
+    default:
+      if (is_reserved(w.s.op)) d.kind |= kReserved;
+      break;
   }
   return d;
 }
@@ -153,13 +128,17 @@ MC1_HOT void Iss::push_f(int latency, std::uint8_t index, std::uint32_t value) {
   b.fmask |= bit(index);
 }
 
-MC1_HOT void Iss::push_a(std::uint8_t index, std::uint16_t value) {
+MC1_HOT void Iss::push_a(int latency, std::uint8_t index, std::uint16_t value) {
   if (index == 0) return;  // A0 reads 0; writes to it are dropped
-  Bucket& b = ring_[(cycle_ + 1) % kRing];
+  Bucket& b = ring_[(cycle_ + latency) % kRing];
   b.a[b.na++] = {index, value};
 }
 
 MC1_HOT void Iss::push_flags(int latency, std::uint8_t flags) { ring_[(cycle_ + latency) % kRing].flags |= flags; }
+
+MC1_HOT void Iss::note_fp(int latency) {
+  if (cycle_ + latency > fp_done_) fp_done_ = cycle_ + latency;
+}
 
 // End of a cycle: the writes that become visible in the next cycle enter the
 // state now, so that between two steps the state is the one the next word
@@ -216,7 +195,8 @@ MC1_HOT Stall Iss::stall_reason(const DecodedWord& dw) const {
   }
   // This cycle's bucket is applied and its mask cleared: every mask left
   // belongs to a write that becomes visible after this cycle.
-  const std::uint64_t in_flight = ring_[0].fmask | ring_[1].fmask | ring_[2].fmask | ring_[3].fmask;
+  std::uint64_t in_flight = 0;
+  for (const Bucket& b : ring_) in_flight |= b.fmask;
   if (dw.src & in_flight) return Stall::Raw;
   if (dw.dst & in_flight) return Stall::Waw;
   if ((k & DecodedWord::kCcBranch) && cmp_done_ > cycle_) return Stall::Cc;
@@ -266,8 +246,9 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
   // and register writes go to future buckets; only the store is immediate.
   if (w.m.en) {
     const fp::Result r = fp::mul(f_[w.m.a], f_[w.m.b]);
-    push_f(2, w.m.d, r.value);
-    push_flags(2, r.flags);
+    push_f(kMulLatency, w.m.d, r.value);
+    push_flags(kMulLatency, r.flags);
+    note_fp(kMulLatency);
     ++counters_.unit_ops[0];
   }
   if (w.a.en) {
@@ -282,38 +263,39 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
       case AddOp::Neg: r = fp::neg(x); break;
       default: r = fp::abs(x); break;
     }
+    const int latency_a = latency(w.a.op);
     if (w.a.op == AddOp::Cmp) {
-      Bucket& b = ring_[(cycle_ + 2) % kRing];
+      Bucket& b = ring_[(cycle_ + latency_a) % kRing];
       b.cc_valid = true;
       b.cc = static_cast<std::uint8_t>(r.value);
-      cmp_done_ = cycle_ + 2;
+      cmp_done_ = cycle_ + latency_a;
     } else {
-      push_f(2, w.a.d, r.value);
+      push_f(latency_a, w.a.d, r.value);
     }
-    push_flags(2, r.flags);
+    push_flags(latency_a, r.flags);
+    note_fp(latency_a);
     ++counters_.unit_ops[1];
   }
   if (w.f.en) {
     const std::uint32_t x = f_[w.f.a];
     fp::Result r{};
-    int latency = 2;
     switch (w.f.op) {
       case FuncOp::Recip: r = fp::recip(x); break;
       case FuncOp::Sqrt: r = fp::sqrt(x); break;
-      case FuncOp::Sin: r = fp::sin(x); latency = 3; break;
-      case FuncOp::Cos: r = fp::cos(x); latency = 3; break;
+      case FuncOp::Sin: r = fp::sin(x); break;
+      case FuncOp::Cos: r = fp::cos(x); break;
     }
-    push_f(latency, w.f.d, r.value);
-    push_flags(latency, r.flags);
-    if (cycle_ + latency > fp_done_) fp_done_ = cycle_ + latency;
+    const int latency_f = latency(w.f.op);
+    push_f(latency_f, w.f.d, r.value);
+    push_flags(latency_f, r.flags);
+    note_fp(latency_f);
     ++counters_.unit_ops[2];
   }
-  if ((w.m.en || w.a.en) && cycle_ + 2 > fp_done_) fp_done_ = cycle_ + 2;
 
   if (w.d.op != MemOp::None) {
     const std::uint16_t addr = static_cast<std::uint16_t>(a_[w.d.base] + w.d.disp);
     if (w.d.op == MemOp::Ld) {
-      push_f(1, w.d.f, data_[dsel_][addr]);
+      push_f(latency(w.d.op), w.d.f, data_[dsel_][addr]);
     } else {
       data_[dsel_][addr] = f_[w.d.f];
       if constexpr (kRecord) rec->commits.push_back({Commit::Kind::Mem, addr, f_[w.d.f]});
@@ -323,29 +305,30 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
   const IntSlot& i = w.i;
   const std::uint8_t ad = i.d & 15;
   const std::uint16_t s = a_[i.s], t = a_[i.t], imm = i.imm;
+  const int li = latency(i.op);
   switch (i.op) {
     case IntOp::None: break;
-    case IntOp::Li: push_a(ad, imm); break;
-    case IntOp::Addi: push_a(ad, static_cast<std::uint16_t>(s + imm)); break;
-    case IntOp::Add: push_a(ad, static_cast<std::uint16_t>(s + t)); break;
-    case IntOp::Sub: push_a(ad, static_cast<std::uint16_t>(s - t)); break;
-    case IntOp::Muli: push_a(ad, static_cast<std::uint16_t>(std::uint32_t{s} * imm)); break;
-    case IntOp::Shl: push_a(ad, static_cast<std::uint16_t>(s << (imm & 15))); break;
-    case IntOp::Shr: push_a(ad, static_cast<std::uint16_t>(s >> (imm & 15))); break;
+    case IntOp::Li: push_a(li, ad, imm); break;
+    case IntOp::Addi: push_a(li, ad, static_cast<std::uint16_t>(s + imm)); break;
+    case IntOp::Add: push_a(li, ad, static_cast<std::uint16_t>(s + t)); break;
+    case IntOp::Sub: push_a(li, ad, static_cast<std::uint16_t>(s - t)); break;
+    case IntOp::Muli: push_a(li, ad, static_cast<std::uint16_t>(std::uint32_t{s} * imm)); break;
+    case IntOp::Shl: push_a(li, ad, static_cast<std::uint16_t>(s << (imm & 15))); break;
+    case IntOp::Shr: push_a(li, ad, static_cast<std::uint16_t>(s >> (imm & 15))); break;
     case IntOp::Sra:
-      push_a(ad, static_cast<std::uint16_t>(static_cast<std::int16_t>(s) >> (imm & 15)));
+      push_a(li, ad, static_cast<std::uint16_t>(static_cast<std::int16_t>(s) >> (imm & 15)));
       break;
-    case IntOp::Andi: push_a(ad, s & imm); break;
-    case IntOp::Ori: push_a(ad, s | imm); break;
-    case IntOp::Xor: push_a(ad, s ^ t); break;
-    case IntOp::Movaf: push_f(1, i.d, s); break;
-    case IntOp::Movfa: push_a(ad, static_cast<std::uint16_t>(f_[i.imm & 63])); break;
-    case IntOp::Lif: push_f(1, i.d, (std::uint32_t{imm} << 8) & kMask24); break;
+    case IntOp::Andi: push_a(li, ad, s & imm); break;
+    case IntOp::Ori: push_a(li, ad, s | imm); break;
+    case IntOp::Xor: push_a(li, ad, s ^ t); break;
+    case IntOp::Movaf: push_f(li, i.d, s); break;
+    case IntOp::Movfa: push_a(li, ad, static_cast<std::uint16_t>(f_[i.imm & 63])); break;
+    case IntOp::Lif: push_f(li, i.d, (std::uint32_t{imm} << 8) & kMask24); break;
     case IntOp::Reserved: break;
   }
 
   switch (w.s.op) {
-    case SeqOp::Dbnz: push_a(w.s.r, static_cast<std::uint16_t>(a_[w.s.r] - 1)); break;
+    case SeqOp::Dbnz: push_a(latency(SeqOp::Dbnz), w.s.r, static_cast<std::uint16_t>(a_[w.s.r] - 1)); break;
     case SeqOp::Call: stack_[sp_++] = static_cast<std::uint16_t>(pc_ + 1); break;
     case SeqOp::Ret: --sp_; break;
     case SeqOp::Swapd:

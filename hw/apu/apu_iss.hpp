@@ -14,6 +14,14 @@
 
 namespace mc1::apu {
 
+// The smallest power of two above n: a ring of future cycles that long holds
+// every write still in flight.
+constexpr int pow2_above(int n) {
+  int r = 1;
+  while (r <= n) r <<= 1;
+  return r;
+}
+
 // A program word decoded once, when the MPU writes it: the fields plus what
 // the stall logic asks of every word, precomputed.
 struct DecodedWord {
@@ -93,7 +101,7 @@ class Iss final : public ApuEngine {
     FWrite f[6];  // M, A, F twice, LD, MOVAF/LIF
     AWrite a[2];  // I slot, DBNZ
   };
-  static constexpr int kRing = 4;  // > the longest latency (3)
+  static constexpr int kRing = pow2_above(kMaxLatency);
 
   template <bool kRecord>
   void clock(CycleRecord* rec);
@@ -108,8 +116,9 @@ class Iss final : public ApuEngine {
   template <bool kRecord>
   void issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec);
   void push_f(int latency, std::uint8_t index, std::uint32_t value);
-  void push_a(std::uint8_t index, std::uint16_t value);
+  void push_a(int latency, std::uint8_t index, std::uint16_t value);
   void push_flags(int latency, std::uint8_t flags);
+  void note_fp(int latency);  // an FP op in flight until cycle_ + latency (drain)
 
   // Architectural state.
   std::array<std::uint32_t, kNumFRegs> f_{};

@@ -26,21 +26,12 @@ std::string hex16(unsigned v) {
   return buf;
 }
 
-const char* const kAddNames[8] = {"add", "sub", "cmp", "float", "fix", "neg", "abs", "add.op7"};
-const char* const kFuncNames[4] = {"recip", "sqrt", "sin", "cos"};
-const char* const kIntNames[16] = {"",     "li",   "addi", "add",   "sub",   "muli",  "shl", "shr",
-                                   "sra",  "andi", "ori",  "xor",   "movaf", "movfa", "lif", "int.op15"};
-const char* const kSeqNames[16] = {"",     "jmp",  "bcc",   "bncc",  "dbnz",       "bz",
-                                   "bnz",  "bltz", "call",  "ret",   "swapd",      "swapp",
-                                   "halt", "seq.op13", "seq.op14", "seq.op15"};
-
 std::string mul_text(const MulSlot& m) {
   return "mul " + fr(m.d) + ", " + fr(m.a) + ", " + fr(m.b);
 }
 
 std::string add_text(const AddSlot& a) {
-  const unsigned op = static_cast<unsigned>(a.op) & 7;
-  const std::string name = kAddNames[op];
+  const std::string name = mnemonic(a.op);
   switch (a.op) {
     case AddOp::Cmp: return name + " " + fr(a.a) + ", " + fr(a.b);
     case AddOp::Float:
@@ -52,7 +43,7 @@ std::string add_text(const AddSlot& a) {
 }
 
 std::string func_text(const FuncSlot& f) {
-  return std::string(kFuncNames[static_cast<unsigned>(f.op) & 3]) + " " + fr(f.d) + ", " + fr(f.a);
+  return std::string(mnemonic(f.op)) + " " + fr(f.d) + ", " + fr(f.a);
 }
 
 std::string mem_text(const MemSlot& d) {
@@ -60,12 +51,11 @@ std::string mem_text(const MemSlot& d) {
   if (d.disp > 0) addr += "+" + std::to_string(d.disp);
   if (d.disp < 0) addr += "-" + std::to_string(-int{d.disp});
   addr += "]";
-  const char* name = d.op == MemOp::Ld ? "ld" : d.op == MemOp::St ? "st" : "mem.op3";
-  return std::string(name) + " " + fr(d.f) + ", " + addr;
+  return std::string(mnemonic(d.op)) + " " + fr(d.f) + ", " + addr;
 }
 
 std::string int_text(const IntSlot& i) {
-  const std::string name = kIntNames[static_cast<unsigned>(i.op) & 15];
+  const std::string name = mnemonic(i.op);
   const auto simm = std::to_string(static_cast<std::int16_t>(i.imm));
   switch (i.op) {
     case IntOp::Li: return name + " " + ar(i.d) + ", " + simm;
@@ -87,7 +77,7 @@ std::string int_text(const IntSlot& i) {
 }
 
 std::string seq_text(const SeqSlot& s) {
-  const std::string name = kSeqNames[static_cast<unsigned>(s.op) & 15];
+  const std::string name = mnemonic(s.op);
   switch (s.op) {
     case SeqOp::Jmp:
     case SeqOp::Call:
@@ -161,10 +151,10 @@ bool writes_areg(IntOp op) {
 }  // namespace
 
 std::string noncanonical_reason(const MicroWord& w) {
-  if (w.a.en && static_cast<unsigned>(w.a.op) > 6) return "reserved A-slot op";
-  if (static_cast<unsigned>(w.d.op) > 2) return "reserved D-slot op";
-  if (w.i.op == IntOp::Reserved) return "reserved I-slot op";
-  if (static_cast<unsigned>(w.s.op) > 12) return "reserved S-slot op";
+  if (w.a.en && is_reserved(w.a.op)) return "reserved A-slot op";
+  if (is_reserved(w.d.op)) return "reserved D-slot op";
+  if (is_reserved(w.i.op)) return "reserved I-slot op";
+  if (is_reserved(w.s.op)) return "reserved S-slot op";
   if (writes_areg(w.i.op) && w.i.d > 15) return "I-slot A register index above 15";
   const bool shift = w.i.op == IntOp::Shl || w.i.op == IntOp::Shr || w.i.op == IntOp::Sra;
   if (shift && w.i.imm > 15) return "shift amount above 15";

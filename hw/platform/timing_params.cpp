@@ -1,6 +1,7 @@
 #include "timing_params.hpp"
 
 #include <charconv>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -183,10 +184,13 @@ void load_params_text(TimingParams& p, std::string_view text, const std::string&
 }
 
 void load_params_file(TimingParams& p, const std::string& path) {
+  // A directory opens as a stream and reads as empty: it would set nothing.
+  if (std::filesystem::is_directory(path)) throw ParamError(path + ": is a directory (expected a parameter file)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ParamError(path + ": cannot open parameter file");
   std::ostringstream ss;
   ss << in.rdbuf();
+  if (in.bad()) throw ParamError(path + ": read error");
   load_params_text(p, ss.str(), path);
 }
 

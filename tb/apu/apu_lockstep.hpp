@@ -34,16 +34,6 @@ inline std::string commit_text(const Commit& c) {
   return "?";
 }
 
-inline const char* run_state_name(RunState s) {
-  switch (s) {
-    case RunState::Idle: return "idle";
-    case RunState::Running: return "running";
-    case RunState::Halted: return "halted";
-    case RunState::Faulted: return "faulted";
-  }
-  return "?";
-}
-
 inline std::string record_text(const CycleRecord& r) {
   std::string s = "pc " + hex_text(r.pc, 3) + (r.issued ? " issued" : " not issued");
   if (r.stall != Stall::None) s += std::string(" stall ") + stall_name(r.stall);

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "Vapu_core.h"
-#include "Vapu_core___024root.h"
 #include "verilated.h"
 #include "verilated_fst_c.h"
 
@@ -13,7 +12,6 @@ namespace mc1::apu {
 
 namespace {
 
-constexpr std::uint32_t kMask24 = 0xFFFFFF;
 constexpr int kFCompletionPorts = 4;  // mul, add, func RECIP/SQRT, func SIN/COS
 constexpr int kFCommitPorts = 6;      // the completions; LD, MOVAF/LIF of t - 1
 
@@ -32,6 +30,7 @@ RtlEngine::RtlEngine(const char* fst_path) : ctx_(std::make_unique<VerilatedCont
   ctx_->randReset(0);  // the ISA's power-on state: every register and word is 0
   if (fst_path) ctx_->traceEverOn(true);
   top_ = std::make_unique<Vapu_core>(ctx_.get());
+  backdoor_ = std::make_unique<RtlBackdoor>(*top_);
   Vapu_core& t = *top_;
 
   // Synchronous reset: one clock with rst_n low; it is not an APU cycle.
@@ -59,29 +58,17 @@ RtlEngine::~RtlEngine() {
 
 // ---- MPU side -----------------------------------------------------------------
 
+// The MPU owns the bank the APU does not use.
 void RtlEngine::write_program(std::uint16_t addr, const Encoded& word) {
-  auto& root = *top_->rootp;
-  auto& bank = top_->apu2mpu_psel ? root.apu_core__DOT__u_pmem__DOT__bank0
-                                  : root.apu_core__DOT__u_pmem__DOT__bank1;
-  auto& dst = bank[addr % kProgramWords];
-  dst[0] = static_cast<std::uint32_t>(word.lo);
-  dst[1] = static_cast<std::uint32_t>(word.lo >> 32);
-  dst[2] = static_cast<std::uint32_t>(word.hi);
-  dst[3] = static_cast<std::uint32_t>(word.hi >> 32);
+  backdoor_->write_program(top_->apu2mpu_psel ^ 1, addr, word);
 }
 
 void RtlEngine::write_data(std::uint16_t addr, std::uint32_t value) {
-  auto& root = *top_->rootp;
-  auto& bank = top_->apu2mpu_dsel ? root.apu_core__DOT__u_dmem__DOT__bank0
-                                  : root.apu_core__DOT__u_dmem__DOT__bank1;
-  bank[addr % kDataWords] = value & kMask24;
+  backdoor_->write_data(top_->apu2mpu_dsel ^ 1, addr, value);
 }
 
 std::uint32_t RtlEngine::read_data(std::uint16_t addr) const {
-  const auto& root = *top_->rootp;
-  const auto& bank = top_->apu2mpu_dsel ? root.apu_core__DOT__u_dmem__DOT__bank0
-                                        : root.apu_core__DOT__u_dmem__DOT__bank1;
-  return bank[addr % kDataWords];
+  return backdoor_->read_data(top_->apu2mpu_dsel ^ 1, addr);
 }
 
 void RtlEngine::hand_over_program() {
@@ -209,8 +196,8 @@ std::uint32_t RtlEngine::freg(int i) const {
     if (((t.dbg_fc_en >> p) & 1) && static_cast<int>((t.dbg_fc_idx >> (6 * p)) & 63) == i)
       return wide_bits(t.dbg_fc_val, 24 * p, 24);
   }
-  return t.rootp->apu_core__DOT__u_fregs__DOT__regs[i];
+  return backdoor_->freg_array(i);
 }
-std::uint16_t RtlEngine::areg(int i) const { return top_->rootp->apu_core__DOT__u_aregs__DOT__regs[i & 15]; }
+std::uint16_t RtlEngine::areg(int i) const { return backdoor_->areg_array(i); }
 
 }  // namespace mc1::apu

@@ -5,16 +5,17 @@
 // step() clocks one cycle: it reads the core's debug ports (what the cycle
 // issues, stalls on and commits) before the rising edge, then clocks. MPU
 // calls act at once, as on the ISS: hand-over and start are core inputs that
-// the core forwards into the next cycle; bank reads use the MPU read port;
-// bank writes go straight into the memory arrays of the bank the APU does not
-// use (a write there cannot be seen by the APU before a swap, so writing it
-// between two clock edges is exact).
+// the core forwards into the next cycle; bank reads and writes go straight
+// into the memory arrays of the bank the APU does not use, through the
+// backdoor (apu_rtl_backdoor.hpp; a write there cannot be seen by the APU
+// before a swap, so writing it between two clock edges is exact).
 #pragma once
 
 #include <cstdint>
 #include <memory>
 
 #include "apu_engine.hpp"
+#include "apu_rtl_backdoor.hpp"
 
 class Vapu_core;
 class VerilatedContext;
@@ -64,6 +65,7 @@ class RtlEngine final : public ApuEngine {
   std::unique_ptr<VerilatedContext> ctx_;
   std::unique_ptr<Vapu_core> top_;
   std::unique_ptr<VerilatedFstC> fst_;
+  std::unique_ptr<RtlBackdoor> backdoor_;  // into *top_
   std::uint64_t cycle_ = 0;
   bool dump_pending_ = false;  // MPU inputs changed since the last waveform dump
 };

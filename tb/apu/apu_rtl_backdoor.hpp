@@ -1,0 +1,47 @@
+// The RTL engine's backdoor into the verilated apu_core: the one file that
+// names Verilator's internal signals (the root members for the memories and
+// register files, marked public in apu_rtl/). RtlEngine fills and reads the
+// MPU's banks through it (exact between two clock edges: apu_rtl_engine.hpp)
+// and reads the register arrays for the ISA's observers.
+//
+// When an RTL instance or array is renamed, only apu_rtl_backdoor.cpp stops
+// compiling, and tests/apu_rtl_backdoor_test.cpp checks every accessor
+// against the core's own ports, naming the signal (signal_name) that
+// disagrees. docs/apu-rtl.md "RtlEngine" lists the signals.
+#pragma once
+
+#include <cstdint>
+
+#include "microword.hpp"
+
+class Vapu_core;
+
+namespace mc1::apu {
+
+class RtlBackdoor {
+ public:
+  // Every internal signal the backdoor reads or writes.
+  enum class Signal { ProgramBank0, ProgramBank1, DataBank0, DataBank1, FRegs, ARegs };
+  static constexpr Signal kSignals[] = {Signal::ProgramBank0, Signal::ProgramBank1, Signal::DataBank0,
+                                        Signal::DataBank1,    Signal::FRegs,        Signal::ARegs};
+  // Its hierarchical name in the RTL, e.g. "apu_core.u_pmem.bank0".
+  static const char* signal_name(Signal s);
+  static Signal program_bank(int bank) { return bank & 1 ? Signal::ProgramBank1 : Signal::ProgramBank0; }
+  static Signal data_bank(int bank) { return bank & 1 ? Signal::DataBank1 : Signal::DataBank0; }
+
+  explicit RtlBackdoor(Vapu_core& top) : top_(top) {}
+
+  // A program or data bank by number (0, 1), whoever owns it now.
+  void write_program(int bank, std::uint16_t addr, const Encoded& word);
+  Encoded read_program(int bank, std::uint16_t addr) const;
+  void write_data(int bank, std::uint16_t addr, std::uint32_t value);
+  std::uint32_t read_data(int bank, std::uint16_t addr) const;
+  // The register files' arrays as the last clock edge left them (no bypass).
+  std::uint32_t freg_array(int i) const;
+  std::uint16_t areg_array(int i) const;
+
+ private:
+  Vapu_core& top_;
+};
+
+}  // namespace mc1::apu
