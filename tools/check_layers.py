@@ -71,8 +71,8 @@ ALLOWED = {
     "host/mc1": HW_ALL | RTL | {"firmware", "tb"} | HOST_LIBS,
     # Tests, the top-level build, tools and docs may use anything.
     "tests": None,
-    # Fuzz harnesses: like the test benches, the libraries they drive.
-    "fuzz": HW_ALL | RTL | {"firmware"} | HOST_LIBS,
+    # Fuzz harnesses: the libraries they drive, the FP24 vector reader of tb.
+    "fuzz": HW_ALL | RTL | {"firmware", "tb"} | HOST_LIBS,
     "tools": None,
     "": None,
 }
