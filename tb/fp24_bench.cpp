@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cmdline.hpp"
 #include "fp24.hpp"
 #include "fp24_rtl.hpp"
 
@@ -14,6 +15,7 @@ namespace {
 
 using namespace mc1::fp24;
 using namespace mc1::fp24::tb;
+namespace cli = mc1::cmdline;
 
 // The machine is shared, so rates are per second of this thread's CPU time,
 // not wall time: a busy neighbour then does not halve the figures.
@@ -23,13 +25,11 @@ double cpu_seconds() {
   return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
-constexpr const char* kUsage =
-    "usage: fp24-bench [--seconds S] [--no-rtl]\n"
-    "Measures the model's ops/s per op on one core and the verilated RTL's\n"
-    "ops/s per unit (streaming one op per cycle through the unit's own model),\n"
-    "per second of the thread's CPU time (the figures hold on a loaded machine).\n"
-    "  --seconds S  minimum CPU time per measurement (default 0.5)\n"
-    "  --no-rtl     model only\n";
+constexpr const char* kDescription =
+    "fp24-bench: measures the model's ops/s per op on one core and the verilated\n"
+    "RTL's ops/s per unit (streaming one op per cycle through the unit's own\n"
+    "model), per second of the thread's CPU time (the figures hold on a loaded\n"
+    "machine).";
 
 // Operands drawn from normal numbers of moderate exponent, so every op runs
 // its main path (no early-out on special values).
@@ -83,27 +83,15 @@ double rtl_rate(Op op, const std::vector<Bits>& a, const std::vector<Bits>& b, d
 }  // namespace
 
 int main(int argc, char** argv) {
+  CLI::App app{kDescription, "fp24-bench"};
+  cli::conventions(app);
   double seconds = 0.5;
   bool rtl = true;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    } else if (arg == "--no-rtl") {
-      rtl = false;
-    } else if (arg == "--seconds" && i + 1 < argc) {
-      char* end = nullptr;
-      seconds = std::strtod(argv[++i], &end);
-      if (*end != '\0' || !(seconds > 0)) {
-        std::fprintf(stderr, "fp24-bench: --seconds: '%s' is not a positive number\n", argv[i]);
-        return 2;
-      }
-    } else {
-      std::fprintf(stderr, "fp24-bench: unknown argument '%s'\n%s", arg.c_str(), kUsage);
-      return 2;
-    }
-  }
+  app.add_option("--seconds", seconds, "minimum CPU time per measurement")
+      ->check(cli::real_in(1e-6, 3600))
+      ->capture_default_str();
+  app.add_flag("--no-rtl{false}", rtl, "model only");
+  if (auto rc = cli::parse(app, argc, argv)) return *rc;
   const std::vector<Bits> a = operands(1 << 16, 1), b = operands(1 << 16, 2);
   Bits sink = 0;
   std::printf("%-6s %-10s %14s %14s   (M ops per CPU second, one thread)\n", "op", "unit", "model", "rtl");

@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "cmdline.hpp"
 #include "fp24.hpp"
 #include "fp24_oracle.hpp"
 #include "fp24_rtl.hpp"
@@ -30,28 +31,15 @@ namespace {
 using namespace mc1::fp24;
 using namespace mc1::fp24::tb;
 using Clock = std::chrono::steady_clock;
+namespace cli = mc1::cmdline;
 
-constexpr const char* kUsage =
-    "usage: fp24-regress [options]\n"
-    "\n"
+constexpr const char* kDescription =
+    "fp24-regress: the FP24 regression (docs/fp24-verification.md).\n"
     "Default run: recip sqrt sin cos fix neg abs on all 2^24 encodings, float on\n"
     "all 2^16 integers, add sub mul cmp on a structured set (exponent table x\n"
     "significand patterns x signs, all pairs) plus random pairs; RTL vs model\n"
     "and model vs MPFR oracle. Exit status 0 only if everything matches and\n"
-    "SIN/COS are faithful.\n"
-    "\n"
-    "  --ops LIST      comma-separated ops to run (default: all 12)\n"
-    "  --no-rtl        skip the verilated RTL\n"
-    "  --no-oracle     skip the MPFR oracle\n"
-    "  --random N      random pairs per two-operand op (default 10000000)\n"
-    "  --seed S        random seed (default 1); a run is reproducible from it\n"
-    "  --long          add the long sweep: mul on all 2^32 significand pairs at\n"
-    "                  exponents (63, 63), and random pairs raised to >= 10^9\n"
-    "  --threads N     worker threads (default: all cores)\n"
-    "  --show N        failing vectors listed per op and kind (default 5)\n"
-    "  --text FILE     also write the text report to FILE\n"
-    "  --json FILE     write the report as JSON to FILE\n"
-    "  --help          this text\n";
+    "SIN/COS are faithful.";
 
 constexpr std::uint32_t kChunk = 1u << 16;  // vectors per job
 constexpr std::uint64_t kLongRandom = 1000000000;
@@ -70,21 +58,10 @@ struct Options {
 
 // ---- command line ----------------------------------------------------------------
 
-[[noreturn]] void usage_error(const std::string& what) {
-  std::fprintf(stderr, "fp24-regress: %s\n%s", what.c_str(), kUsage);
-  std::exit(2);
-}
-
-std::uint64_t parse_count(const std::string& opt, const std::string& text) {
-  std::size_t used = 0;
-  unsigned long long v = 0;
-  try {
-    v = std::stoull(text, &used, 0);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || text[0] == '-') usage_error(opt + ": '" + text + "' is not a count");
-  return v;
+std::vector<Op> all_ops() {
+  std::vector<Op> ops;
+  for (int i = 0; i < kOpCount; ++i) ops.push_back(static_cast<Op>(i));
+  return ops;
 }
 
 std::vector<Op> parse_ops(const std::string& list) {
@@ -93,39 +70,33 @@ std::vector<Op> parse_ops(const std::string& list) {
   std::string name;
   while (std::getline(s, name, ',')) {
     const std::optional<Op> op = op_from_name(name);
-    if (!op) usage_error("--ops: unknown op '" + name + "'");
+    if (!op) throw cli::UsageError("--ops: unknown op '" + name + "'");
     if (std::find(ops.begin(), ops.end(), *op) == ops.end()) ops.push_back(*op);
   }
-  if (ops.empty()) usage_error("--ops: empty list");
+  if (ops.empty()) throw cli::UsageError("--ops: empty list");
   return ops;
 }
 
-Options parse_options(int argc, char** argv) {
-  Options o;
-  for (int i = 0; i < kOpCount; ++i) o.ops.push_back(static_cast<Op>(i));
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage_error("option " + arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
-      std::exit(0);
-    } else if (arg == "--ops") o.ops = parse_ops(value());
-    else if (arg == "--no-rtl") o.rtl = false;
-    else if (arg == "--no-oracle") o.oracle = false;
-    else if (arg == "--long") o.long_run = true;
-    else if (arg == "--random") o.random = parse_count(arg, value());
-    else if (arg == "--seed") o.seed = parse_count(arg, value());
-    else if (arg == "--threads") o.threads = unsigned(std::max<std::uint64_t>(1, parse_count(arg, value())));
-    else if (arg == "--show") o.show = unsigned(parse_count(arg, value()));
-    else if (arg == "--text") o.text = value();
-    else if (arg == "--json") o.json = value();
-    else usage_error("unknown argument '" + arg + "'");
-  }
-  if (o.long_run) o.random = std::max(o.random, kLongRandom);
-  return o;
+void add_options(CLI::App& app, Options& o, std::string& ops) {
+  app.add_option("--ops", ops, "comma-separated ops to run (default: all 12)")->type_name("LIST");
+  app.add_flag("--no-rtl{false}", o.rtl, "skip the verilated RTL");
+  app.add_flag("--no-oracle{false}", o.oracle, "skip the MPFR oracle");
+  app.add_option("--random", o.random, "random pairs per two-operand op")
+      ->transform(cli::unsigned_in(0, UINT64_MAX))
+      ->capture_default_str();
+  app.add_option("--seed", o.seed, "random seed; a run is reproducible from it")
+      ->transform(cli::unsigned_in(0, UINT64_MAX))
+      ->capture_default_str();
+  app.add_flag("--long", o.long_run,
+               "add the long sweep: mul on all 2^32 significand pairs at\n"
+               "exponents (63, 63), and random pairs raised to >= 10^9");
+  app.add_option("--threads", o.threads, "worker threads (default: all cores)")
+      ->transform(cli::unsigned_in(1, 1024));
+  app.add_option("--show", o.show, "failing vectors listed per op and kind")
+      ->transform(cli::unsigned_in(0, 1000000))
+      ->capture_default_str();
+  app.add_option("--text", o.text, "also write the text report to FILE")->type_name("FILE");
+  app.add_option("--json", o.json, "write the report as JSON to FILE")->type_name("FILE");
 }
 
 // ---- vectors ---------------------------------------------------------------------
@@ -516,27 +487,45 @@ std::string json_report(const Options& o, const Run& run) {
 std::unique_ptr<std::ofstream> open_report(const std::string& path) {
   if (path.empty()) return nullptr;
   auto f = std::make_unique<std::ofstream>(path);
-  if (!*f) usage_error(path + ": cannot open for writing");
+  if (!*f) throw cli::UsageError(path + ": cannot open for writing");
   return f;
 }
 
-void write_report(std::ofstream* f, const std::string& path, const std::string& text) {
-  if (f == nullptr) return;
+// A report that cannot be written whole is removed, not left half written.
+bool write_report(std::ofstream* f, const std::string& path, const std::string& text) {
+  if (f == nullptr) return true;
   *f << text;
   f->close();
-  if (!*f) std::fprintf(stderr, "fp24-regress: %s: write failed\n", path.c_str());
+  if (*f) return true;
+  std::fprintf(stderr, "fp24-regress: %s: write failed\n", path.c_str());
+  std::remove(path.c_str());
+  return false;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options o = parse_options(argc, argv);
-  const auto text_file = open_report(o.text);
-  const auto json_file = open_report(o.json);
+  CLI::App app{kDescription, "fp24-regress"};
+  cli::conventions(app,
+                  "Exit status: 0 all match; 1 a mismatch, or a report that could not be written;\n"
+                  "2 usage error (a report file that cannot be opened is one).");
+  Options o;
+  std::string ops;
+  add_options(app, o, ops);
+  if (auto rc = cli::parse(app, argc, argv)) return *rc;
+  std::unique_ptr<std::ofstream> text_file, json_file;
+  try {
+    o.ops = app.count("--ops") ? parse_ops(ops) : all_ops();
+    text_file = open_report(o.text);
+    json_file = open_report(o.json);
+  } catch (const cli::UsageError& e) {
+    return cli::usage_error(app, e.what());
+  }
+  if (o.long_run) o.random = std::max(o.random, kLongRandom);
   const Run run = run_all(o);
   const std::string text = text_report(o, run);
   std::fputs(text.c_str(), stdout);
-  write_report(text_file.get(), o.text, text);
-  write_report(json_file.get(), o.json, json_report(o, run));
-  return passed(o, run) ? 0 : 1;
+  const bool written = write_report(text_file.get(), o.text, text) &&
+                       write_report(json_file.get(), o.json, json_report(o, run));
+  return passed(o, run) && written ? cli::kExitOk : cli::kExitFailed;
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cmdline.hpp"
 #include "fp24.hpp"
 #include "fp24_oracle.hpp"
 #include "fp24_rtl.hpp"
@@ -17,57 +18,30 @@ namespace {
 
 using namespace mc1::fp24;
 using namespace mc1::fp24::tb;
+namespace cli = mc1::cmdline;
 
-constexpr const char* kUsage =
-    "usage: fp24-run --engine model|rtl|oracle [--trace FILE.fst]\n"
-    "\n"
+constexpr const char* kDescription =
+    "fp24-run: the FP24 vector interface of docs/fp24.md over one engine.\n"
     "Reads FP24 vectors `OP A [B]` (hex; float's A is a 16-bit integer) from\n"
     "standard input, one per line, and writes `RESULT FLAGS` (%06x %02x) per\n"
     "vector, in order. Ops: add sub mul recip sqrt sin cos cmp float fix neg abs.\n"
     "Blank lines and lines starting with '#' are skipped and produce no output.\n"
     "All input is checked before anything is computed: a malformed line is\n"
-    "reported as <stdin>:LINE: ... on standard error, with exit status 2.\n"
-    "\n"
-    "  --engine model   the bit-accurate C++ model (hw/apu)\n"
-    "  --engine rtl     the verilated RTL (apu_rtl/fp24_units.sv); the three units\n"
-    "                   run concurrently, each taking its ops in input order\n"
-    "  --engine oracle  the MPFR oracle (tb/fp24_oracle.cpp)\n"
-    "  --trace FILE     rtl only: write an FST waveform of fp24_units to FILE\n"
-    "  --help           this text\n";
+    "reported as <stdin>:LINE: ... on standard error, with exit status 2.";
 
 struct Options {
   std::string engine;
   std::string trace;
 };
 
-[[noreturn]] void usage_error(const std::string& what) {
-  std::fprintf(stderr, "fp24-run: %s\n%s", what.c_str(), kUsage);
-  std::exit(2);
-}
-
-Options parse_options(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage_error("option " + arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
-      std::exit(0);
-    } else if (arg == "--engine") {
-      o.engine = value();
-    } else if (arg == "--trace") {
-      o.trace = value();
-    } else {
-      usage_error("unknown argument '" + arg + "'");
-    }
-  }
-  if (o.engine != "model" && o.engine != "rtl" && o.engine != "oracle")
-    usage_error(o.engine.empty() ? "--engine is required" : "unknown engine '" + o.engine + "'");
-  if (!o.trace.empty() && o.engine != "rtl") usage_error("--trace needs --engine rtl");
-  return o;
+void add_options(CLI::App& app, Options& o) {
+  app.add_option("--engine", o.engine,
+                 "model: the bit-accurate C++ model (hw/apu); rtl: the verilated RTL\n"
+                 "(apu_rtl/fp24_units.sv; the three units run concurrently, each taking\n"
+                 "its ops in input order); oracle: the MPFR oracle (tb/fp24_oracle.cpp)")
+      ->required()
+      ->check(CLI::IsMember({"model", "rtl", "oracle"}));
+  app.add_option("--trace", o.trace, "rtl only: write an FST waveform of fp24_units to FILE")->type_name("FILE");
 }
 
 std::vector<Result> compute(const Options& o, const std::vector<Issue>& vectors) {
@@ -83,17 +57,33 @@ std::vector<Result> compute(const Options& o, const std::vector<Issue>& vectors)
   return results;
 }
 
+// Every vector of standard input; a directory or a read error is a usage
+// error, not an empty file.
+std::vector<Issue> read_stdin() {
+  cli::require_stdin_not_directory();
+  std::vector<Issue> vectors = read_vectors(std::cin, "<stdin>");
+  if (std::cin.bad()) throw cli::UsageError("<stdin>: read error");
+  return vectors;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options o = parse_options(argc, argv);
+  CLI::App app{kDescription, "fp24-run"};
+  cli::conventions(app, "Exit status: 0 done; 1 an RTL timing-contract violation; 2 usage or input error.");
+  Options o;
+  add_options(app, o);
+  if (auto rc = cli::parse(app, argc, argv)) return *rc;
+  if (!o.trace.empty() && o.engine != "rtl") return cli::usage_error(app, "--trace needs --engine rtl");
   std::ios::sync_with_stdio(false);
   std::vector<Issue> vectors;
   try {
-    vectors = read_vectors(std::cin, "<stdin>");
+    vectors = read_stdin();
   } catch (const VectorError& e) {
     std::fprintf(stderr, "%s\n", e.what());
-    return 2;
+    return cli::kExitUsage;
+  } catch (const cli::UsageError& e) {
+    return cli::usage_error(app, e.what());
   }
   try {
     const std::vector<Result> results = compute(o, vectors);
@@ -103,7 +93,7 @@ int main(int argc, char** argv) {
     std::fwrite(out.data(), 1, out.size(), stdout);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fp24-run: %s\n", e.what());
-    return 1;
+    return cli::kExitFailed;
   }
-  return std::fflush(stdout) == 0 ? 0 : 1;
+  return std::fflush(stdout) == 0 ? cli::kExitOk : cli::kExitFailed;
 }

@@ -57,11 +57,11 @@ ALLOWED = {
     # The machine: every unit, wired.
     "hw/mc1": HW_ALL,
     # Plain data and tools that know no machine.
-    "host/common": set(),  # output files written whole or not at all
+    "host/common": set(),  # output files written whole or not at all; command lines
     "host/scene": set(),
     "host/imgcmp": {"host/common"},
     "host/apuasm": HW_BASE | {"host/common"},
-    "host/refrender": {"host/scene", "host/imgcmp"},
+    "host/refrender": {"host/common", "host/scene", "host/imgcmp"},
     # Firmware runs on an NC and the RC's side of a frame; it reads scenes.
     "firmware": HW_ALL - {"hw/mc1"} | {"host/scene"},
     # Test benches: the RTL under test, the models, firmware and host libraries.

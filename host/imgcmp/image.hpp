@@ -1,4 +1,4 @@
-// RGB8 images, their PNG files, and the comparisons used to check a rendered
+// RGB8 images, their PNG files (png.hpp), and the comparisons used to check a rendered
 // frame against the reference renderer (PSNR, difference image).
 #pragma once
 
@@ -28,12 +28,6 @@ class ImageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// 8-bit RGB, non-interlaced; one IDAT written; any filter types read.
-void write_png(const std::string& path, const Image& img);
-Image read_png(const std::string& path);
-std::vector<std::uint8_t> encode_png(const Image& img);
-Image decode_png(const std::vector<std::uint8_t>& bytes, const std::string& name);
-
 // Mean squared error over all 3 * width * height samples.
 double mse(const Image& a, const Image& b);
 // 10 log10(255^2 / MSE) in dB; +infinity for identical images.
@@ -43,3 +37,6 @@ int max_abs_diff(const Image& a, const Image& b);
 Image difference(const Image& a, const Image& b, int scale);
 
 }  // namespace mc1::imgcmp
+
+// The PNG files of an Image (read_png, write_png, ...) come with it.
+#include "png.hpp"  // IWYU pragma: export

@@ -3,55 +3,60 @@
 // difference; exits 1 when --min is given and the PSNR is below it.
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
+#include <vector>
 
+#include "cmdline.hpp"
 #include "image.hpp"
-
-using namespace mc1::imgcmp;
 
 namespace {
 
-[[noreturn]] void usage(const std::string& msg) {
-  std::fprintf(stderr, "mc1-psnr: %s\nusage: mc1-psnr A.png B.png [--diff D.png] [--scale K] [--min DB]\n",
-               msg.c_str());
-  std::exit(2);
-}
+using namespace mc1::imgcmp;
+namespace cli = mc1::cmdline;
 
-double parse_number(const std::string& opt, const char* text) {
-  char* end = nullptr;
-  double v = std::strtod(text, &end);
-  if (end == text || *end) usage(opt + ": not a number: " + text);
-  return v;
+struct Options {
+  std::vector<std::string> files;
+  std::string diff_path;
+  int scale = 8;
+  double min_db = 0;
+};
+
+void add_options(CLI::App& app, Options& o) {
+  app.add_option("FILES", o.files, "the two PNG files A.png B.png")->required()->expected(2)->check(cli::input_file());
+  app.add_option("--diff", o.diff_path, "write the difference image min(255, K |a - b|) to FILE")->type_name("FILE");
+  app.add_option("--scale", o.scale, "K, the difference image's gain")
+      ->transform(cli::unsigned_in(1, 255))
+      ->capture_default_str();
+  app.add_option("--min", o.min_db, "exit 1 when the PSNR is below DB")->check(cli::real_in(0, 1000));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string files[2], diff_path;
-  int nfiles = 0, scale = 8;
-  double min_db = -1;
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    if ((a == "--diff" || a == "--scale" || a == "--min") && i + 1 >= argc) usage(a + " needs a value");
-    if (a == "--diff") diff_path = argv[++i];
-    else if (a == "--scale") scale = static_cast<int>(parse_number(a, argv[++i]));
-    else if (a == "--min") min_db = parse_number(a, argv[++i]);
-    else if (!a.empty() && a[0] == '-') usage("unknown option " + a);
-    else if (nfiles < 2) files[nfiles++] = a;
-    else usage("too many files");
-  }
-  if (nfiles != 2) usage("two PNG files expected");
-  if (scale < 1) usage("--scale must be at least 1");
+  CLI::App app{"mc1-psnr: PSNR, MSE and the largest sample difference of two RGB8 PNG files.", "mc1-psnr"};
+  cli::conventions(app,
+                   "Exit status: 0 done; 1 the PSNR is below --min, or --diff could not be written;\n"
+                   "2 usage or input error (a missing, unreadable or bad PNG file).");
+  Options o;
+  add_options(app, o);
+  if (auto rc = cli::parse(app, argc, argv)) return *rc;
+  Image a, b;
+  double p = 0;
   try {
-    Image a = read_png(files[0]), b = read_png(files[1]);
-    double p = psnr(a, b);
-    if (std::isinf(p)) std::printf("PSNR inf dB  MSE 0  max diff 0\n");
-    else std::printf("PSNR %.4f dB  MSE %.6f  max diff %d\n", p, mse(a, b), max_abs_diff(a, b));
-    if (!diff_path.empty()) write_png(diff_path, difference(a, b, scale));
-    return (min_db >= 0 && p < min_db) ? 1 : 0;
+    a = read_png(o.files[0]);
+    b = read_png(o.files[1]);
+    p = psnr(a, b);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mc1-psnr: %s\n", e.what());
-    return 2;
+    return cli::kExitUsage;
   }
+  if (std::isinf(p)) std::printf("PSNR inf dB  MSE 0  max diff 0\n");
+  else std::printf("PSNR %.4f dB  MSE %.6f  max diff %d\n", p, mse(a, b), max_abs_diff(a, b));
+  try {
+    if (!o.diff_path.empty()) write_png(o.diff_path, difference(a, b, o.scale));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mc1-psnr: %s\n", e.what());
+    return cli::kExitFailed;
+  }
+  return app.count("--min") && p < o.min_db ? cli::kExitFailed : cli::kExitOk;
 }

@@ -2,59 +2,70 @@
 // Renders a scene with the double-precision reference renderer.
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 
+#include "cmdline.hpp"
 #include "refrender.hpp"
 
 namespace {
 
-[[noreturn]] void usage(const std::string& msg) {
-  std::fprintf(stderr, "mc1-ref: %s\nusage: mc1-ref SCENE.json [--size WxH] --out REF.png\n", msg.c_str());
-  std::exit(2);
+namespace cli = mc1::cmdline;
+
+constexpr int kMaxSide = 8192;
+
+struct Options {
+  std::string scene_path, out_path, size;
+  int width = 0, height = 0;  // 0: the scene camera's
+};
+
+// "WxH", each side in [1, kMaxSide].
+void parse_size(Options& o) {
+  const auto x = o.size.find('x');
+  if (x == std::string::npos) throw cli::UsageError("--size: expected WxH, e.g. 320x240, not '" + o.size + "'");
+  o.width = static_cast<int>(cli::parse_unsigned("--size " + o.size, o.size.substr(0, x), 1, kMaxSide));
+  o.height = static_cast<int>(cli::parse_unsigned("--size " + o.size, o.size.substr(x + 1), 1, kMaxSide));
+}
+
+void add_options(CLI::App& app, Options& o) {
+  app.add_option("SCENE", o.scene_path, "the scene (JSON, docs/scene-format.md)")->required()->check(cli::input_file());
+  app.add_option("--size", o.size, "image size instead of the camera's (each side 1 to 8192)")->type_name("WxH");
+  app.add_option("--out", o.out_path, "the PNG to write")->required()->type_name("FILE");
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_path, out_path;
-  int width = 0, height = 0;
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    if ((a == "--size" || a == "--out") && i + 1 >= argc) usage(a + " needs a value");
-    if (a == "--out") {
-      out_path = argv[++i];
-    } else if (a == "--size") {
-      std::string s = argv[++i];
-      char x = 0, extra = 0;
-      if (std::sscanf(s.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 || x != 'x' || width < 1 ||
-          height < 1 || width > 8192 || height > 8192)
-        usage("--size: expected WxH, e.g. 320x240, got " + s);
-    } else if (!a.empty() && a[0] == '-') {
-      usage("unknown option " + a);
-    } else if (scene_path.empty()) {
-      scene_path = a;
-    } else {
-      usage("more than one scene given");
-    }
-  }
-  if (scene_path.empty()) usage("no scene given");
-  if (out_path.empty()) usage("--out is required");
+  CLI::App app{"mc1-ref: renders a scene with the double-precision reference renderer.", "mc1-ref"};
+  cli::conventions(app,
+                   "Exit status: 0 done; 1 the PNG could not be written; 2 usage or input error (a missing\n"
+                   "or bad scene file).");
+  Options o;
+  add_options(app, o);
+  if (auto rc = cli::parse(app, argc, argv)) return *rc;
+  mc1::scene::Scene scene;
   try {
-    mc1::scene::Scene scene = mc1::scene::load_scene(scene_path);
-    if (width == 0) {
-      width = scene.camera.width;
-      height = scene.camera.height;
-    }
-    auto start = std::chrono::steady_clock::now();
-    mc1::refrender::Renderer renderer(scene);
-    mc1::imgcmp::write_png(out_path, renderer.render(width, height));
-    double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "mc1-ref: %s: %dx%d, %zu primitives, %.2f s -> %s\n", scene_path.c_str(), width, height,
-                 scene.primitive_count(), s, out_path.c_str());
+    if (!o.size.empty()) parse_size(o);
+    scene = mc1::scene::load_scene(o.scene_path);
+  } catch (const cli::UsageError& e) {
+    return cli::usage_error(app, e.what());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s\n", e.what());
-    return 1;
+    std::fprintf(stderr, "mc1-ref: %s\n", e.what());
+    return cli::kExitUsage;
   }
-  return 0;
+  if (o.width == 0) {
+    o.width = scene.camera.width;
+    o.height = scene.camera.height;
+  }
+  try {
+    const auto start = std::chrono::steady_clock::now();
+    mc1::refrender::Renderer renderer(scene);
+    mc1::imgcmp::write_png(o.out_path, renderer.render(o.width, o.height));
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "mc1-ref: %s: %dx%d, %zu primitives, %.2f s -> %s\n", o.scene_path.c_str(), o.width,
+                 o.height, scene.primitive_count(), s, o.out_path.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mc1-ref: %s\n", e.what());
+    return cli::kExitFailed;
+  }
+  return cli::kExitOk;
 }

@@ -29,23 +29,17 @@ namespace {
 
 using namespace mc1::apu;
 namespace fp = mc1::fp24;
+namespace cli = mc1::cmdline;
 
-constexpr const char* kUsage =
-    "usage: apu-bench [--kernel PATH] [--engines iss,rtl] [--iss-cycles N] [--rtl-cycles N] [--check]\n"
-    "Runs the xform4 vertex-transform stream (blocks of 1000 vertices; the built-in\n"
+constexpr const char* kDescription =
+    "apu-bench: the xform4 vertex-transform stream (blocks of 1000 vertices; the built-in\n"
     "firmware/kernels/xform4.apu, or --kernel's .apu/.bin with its interface) on each engine through\n"
     "the MPU driver, the MPU polling every 64 cycles. Prints APU cycles, cycles per vertex, unit\n"
-    "utilization and host speed; --check exits 1 if the ISS is below 20 M cycles/s or the RTL\n"
-    "below 2 M cycles/s (or a result is wrong, always).\n";
+    "utilization and host speed.";
 
 constexpr int kVertices = 1000;  // per block (the kernel allows up to 1015)
 constexpr int kCount = 0, kMatrix = 16, kVerts = 32;
 constexpr double kIssTarget = 20e6, kRtlTarget = 2e6;
-
-[[noreturn]] void usage_error(const std::string& msg) {
-  std::cerr << "apu-bench: " << msg << "\n" << kUsage;
-  std::exit(2);
-}
 
 // FP24 values of moderate size: sign, exponent 60..66, random fraction.
 std::uint32_t moderate(Rng& rng) {
@@ -150,52 +144,45 @@ Result bench(const std::string& name, const std::vector<Encoded>& kernel, std::u
   return r;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   std::string kernel_path;  // empty: the embedded xform4.apu
   std::vector<std::string> engines = {"iss", "rtl"};
   std::uint64_t iss_cycles = 40'000'000, rtl_cycles = 4'000'000;
   bool check = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage_error(a + " wants a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      return 0;
-    } else if (a == "--kernel") {
-      kernel_path = value();
-    } else if (a == "--engines") {
-      engines.clear();
-      std::stringstream ss(value());
-      for (std::string e; std::getline(ss, e, ',');) engines.push_back(e);
-    } else if (a == "--iss-cycles" || a == "--rtl-cycles") {
-      char* end = nullptr;
-      const std::string v = value();
-      const unsigned long long n = std::strtoull(v.c_str(), &end, 0);
-      if (v.empty() || *end) usage_error(a + " wants a number, not '" + v + "'");
-      (a == "--iss-cycles" ? iss_cycles : rtl_cycles) = n;
-    } else if (a == "--check") {
-      check = true;
-    } else {
-      usage_error("unknown argument " + a);
-    }
-  }
+};
+
+void add_options(CLI::App& app, Options& o) {
+  app.add_option("--kernel", o.kernel_path, "another kernel with xform4's interface (.apu or .bin)")
+      ->check(cli::input_file());
+  app.add_option("--engines", o.engines, "the engines to run, in order")
+      ->delimiter(',')
+      ->check(CLI::IsMember(tools::engine_names()))
+      ->allow_extra_args(false)
+      ->type_name("E,...")
+      ->capture_default_str();
+  app.add_option("--iss-cycles", o.iss_cycles, "APU cycles of the ISS's timed run")
+      ->transform(cli::unsigned_in(1, UINT64_MAX >> 2))
+      ->capture_default_str();
+  app.add_option("--rtl-cycles", o.rtl_cycles, "APU cycles of the RTL's timed run")
+      ->transform(cli::unsigned_in(1, UINT64_MAX >> 2))
+      ->capture_default_str();
+  app.add_flag("--check", o.check, "exit 1 if the ISS is below 20 M cycles/s or the RTL below 2 M");
+}
+
+int run(Options o) {
   try {
     const std::vector<Encoded> kernel =
-        kernel_path.empty()
+        o.kernel_path.empty()
             ? mc1::apu::parse_image(std::string(reinterpret_cast<const char*>(mc1_xform4_kernel_image),
                                               mc1_xform4_kernel_image_size),
                                   "xform4.bin (embedded)")
-            : tools::load_program_file(kernel_path);
-    if (kernel_path.empty()) kernel_path = "xform4.apu (built in)";
+            : tools::load_program_file(o.kernel_path);
+    if (o.kernel_path.empty()) o.kernel_path = "xform4.apu (built in)";
     std::vector<Result> results;
-    for (const auto& e : engines) results.push_back(bench(e, kernel, e == "rtl" ? rtl_cycles : iss_cycles));
+    for (const auto& e : o.engines)
+      results.push_back(bench(e, kernel, e == "rtl" ? o.rtl_cycles : o.iss_cycles));
 
-    std::printf("apu-bench: %s, blocks of %d vertices, MPU polling every 64 cycles\n", kernel_path.c_str(),
+    std::printf("apu-bench: %s, blocks of %d vertices, MPU polling every 64 cycles\n", o.kernel_path.c_str(),
                 kVertices);
     std::printf("engine  result  APU cycles  vertices  cyc/vertex  mul%%   add%%   func%%  MFLOPS  host s   cycles/s\n");
     bool ok = true;
@@ -209,7 +196,7 @@ int main(int argc, char** argv) {
       if (!r.correct) ok = false;
       if (rate < target) {
         std::printf("  %s below its target of %.0f M cycles/s\n", r.engine.c_str(), target / 1e6);
-        if (check) ok = false;
+        if (o.check) ok = false;
       }
       std::printf("  stall cycles (2-block profile):");
       for (int k = 1; k < kStallKinds; ++k)
@@ -224,4 +211,16 @@ int main(int argc, char** argv) {
     std::cerr << "apu-bench: " << ex.what() << "\n";
     return 2;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{kDescription, "apu-bench"};
+  cli::conventions(app, "Exit status: 0 done; 1 a wrong result (always) or, with --check, an engine below its\n"
+                        "target speed; 2 usage or input error.");
+  Options o;
+  add_options(app, o);
+  if (auto rc = cli::parse(app, argc, argv)) return *rc;
+  return run(o);
 }

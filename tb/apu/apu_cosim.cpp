@@ -1,5 +1,6 @@
 // apu-cosim: two APU engines in lockstep (default ISS vs RTL), stopping at
 // the first cycle they disagree on (docs/apu-tools.md).
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -15,82 +16,69 @@
 namespace {
 
 using namespace mc1::apu;
+namespace cli = mc1::cmdline;
 
-constexpr const char* kUsage =
-    "usage: apu-cosim PROGRAM.bin|PROGRAM.apu [--data FILE]... [--max-cycles N] [--engines A,B] [--trace F.fst]\n"
-    "       apu-cosim --random N [--seed S] [--first I] [--keep-going] [--max-cycles N] [--engines A,B]\n"
+constexpr const char* kDescription =
+    "apu-cosim: two APU engines in lockstep, stopping at the first cycle they disagree on.\n"
+    "  apu-cosim PROGRAM [--data FILE]... [--max-cycles N] [--engines A,B] [--trace F.fst]\n"
+    "  apu-cosim --random N [--seed S] [--first I] [--keep-going] [--max-cycles N] [--engines A,B]\n"
     "Runs two APU engines (iss, rtl; default iss,rtl) cycle by cycle and stops at the first\n"
     "difference in pc, issue, stall reason, bank select, commit, run state or fault, printing\n"
     "cycle, pc, the disassembled word and both values. Several --data files form a stream:\n"
     "the next is handed over when the APU has taken the last. --random checks N generated programs\n"
     "(with their MPU hand-over schedule) from seed S, cases I..I+N-1; --keep-going reports\n"
-    "every failing case instead of stopping at the first. Exit 0: all agree;\n"
-    "1: divergence; 2: usage or input error.\n";
+    "every failing case instead of stopping at the first.";
 
 struct Options {
-  std::string program, trace;
+  std::string program, trace, engines = "iss,rtl";
   std::vector<std::string> data;
   std::string engine_a = "iss", engine_b = "rtl";
-  std::uint64_t max_cycles = 0;  // 0: default
-  long random = -1;
+  std::uint64_t max_cycles = 0;  // 0: the default (10 M, or the random case's own)
+  long random = -1;              // -1: no --random
   std::uint64_t seed = 1, first = 0;
   bool keep_going = false;
 };
 
-[[noreturn]] void usage_error(const std::string& msg) {
-  std::cerr << "apu-cosim: " << msg << "\n" << kUsage;
-  std::exit(2);
+// "A,B", each an engine name.
+CLI::Validator engine_pair() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const auto comma = text.find(',');
+        const auto& names = tools::engine_names();
+        auto known = [&](const std::string& e) { return std::find(names.begin(), names.end(), e) != names.end(); };
+        if (comma == std::string::npos || !known(text.substr(0, comma)) || !known(text.substr(comma + 1)))
+          return "wants A,B with A and B each iss or rtl (e.g. iss,rtl), not '" + text + "'";
+        return "";
+      },
+      "A,B");
 }
 
-std::uint64_t number(const std::string& opt, const char* text) {
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(text, &end, 0);
-  if (!*text || *end) usage_error(opt + " wants a number, not '" + text + "'");
-  return v;
+void add_options(CLI::App& app, Options& o) {
+  CLI::Option* program = tools::add_program_option(app, o.program);
+  tools::add_data_option(app, o.data)->needs(program);
+  tools::add_max_cycles_option(app, o.max_cycles, "the cycle limit (default 10 M, or the random case's own)");
+  app.add_option("--engines", o.engines, "the two engines")->check(engine_pair())->capture_default_str();
+  app.add_option("--trace", o.trace, "write an FST waveform of the RTL engine to FILE")
+      ->type_name("FILE")->needs(program);
+  CLI::Option* random = app.add_option("--random", o.random, "check N generated programs")
+                            ->transform(cli::unsigned_in(1, 1'000'000'000))
+                            ->excludes(program);
+  app.add_option("--seed", o.seed, "the random programs' seed")
+      ->transform(cli::unsigned_in(0, UINT64_MAX))
+      ->capture_default_str()
+      ->needs(random);
+  app.add_option("--first", o.first, "the first case index")
+      ->transform(cli::unsigned_in(0, UINT64_MAX))
+      ->capture_default_str()
+      ->needs(random);
+  app.add_flag("--keep-going", o.keep_going, "report every failing case, not only the first")->needs(random);
 }
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) usage_error(a + " wants a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (a == "--data") {
-      o.data.push_back(value());
-    } else if (a == "--trace") {
-      o.trace = value();
-    } else if (a == "--max-cycles") {
-      o.max_cycles = number(a, value());
-    } else if (a == "--random") {
-      o.random = static_cast<long>(number(a, value()));
-    } else if (a == "--seed") {
-      o.seed = number(a, value());
-    } else if (a == "--first") {
-      o.first = number(a, value());
-    } else if (a == "--keep-going") {
-      o.keep_going = true;
-    } else if (a == "--engines") {
-      const std::string e = value();
-      const auto comma = e.find(',');
-      if (comma == std::string::npos) usage_error("--engines wants A,B (e.g. iss,rtl)");
-      o.engine_a = e.substr(0, comma);
-      o.engine_b = e.substr(comma + 1);
-    } else if (!a.empty() && a[0] == '-') {
-      usage_error("unknown option " + a);
-    } else if (o.program.empty()) {
-      o.program = a;
-    } else {
-      usage_error("more than one program: " + o.program + ", " + a);
-    }
-  }
-  if (o.random < 0 && o.program.empty()) usage_error("no program and no --random");
-  if (o.random >= 0 && !o.program.empty()) usage_error("a program or --random, not both");
-  return o;
+void check_options(Options& o) {
+  if (o.random < 0 && o.program.empty()) throw cli::UsageError("no program and no --random");
+  const auto comma = o.engines.find(',');
+  o.engine_a = o.engines.substr(0, comma);
+  o.engine_b = o.engines.substr(comma + 1);
 }
 
 struct Engines {
@@ -221,11 +209,18 @@ int run_random(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options o = parse(argc, argv);
+  CLI::App app{kDescription, "apu-cosim"};
+  cli::conventions(app, "Exit status: 0 all agree; 1 divergence; 2 usage or input error.");
+  Options o;
+  add_options(app, o);
+  if (auto rc = cli::parse(app, argc, argv)) return *rc;
   try {
+    check_options(o);
     return o.random >= 0 ? run_random(o) : run_program(o);
+  } catch (const cli::UsageError& e) {
+    return cli::usage_error(app, e.what());
   } catch (const std::exception& ex) {
     std::cerr << "apu-cosim: " << ex.what() << "\n";
-    return 2;
+    return cli::kExitUsage;
   }
 }

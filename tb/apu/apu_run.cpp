@@ -15,32 +15,18 @@
 namespace {
 
 using namespace mc1::apu;
+namespace cli = mc1::cmdline;
 
-constexpr const char* kUsage =
-    "usage: apu-run PROGRAM.bin|PROGRAM.apu [--engine iss|rtl] [--data FILE]... [--trace OUT.fst]\n"
-    "               [--profile] [--top N] [--read ADDR:COUNT]... [--max-cycles N] [--start PC]\n"
+constexpr const char* kDescription =
+    "apu-run: runs one APU program on the ISS or the RTL core through the MPU driver.\n"
     "Loads the program (and data) into the MPU's banks, hands them over, starts the APU and waits\n"
-    "for HALT. Several --data files form a stream: the next is handed over each time the APU\n"
-    "has taken the last (SWAPD). Prints cycles and the registers that are not zero; --read prints data words the\n"
+    "for HALT. Prints cycles and the registers that are not zero; --read prints data words the\n"
     "MPU sees after the run (the bank the APU left with its last SWAPD); --profile prints unit\n"
-    "utilization, stalls by reason and the top N stalling words. --trace is for the RTL engine.\n"
-    "Exit 0: halted; 1: fault or cycle limit; 2: usage or input error.\n";
-
-[[noreturn]] void usage_error(const std::string& msg) {
-  std::cerr << "apu-run: " << msg << "\n" << kUsage;
-  std::exit(2);
-}
-
-std::uint64_t number(const std::string& opt, const std::string& text) {
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(text.c_str(), &end, 0);
-  if (text.empty() || *end) usage_error(opt + " wants a number, not '" + text + "'");
-  return v;
-}
+    "utilization, stalls by reason and the top N stalling words.";
 
 struct Options {
   std::string program, trace, engine = "iss";
-  std::vector<std::string> data;
+  std::vector<std::string> data, read_texts;
   bool profile = false;
   int top = 10;
   std::uint64_t max_cycles = 100'000'000;
@@ -48,49 +34,41 @@ struct Options {
   std::vector<std::pair<std::uint16_t, std::uint16_t>> reads;
 };
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage_error(a + " wants a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (a == "--engine") {
-      o.engine = value();
-    } else if (a == "--data") {
-      o.data.push_back(value());
-    } else if (a == "--trace") {
-      o.trace = value();
-    } else if (a == "--profile") {
-      o.profile = true;
-    } else if (a == "--top") {
-      o.top = static_cast<int>(number(a, value()));
-    } else if (a == "--max-cycles") {
-      o.max_cycles = number(a, value());
-    } else if (a == "--start") {
-      o.start = static_cast<std::uint16_t>(number(a, value()));
-    } else if (a == "--read") {
-      const std::string v = value();
-      const auto colon = v.find(':');
-      if (colon == std::string::npos) usage_error("--read wants ADDR:COUNT, not '" + v + "'");
-      const auto addr = number(a, v.substr(0, colon)), n = number(a, v.substr(colon + 1));
-      if (addr + n > static_cast<std::uint64_t>(kDataWords)) usage_error("--read " + v + " goes past word 4095");
-      o.reads.emplace_back(static_cast<std::uint16_t>(addr), static_cast<std::uint16_t>(n));
-    } else if (!a.empty() && a[0] == '-') {
-      usage_error("unknown option " + a);
-    } else if (o.program.empty()) {
-      o.program = a;
-    } else {
-      usage_error("more than one program: " + o.program + ", " + a);
-    }
-  }
-  if (o.program.empty()) usage_error("no program");
-  if (!o.trace.empty() && o.engine != "rtl") usage_error("--trace needs --engine rtl");
-  return o;
+// ADDR:COUNT inside the 4096-word data bank.
+std::pair<std::uint16_t, std::uint16_t> parse_read(const std::string& text) {
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) throw cli::UsageError("--read wants ADDR:COUNT, not '" + text + "'");
+  const std::uint64_t addr = cli::parse_unsigned("--read " + text, text.substr(0, colon), 0, kDataWords - 1);
+  const std::uint64_t n = cli::parse_unsigned("--read " + text, text.substr(colon + 1), 1, kDataWords);
+  if (addr + n > static_cast<std::uint64_t>(kDataWords))
+    throw cli::UsageError("--read " + text + " goes past word " + std::to_string(kDataWords - 1));
+  return {static_cast<std::uint16_t>(addr), static_cast<std::uint16_t>(n)};
+}
+
+void add_options(CLI::App& app, Options& o) {
+  tools::add_program_option(app, o.program)->required();
+  app.add_option("--engine", o.engine, "the engine")
+      ->check(CLI::IsMember(tools::engine_names()))
+      ->capture_default_str();
+  tools::add_data_option(app, o.data);
+  app.add_option("--trace", o.trace, "rtl only: write an FST waveform of the core to FILE")->type_name("FILE");
+  app.add_flag("--profile", o.profile, "print the cycle profile");
+  app.add_option("--top", o.top, "stalling words the profile lists")
+      ->transform(cli::unsigned_in(0, 2 * kProgramWords))
+      ->capture_default_str();
+  app.add_option("--read", o.read_texts, "print COUNT data words from ADDR after the run")
+      ->type_name("ADDR:COUNT")
+      ->allow_extra_args(false);
+  tools::add_max_cycles_option(app, o.max_cycles, "the cycle limit (exit 1 when reached)")->capture_default_str();
+  app.add_option("--start", o.start, "the pc to start at")
+      ->transform(cli::unsigned_in(0, kProgramWords - 1))
+      ->capture_default_str();
+}
+
+// The checks CLI11 cannot make alone.
+void check_options(Options& o) {
+  for (const std::string& r : o.read_texts) o.reads.push_back(parse_read(r));
+  if (!o.trace.empty() && o.engine != "rtl") throw cli::UsageError("--trace needs --engine rtl");
 }
 
 void print_regs(const char* name, int first, int count, int per_line, int digits,
@@ -160,11 +138,18 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options o = parse(argc, argv);
+  CLI::App app{kDescription, "apu-run"};
+  cli::conventions(app, "Exit status: 0 halted; 1 fault or cycle limit; 2 usage or input error.");
+  Options o;
+  add_options(app, o);
+  if (auto rc = cli::parse(app, argc, argv)) return *rc;
   try {
+    check_options(o);
     return run(o);
+  } catch (const cli::UsageError& e) {
+    return cli::usage_error(app, e.what());
   } catch (const std::exception& ex) {
     std::cerr << "apu-run: " << ex.what() << "\n";
-    return 2;
+    return cli::kExitUsage;
   }
 }

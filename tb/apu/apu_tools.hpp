@@ -1,6 +1,6 @@
-// What apu-run, apu-cosim and apu-bench share: making an engine by name and
-// reading a program file (.apu source through the assembler library, or an
-// "APU1" binary image, docs/apu-asm.md).
+// What apu-run, apu-cosim and apu-bench share: their common options, making
+// an engine by name and reading a program file (.apu source through the
+// assembler library, or an "APU1" binary image, docs/apu-asm.md).
 #pragma once
 
 #include <cstring>
@@ -14,9 +14,33 @@
 #include "apu_rtl_engine.hpp"
 #include "apu_image.hpp"
 #include "apuasm.hpp"
+#include "cmdline.hpp"
 #include "microword.hpp"
 
 namespace mc1::apu::tools {
+
+inline const std::vector<std::string>& engine_names() {
+  static const std::vector<std::string> names = {"iss", "rtl"};
+  return names;
+}
+
+inline CLI::Option* add_program_option(CLI::App& app, std::string& path) {
+  return app.add_option("PROGRAM", path, "the program: .apu source, or an APU1 image (apuasm -o)")
+      ->check(cmdline::input_file());
+}
+
+inline CLI::Option* add_data_option(CLI::App& app, std::vector<std::string>& files) {
+  return app
+      .add_option("--data", files,
+                  "data file (hex words, @ADDR); several form a stream, the next handed over\n"
+                  "when the APU has taken the last (SWAPD)")
+      ->check(cmdline::input_file())
+      ->allow_extra_args(false);
+}
+
+inline CLI::Option* add_max_cycles_option(CLI::App& app, std::uint64_t& cycles, const std::string& what) {
+  return app.add_option("--max-cycles", cycles, what)->transform(cmdline::unsigned_in(1, UINT64_MAX));
+}
 
 // "iss" or "rtl"; `trace` (an FST path) only means something to the RTL.
 inline std::unique_ptr<ApuEngine> make_engine(const std::string& name, const char* trace = nullptr) {

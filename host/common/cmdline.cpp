@@ -1,0 +1,149 @@
+#include "cmdline.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+
+namespace mc1::cmdline {
+namespace {
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+std::string range_text(std::uint64_t min, std::uint64_t max) {
+  return "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
+}
+
+std::string real_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+int digit_value(char c, int base) {
+  int d = -1;
+  if (c >= '0' && c <= '9') d = c - '0';
+  else if (c >= 'a' && c <= 'f') d = c - 'a' + 10;
+  else if (c >= 'A' && c <= 'F') d = c - 'A' + 10;
+  return d < base ? d : -1;
+}
+
+// Empty on success (value in `out`), else why `text` is not acceptable.
+std::string read_unsigned(const std::string& text, std::uint64_t min, std::uint64_t max, std::uint64_t& out) {
+  const bool hex = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
+  const int base = hex ? 16 : 10;
+  const std::size_t from = hex ? 2 : 0;
+  if (text.size() == from) return quoted(text) + " is not a number";
+  if (!hex && text.size() > 1 && text[0] == '0')
+    return quoted(text) + ": a leading 0 is not read (C would read octal); write decimal or 0x hex";
+  std::uint64_t v = 0;
+  bool overflow = false;
+  for (std::size_t i = from; i < text.size(); ++i) {
+    const int d = digit_value(text[i], base);
+    if (d < 0) return quoted(text) + " is not a number (decimal, or hex with 0x)";
+    if (v > (UINT64_MAX - static_cast<std::uint64_t>(d)) / base) overflow = true;
+    v = v * base + static_cast<std::uint64_t>(d);
+  }
+  if (overflow || v < min || v > max) return quoted(text) + " is out of range " + range_text(min, max);
+  out = v;
+  return "";
+}
+
+std::string read_real(const std::string& text, double min, double max, double& out) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = text.empty() ? 0 : std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || std::isspace(static_cast<unsigned char>(text[0])))
+    return quoted(text) + " is not a number";
+  if (!std::isfinite(v) || errno == ERANGE || v < min || v > max)
+    return quoted(text) + " is out of range [" + real_text(min) + ", " + real_text(max) + "]";
+  out = v;
+  return "";
+}
+
+}  // namespace
+
+const char* version() { return MC1_VERSION; }
+
+void conventions(CLI::App& app, const std::string& exit_statuses) {
+  app.set_version_flag("--version", app.get_name() + " (MC-1 virtual platform) " + version(),
+                       "print the version and exit");
+  app.footer(exit_statuses);
+  app.get_formatter()->column_width(24);
+}
+
+std::optional<int> parse(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+    return std::nullopt;
+  } catch (const CLI::Success& e) {  // --help, --version
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    return usage_error(app, e.what());
+  }
+}
+
+int usage_error(const CLI::App& app, const std::string& message) {
+  std::cerr << app.get_name() << ": " << message << "\nRun with --help for more information.\n";
+  return kExitUsage;
+}
+
+std::uint64_t parse_unsigned(const std::string& what, const std::string& text, std::uint64_t min,
+                             std::uint64_t max) {
+  std::uint64_t v = 0;
+  const std::string err = read_unsigned(text, min, max, v);
+  if (!err.empty()) throw UsageError(what + ": " + err);
+  return v;
+}
+
+double parse_real(const std::string& what, const std::string& text, double min, double max) {
+  double v = 0;
+  const std::string err = read_real(text, min, max, v);
+  if (!err.empty()) throw UsageError(what + ": " + err);
+  return v;
+}
+
+CLI::Validator unsigned_in(std::uint64_t min, std::uint64_t max) {
+  return CLI::Validator(
+      [min, max](std::string& text) {
+        std::uint64_t v = 0;
+        std::string err = read_unsigned(text, min, max, v);
+        if (err.empty()) text = std::to_string(v);
+        return err;
+      },
+      range_text(min, max));  // help: UINT:[min, max]
+}
+
+CLI::Validator real_in(double min, double max) {
+  return CLI::Validator(
+      [min, max](std::string& text) {
+        double v = 0;
+        return read_real(text, min, max, v);
+      },
+      "[" + real_text(min) + ", " + real_text(max) + "]");  // help: FLOAT:[min, max]
+}
+
+CLI::Validator input_file() {
+  return CLI::Validator(
+      [](std::string& path) -> std::string {
+        struct stat st {};
+        if (::stat(path.c_str(), &st) != 0) return path + ": " + std::strerror(errno);
+        if (S_ISDIR(st.st_mode)) return path + ": is a directory, not a file";
+        if (::access(path.c_str(), R_OK) != 0) return path + ": " + std::strerror(errno);
+        return "";
+      },
+      "FILE");
+}
+
+void require_stdin_not_directory() {
+  struct stat st {};
+  if (::fstat(0, &st) == 0 && S_ISDIR(st.st_mode))
+    throw UsageError("standard input is a directory, not a file");
+}
+
+}  // namespace mc1::cmdline

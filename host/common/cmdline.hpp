@@ -1,0 +1,63 @@
+// The command-line conventions every MC-1 program shares, on CLI11:
+// --help and --version print on stdout and exit 0; a usage or input error is
+// "PROGRAM: what" on stderr, naming the option or the file, and exit 2; a
+// failed check or simulation is exit 1. Numbers are read strictly: decimal or
+// 0x hex, inside the option's range, never saturated, wrapped or truncated.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace mc1::cmdline {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailed = 1;  // a check or a simulation failed
+constexpr int kExitUsage = 2;   // bad option, missing or bad input file
+
+// A usage or input error found after parsing; main reports it with exit 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The project's version, from project(... VERSION) in the top CMakeLists.txt.
+const char* version();
+
+// --version, and the exit statuses (the program's own words for them, or
+// the general rule) as the help's footer.
+void conventions(CLI::App& app,
+                 const std::string& exit_statuses = "Exit status: 0 done; 1 a check or simulation failed; "
+                                                    "2 usage or input error.");
+
+// Parses the command line. Returns the exit status when the program is
+// done already (0 after --help or --version, 2 after a usage error, printed),
+// nullopt when it should run.
+std::optional<int> parse(CLI::App& app, int argc, char** argv);
+
+// Prints "PROGRAM: message" and the --help hint on stderr; returns 2.
+int usage_error(const CLI::App& app, const std::string& message);
+
+// `text` as an unsigned integer, decimal or 0x hex, in [min, max]; throws
+// UsageError "what: ..." otherwise. A leading 0 (C's octal) is refused.
+std::uint64_t parse_unsigned(const std::string& what, const std::string& text, std::uint64_t min,
+                             std::uint64_t max);
+// `text` as a finite decimal number in [min, max].
+double parse_real(const std::string& what, const std::string& text, double min, double max);
+
+// Validators for add_option(...)->transform(...): they rewrite the value in
+// the form CLI11's own conversion reads exactly (plain decimal), so the
+// bound variable gets what parse_unsigned / parse_real read.
+CLI::Validator unsigned_in(std::uint64_t min, std::uint64_t max);
+CLI::Validator real_in(double min, double max);
+// A file that exists, is not a directory and can be read.
+CLI::Validator input_file();
+
+// Throws UsageError when standard input is a directory (`prog < docs`),
+// which a stream would otherwise read as empty.
+void require_stdin_not_directory();
+
+}  // namespace mc1::cmdline
