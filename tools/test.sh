@@ -1,7 +1,19 @@
 #!/bin/sh
 # Sets up, builds and runs the default test suite (long sweeps: tools/test.sh -L long).
+#   tools/test.sh [CTEST-ARGS]   the Release build in build/ (default: -LE long)
+#   tools/test.sh --asan         ASan + UBSan build in build-asan/, default suite, leaks checked
+#   tools/test.sh --fuzz         libFuzzer harnesses (clang) in build-fuzz/, the fuzz label
 set -eu
 cd "$(dirname "$0")/.."
+case "${1:-}" in
+  --asan|--fuzz)
+    preset=${1#--}
+    if [ "$preset" = fuzz ]; then tools/setup.sh clang; else tools/setup.sh; fi
+    cmake --preset "$preset" >/dev/null
+    cmake --build --preset "$preset" -j "$(nproc)"
+    exec ctest --preset "$preset" -j "$(nproc)"
+    ;;
+esac
 tools/build.sh
 if [ "$#" -eq 0 ]; then set -- -LE long; fi
 cd build && ctest --output-on-failure -j "$(nproc)" "$@"
