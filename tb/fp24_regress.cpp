@@ -25,6 +25,7 @@
 #include "fp24_oracle.hpp"
 #include "fp24_rtl.hpp"
 #include "fp24_vectors.hpp"
+#include "json.hpp"
 
 namespace {
 
@@ -424,20 +425,7 @@ std::string text_report(const Options& o, const Run& run) {
   return t.str();
 }
 
-std::string json_string(const std::string& s) { return "\"" + s + "\""; }  // our strings need no escapes
-
-std::string json_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return "\"" + out + "\"";
-}
+using mc1::scene::json::quote;  // the project's one JSON string escaper
 
 std::string json_number(double v) {
   if (!std::isfinite(v)) return "null";
@@ -447,15 +435,15 @@ std::string json_number(double v) {
 }
 
 std::string json_failure(const Failure& f) {
-  return "{\"kind\": " + json_string(kind_name(f.kind)) + ", \"vector\": " + json_string(format_vector(f.vector)) +
-         ", \"got\": " + json_string(format_result(f.got)) + ", \"expected\": " +
-         json_string(format_result(f.expected)) + ", \"ulp_error\": " + json_number(f.ulp) + "}";
+  return "{\"kind\": " + quote(kind_name(f.kind)) + ", \"vector\": " + quote(format_vector(f.vector)) +
+         ", \"got\": " + quote(format_result(f.got)) + ", \"expected\": " +
+         quote(format_result(f.expected)) + ", \"ulp_error\": " + json_number(f.ulp) + "}";
 }
 
 std::string json_op(const Options& o, Op op, const Stats& s) {
   const bool trig = is_trig(op) && o.oracle;
   auto opt = [](bool applies, std::uint64_t n) { return applies ? std::to_string(n) : std::string("null"); };
-  std::string j = "    {\"op\": " + json_string(std::string(info(op).name)) +
+  std::string j = "    {\"op\": " + quote(std::string(info(op).name)) +
                   ", \"vectors\": " + std::to_string(s.vectors) +
                   ", \"rtl_vs_model\": " + opt(o.rtl, s.rtl_vs_model) +
                   ", \"model_vs_oracle\": " + opt(o.oracle && !is_trig(op), s.model_vs_oracle) +
@@ -463,7 +451,7 @@ std::string json_op(const Options& o, Op op, const Stats& s) {
                   ", \"unfaithful\": " + opt(trig, s.unfaithful) +
                   ", \"max_ulp_error\": " + (trig ? json_number(s.max_ulp) : "null") +
                   ", \"cpu_seconds\": " + json_number(s.cpu_seconds) +
-                  ", \"rtl_timing_error\": " + (s.rtl_error.empty() ? "null" : json_escape(s.rtl_error)) +
+                  ", \"rtl_timing_error\": " + (s.rtl_error.empty() ? "null" : quote(s.rtl_error)) +
                   ", \"passed\": " + (s.passed() ? "true" : "false") + ", \"failures\": [";
   for (std::size_t i = 0; i < s.failures.size(); ++i) j += (i ? ", " : "") + json_failure(s.failures[i]);
   return j + "]}";
