@@ -1,72 +1,69 @@
 #include "mc1_cli.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 
 #include "mc1_engines.hpp"
 
 namespace mc1::cli {
 
-Args::Args(const std::vector<std::string>& args, const std::vector<std::string>& with_value,
-           const std::vector<std::string>& flags) {
-  auto known = [](const std::vector<std::string>& v, const std::string& n) {
-    return std::find(v.begin(), v.end(), n) != v.end();
-  };
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string a = args[i];
-    if (a.rfind("--", 0) != 0) throw CliError("unexpected argument '" + a + "'");
-    std::string name = a.substr(2), value;
-    const auto eq = name.find('=');
-    const bool inline_value = eq != std::string::npos;
-    if (inline_value) {
-      value = name.substr(eq + 1);
-      name = name.substr(0, eq);
+CLI::Option* value_option(CLI::App& cmd, const std::string& name, const std::string& type, const std::string& help) {
+  return cmd.add_option("--" + name, help)
+      ->type_name(type)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+}
+
+CLI::Option* list_option(CLI::App& cmd, const std::string& name, const std::string& type, const std::string& help) {
+  // One value per occurrence: `--dead-link A SCENE` must not take SCENE too.
+  return value_option(cmd, name, type, help)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false);
+}
+
+CLI::Option* flag_option(CLI::App& cmd, const std::string& name, const std::string& help) {
+  return cmd.add_flag("--" + name, help);
+}
+
+void add_param_options(CLI::App& cmd) {
+  list_option(cmd, "params", "FILE", "timing table file (docs/timing.md); repeatable, in order with --param");
+  list_option(cmd, "param", "key=value", "one timing figure; repeatable, in order with --params");
+}
+
+void apply_params(const CLI::App& cmd, TimingParams& t) {
+  // CLI11 keeps each option's values apart; its parse order interleaves them
+  // again, so that a later --param overrides an earlier --params file and
+  // vice versa.
+  const CLI::Option* files = cmd.get_option("--params");
+  const CLI::Option* figures = cmd.get_option("--param");
+  std::size_t next_file = 0, next_figure = 0;
+  try {
+    for (const CLI::Option* o : cmd.parse_order()) {
+      if (o == files) load_params_file(t, files->results().at(next_file++));
+      if (o == figures) apply_param_override(t, figures->results().at(next_figure++));
     }
-    if (known(flags, name)) {
-      if (inline_value) throw CliError("--" + name + " takes no value (got '" + value + "')");
-      values_[name].push_back("");
-    } else if (known(with_value, name)) {
-      if (!inline_value) {
-        if (i + 1 >= args.size()) throw CliError("--" + name + ": missing value");
-        value = args[++i];
-      }
-      values_[name].push_back(value);
-    } else {
-      throw CliError("unknown option '" + a + "' (see --help)");
-    }
+    t.validate();
+  } catch (const ParamError& e) {
+    throw CliError(e.what());
   }
 }
 
-std::string Args::get(const std::string& name, const std::string& fallback) const {
-  const auto it = values_.find(name);
-  return it == values_.end() ? fallback : it->second.back();
+std::string Parsed::get(const std::string& name, const std::string& fallback) const {
+  const CLI::results_t& r = cmd_.get_option("--" + name)->results();
+  return r.empty() ? fallback : r.back();
 }
 
-const std::vector<std::string>& Args::all(const std::string& name) const {
-  static const std::vector<std::string> none;
-  const auto it = values_.find(name);
-  return it == values_.end() ? none : it->second;
+std::vector<std::string> Parsed::all(const std::string& name) const {
+  return cmd_.get_option("--" + name)->results();
 }
 
+// The project's strict numbers (decimal or 0x hex, no octal, no wrapping).
 unsigned parse_unsigned(const std::string& opt, const std::string& text, unsigned min, unsigned max) {
-  char* end = nullptr;
-  const unsigned long v = std::strtoul(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || text[0] == '-' || v < min || v > max)
-    throw CliError(opt + ": bad value '" + text + "' (expected an integer " + std::to_string(min) + ".." +
-                   std::to_string(max) + ")");
-  return static_cast<unsigned>(v);
+  return static_cast<unsigned>(cmdline::parse_unsigned(opt, text, min, max));
 }
 
 double parse_double(const std::string& opt, const std::string& text, double min, double max) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(v) || v < min || v > max)
-    throw CliError(opt + ": bad value '" + text + "' (expected a number in [" + std::to_string(min) + ", " +
-                   std::to_string(max) + "])");
-  return v;
+  return cmdline::parse_real(opt, text, min, max);
 }
 
 std::pair<unsigned, unsigned> parse_size(const std::string& opt, const std::string& text, bool square_ok) {
@@ -163,20 +160,6 @@ SystemConfig machine_config() {
   SystemConfig cfg;
   cfg.engines = make_engine;
   return cfg;
-}
-
-bool wants_help(const std::vector<std::string>& args) {
-  for (const std::string& a : args)
-    if (a == "--help" || a == "-h") return true;
-  return false;
-}
-
-std::vector<std::string> take_params(TimingParams& t, const std::vector<std::string>& args) {
-  try {
-    return apply_param_args(t, args);
-  } catch (const ParamError& e) {
-    throw CliError(e.what());
-  }
 }
 
 void Outputs::add(const std::string& path, std::string_view bytes) { staged_.emplace_back(path, bytes); }
