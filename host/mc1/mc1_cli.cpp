@@ -137,17 +137,43 @@ CutLine parse_cut_line(const std::string& text) {
   return c;
 }
 
-void fault_options(const std::vector<std::string>& kills, const std::vector<std::string>& cuts, SystemConfig& cfg) {
-  for (const std::string& k : kills) {
+void add_fault_options(CLI::App& cmd) {
+  value_option(cmd, "ber", "X", "HDLC bit error rate on every line end, both directions (default 0)");
+  value_option(cmd, "seed", "S", "seed of the bit-error streams (default 1)");
+  list_option(cmd, "dead-link", "NC@T0-T1",
+              "NC's link dead in both directions from T0 to T1 (e.g. 3@1ms-4ms; units ps ns us ms s, bare numbers "
+              "are ms); repeatable");
+  list_option(cmd, "kill-node", "K@TIME",
+              "NC K's processor, and with it its HDLC station, stops at TIME (e.g. 3@20ms); the RC's link "
+              "supervision finds it and hands its work to the others; repeatable");
+  list_option(cmd, "cut-line", "K@TIME",
+              "NC K's HDLC line carries nothing either way from TIME on; the NC is lost to the frame like a "
+              "killed one; repeatable");
+}
+
+void fault_options(const Parsed& a, SystemConfig& cfg) {
+  if (a.has("ber")) cfg.ber = parse_double("--ber", a.get("ber"), 0.0, 0.01);
+  if (a.has("seed")) cfg.seed = parse_unsigned("--seed", a.get("seed"), 0, 0xFFFFFFFFu);
+  const std::string machine = ": the machine has NC 1.." + std::to_string(cfg.nodes);
+  for (const std::string& d : a.all("dead-link")) {
+    cfg.dead_links.push_back(parse_dead_link(d));
+    if (cfg.dead_links.back().nc > cfg.nodes) throw CliError("--dead-link " + d + machine);
+  }
+  for (const std::string& k : a.all("kill-node")) {
     cfg.kills.push_back(parse_kill(k));
-    if (cfg.kills.back().nc > cfg.nodes)
-      throw CliError("--kill-node " + k + ": the machine has NC 1.." + std::to_string(cfg.nodes));
+    if (cfg.kills.back().nc > cfg.nodes) throw CliError("--kill-node " + k + machine);
   }
-  for (const std::string& c : cuts) {
+  for (const std::string& c : a.all("cut-line")) {
     cfg.cut_lines.push_back(parse_cut_line(c));
-    if (cfg.cut_lines.back().nc > cfg.nodes)
-      throw CliError("--cut-line " + c + ": the machine has NC 1.." + std::to_string(cfg.nodes));
+    if (cfg.cut_lines.back().nc > cfg.nodes) throw CliError("--cut-line " + c + machine);
   }
+}
+
+void add_report_options(CLI::App& cmd) {
+  value_option(cmd, "out", "FILE.png", "write the frame memory as PNG");
+  value_option(cmd, "stats", "FILE.json", "write statistics (docs/platform.md \"Statistics\")");
+  value_option(cmd, "gantt", "FILE.svg", "write the activity chart of every NC and the RC's dispatches");
+  value_option(cmd, "vcd", "FILE.vcd", "trace platform signals (HDLC line busy, image-bus grant/owner)");
 }
 
 EngineKind parse_engine(const std::string& s) {

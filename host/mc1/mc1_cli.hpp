@@ -57,8 +57,13 @@ std::vector<unsigned> parse_list(const std::string& opt, const std::string& text
 NodeKill parse_kill(const std::string& text);
 // "K@TIME", e.g. "3@20ms": both directions of NC K's line carry nothing from TIME on.
 CutLine parse_cut_line(const std::string& text);
-// The --kill-node and --cut-line options of a frame command, checked against cfg.nodes.
-void fault_options(const std::vector<std::string>& kills, const std::vector<std::string>& cuts, SystemConfig& cfg);
+// The faults of a frame command: --ber, --seed, --dead-link, --kill-node,
+// --cut-line (the last three repeatable).
+void add_fault_options(CLI::App& cmd);
+// Reads them into cfg, the NCs named checked against cfg.nodes.
+void fault_options(const Parsed& a, SystemConfig& cfg);
+// The files a frame command writes: --out, --stats, --gantt, --vcd.
+void add_report_options(CLI::App& cmd);
 // "iss" or "rtl".
 EngineKind parse_engine(const std::string& text);
 // A machine of the default configuration whose NCs can run either engine

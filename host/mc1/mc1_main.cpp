@@ -62,21 +62,9 @@ void add_frame_options(CLI::App& cmd, const std::string& block_help) {
 void add_diag_options(CLI::App& cmd) {
   cli::value_option(cmd, "nodes", "N", "node computers, 1..4096 (default 4)");
   add_frame_options(cmd, "block size (default 16; rows of at most 1024 pixels)");
-  cli::value_option(cmd, "ber", "X", "HDLC bit error rate on every line end, both directions (default 0)");
-  cli::value_option(cmd, "seed", "S", "seed of the bit-error streams (default 1)");
-  cli::list_option(cmd, "dead-link", "NC@T0-T1",
-                   "NC's link dead in both directions from T0 to T1 (e.g. 3@1ms-4ms; units ps ns us ms s, "
-                   "bare numbers are ms); repeatable");
-  cli::list_option(cmd, "kill-node", "K@TIME",
-                   "NC K's processor, and with it its HDLC station, stops at TIME; repeatable");
-  cli::list_option(cmd, "cut-line", "K@TIME",
-                   "NC K's HDLC line carries nothing either way from TIME on; repeatable. With either, the RC's "
-                   "link supervision finds the NC lost and hands its blocks to the others");
+  cli::add_fault_options(cmd);
   cli::value_option(cmd, "kernel", "FILE", "APU image to broadcast instead of the built-in diag.bin");
-  cli::value_option(cmd, "out", "FILE.png", "write the frame memory as PNG");
-  cli::value_option(cmd, "stats", "FILE.json", "write statistics (docs/platform.md \"Statistics\")");
-  cli::value_option(cmd, "gantt", "FILE.svg", "write the activity chart of every NC and the RC's dispatches");
-  cli::value_option(cmd, "vcd", "FILE.vcd", "trace platform signals (HDLC line busy, image-bus grant/owner)");
+  cli::add_report_options(cmd);
   cli::flag_option(cmd, "quiet", "print nothing but errors");
 }
 
@@ -142,14 +130,7 @@ int cmd_diag(const CLI::App& cmd) {
   const cli::Parsed a(cmd);
   if (a.has("nodes")) cfg.nodes = cli::parse_unsigned("--nodes", a.get("nodes"), 1, 4096);
   frame_options(a, cfg);
-  if (a.has("ber")) cfg.ber = cli::parse_double("--ber", a.get("ber"), 0.0, 0.01);
-  if (a.has("seed")) cfg.seed = cli::parse_unsigned("--seed", a.get("seed"), 0, 0xFFFFFFFFu);
-  for (const std::string& d : a.all("dead-link")) {
-    cfg.dead_links.push_back(cli::parse_dead_link(d));
-    if (cfg.dead_links.back().nc > cfg.nodes)
-      throw CliError("--dead-link " + d + ": the machine has NC 1.." + std::to_string(cfg.nodes));
-  }
-  cli::fault_options(a.all("kill-node"), a.all("cut-line"), cfg);
+  cli::fault_options(a, cfg);
   const bool quiet = a.has("quiet");
   const std::vector<apu::Encoded> program =
       a.has("kernel") ? kernel_image(a.get("kernel")) : diag::kernel();

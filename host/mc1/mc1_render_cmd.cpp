@@ -51,22 +51,11 @@ void add_render_options(CLI::App& cmd) {
   value_option(cmd, "schedule", "S",
                "lpt: heaviest predicted load first (the paper's, default); fifo: screen order as NCs ask; "
                "static: block i to NC (i mod N) + 1");
-  list_option(cmd, "kill-node", "K@TIME",
-              "NC K's processor, and with it its HDLC station, stops at TIME (e.g. 3@20ms); the RC's link "
-              "supervision finds it and hands its work to the others; repeatable");
-  list_option(cmd, "cut-line", "K@TIME",
-              "NC K's HDLC line carries nothing either way from TIME on; the NC is lost to the frame like a "
-              "killed one; repeatable");
-  value_option(cmd, "ber", "X", "HDLC bit error rate on every line end, both directions (default 0)");
-  value_option(cmd, "seed", "S", "seed of the bit-error streams (default 1)");
-  list_option(cmd, "dead-link", "NC@T0-T1", "NC's link dead in both directions from T0 to T1; repeatable");
+  add_fault_options(cmd);
   add_param_options(cmd);
-  value_option(cmd, "out", "FILE.png", "write the frame memory as PNG");
-  value_option(cmd, "stats", "FILE.json", "write statistics (docs/platform.md \"Statistics\")");
-  value_option(cmd, "gantt", "FILE.svg", "write the activity chart of every NC and the RC's dispatches");
+  add_report_options(cmd);
   value_option(cmd, "trace", "FILE.fst", "APU waveform of NC --trace-node (that NC runs the RTL core)");
   value_option(cmd, "trace-node", "K", "the NC to trace (default 1)");
-  value_option(cmd, "vcd", "FILE.vcd", "trace platform signals (HDLC line busy, image-bus grant/owner)");
   flag_option(cmd, "ref",
               "also render the double-precision reference (mc1-ref) at the same size and print the PSNR of the "
               "frame against it");
@@ -210,14 +199,7 @@ int cmd_render(const CLI::App& cmd) {
   if (a.has("scene")) job.scene = a.get("scene");
   if (job.scene.empty()) throw CliError("missing SCENE (see --help)");
   frame_options(a, cfg, job);
-  if (a.has("ber")) cfg.ber = parse_double("--ber", a.get("ber"), 0.0, 0.01);
-  if (a.has("seed")) cfg.seed = parse_unsigned("--seed", a.get("seed"), 0, 0xFFFFFFFFu);
-  for (const std::string& d : a.all("dead-link")) {
-    cfg.dead_links.push_back(parse_dead_link(d));
-    if (cfg.dead_links.back().nc > cfg.nodes)
-      throw CliError("--dead-link " + d + ": the machine has NC 1.." + std::to_string(cfg.nodes));
-  }
-  fault_options(a.all("kill-node"), a.all("cut-line"), cfg);
+  fault_options(a, cfg);
   if (a.has("trace")) {
     cfg.trace_path = a.get("trace");
     cfg.trace_node = a.has("trace-node") ? parse_unsigned("--trace-node", a.get("trace-node"), 1, cfg.nodes) : 1;
