@@ -1,72 +1,69 @@
 #include "mc1_cli.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 
 #include "mc1_engines.hpp"
 
 namespace mc1::cli {
 
-Args::Args(const std::vector<std::string>& args, const std::vector<std::string>& with_value,
-           const std::vector<std::string>& flags) {
-  auto known = [](const std::vector<std::string>& v, const std::string& n) {
-    return std::find(v.begin(), v.end(), n) != v.end();
-  };
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string a = args[i];
-    if (a.rfind("--", 0) != 0) throw CliError("unexpected argument '" + a + "'");
-    std::string name = a.substr(2), value;
-    const auto eq = name.find('=');
-    const bool inline_value = eq != std::string::npos;
-    if (inline_value) {
-      value = name.substr(eq + 1);
-      name = name.substr(0, eq);
+CLI::Option* value_option(CLI::App& cmd, const std::string& name, const std::string& type, const std::string& help) {
+  return cmd.add_option("--" + name, help)
+      ->type_name(type)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+}
+
+CLI::Option* list_option(CLI::App& cmd, const std::string& name, const std::string& type, const std::string& help) {
+  // One value per occurrence: `--dead-link A SCENE` must not take SCENE too.
+  return value_option(cmd, name, type, help)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false);
+}
+
+CLI::Option* flag_option(CLI::App& cmd, const std::string& name, const std::string& help) {
+  return cmd.add_flag("--" + name, help);
+}
+
+void add_param_options(CLI::App& cmd) {
+  list_option(cmd, "params", "FILE", "timing table file (docs/timing.md); repeatable, in order with --param");
+  list_option(cmd, "param", "key=value", "one timing figure; repeatable, in order with --params");
+}
+
+void apply_params(const CLI::App& cmd, TimingParams& t) {
+  // CLI11 keeps each option's values apart; its parse order interleaves them
+  // again, so that a later --param overrides an earlier --params file and
+  // vice versa.
+  const CLI::Option* files = cmd.get_option("--params");
+  const CLI::Option* figures = cmd.get_option("--param");
+  std::size_t next_file = 0, next_figure = 0;
+  try {
+    for (const CLI::Option* o : cmd.parse_order()) {
+      if (o == files) load_params_file(t, files->results().at(next_file++));
+      if (o == figures) apply_param_override(t, figures->results().at(next_figure++));
     }
-    if (known(flags, name)) {
-      if (inline_value) throw CliError("--" + name + " takes no value (got '" + value + "')");
-      values_[name].push_back("");
-    } else if (known(with_value, name)) {
-      if (!inline_value) {
-        if (i + 1 >= args.size()) throw CliError("--" + name + ": missing value");
-        value = args[++i];
-      }
-      values_[name].push_back(value);
-    } else {
-      throw CliError("unknown option '" + a + "' (see --help)");
-    }
+    t.validate();
+  } catch (const ParamError& e) {
+    throw CliError(e.what());
   }
 }
 
-std::string Args::get(const std::string& name, const std::string& fallback) const {
-  const auto it = values_.find(name);
-  return it == values_.end() ? fallback : it->second.back();
+std::string Parsed::get(const std::string& name, const std::string& fallback) const {
+  const CLI::results_t& r = cmd_.get_option("--" + name)->results();
+  return r.empty() ? fallback : r.back();
 }
 
-const std::vector<std::string>& Args::all(const std::string& name) const {
-  static const std::vector<std::string> none;
-  const auto it = values_.find(name);
-  return it == values_.end() ? none : it->second;
+std::vector<std::string> Parsed::all(const std::string& name) const {
+  return cmd_.get_option("--" + name)->results();
 }
 
+// The project's strict numbers (decimal or 0x hex, no octal, no wrapping).
 unsigned parse_unsigned(const std::string& opt, const std::string& text, unsigned min, unsigned max) {
-  char* end = nullptr;
-  const unsigned long v = std::strtoul(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || text[0] == '-' || v < min || v > max)
-    throw CliError(opt + ": bad value '" + text + "' (expected an integer " + std::to_string(min) + ".." +
-                   std::to_string(max) + ")");
-  return static_cast<unsigned>(v);
+  return static_cast<unsigned>(cmdline::parse_unsigned(opt, text, min, max));
 }
 
 double parse_double(const std::string& opt, const std::string& text, double min, double max) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(v) || v < min || v > max)
-    throw CliError(opt + ": bad value '" + text + "' (expected a number in [" + std::to_string(min) + ", " +
-                   std::to_string(max) + "])");
-  return v;
+  return cmdline::parse_real(opt, text, min, max);
 }
 
 std::pair<unsigned, unsigned> parse_size(const std::string& opt, const std::string& text, bool square_ok) {
@@ -140,17 +137,43 @@ CutLine parse_cut_line(const std::string& text) {
   return c;
 }
 
-void fault_options(const std::vector<std::string>& kills, const std::vector<std::string>& cuts, SystemConfig& cfg) {
-  for (const std::string& k : kills) {
+void add_fault_options(CLI::App& cmd) {
+  value_option(cmd, "ber", "X", "HDLC bit error rate on every line end, both directions (default 0)");
+  value_option(cmd, "seed", "S", "seed of the bit-error streams (default 1)");
+  list_option(cmd, "dead-link", "NC@T0-T1",
+              "NC's link dead in both directions from T0 to T1 (e.g. 3@1ms-4ms; units ps ns us ms s, bare numbers "
+              "are ms); repeatable");
+  list_option(cmd, "kill-node", "K@TIME",
+              "NC K's processor, and with it its HDLC station, stops at TIME (e.g. 3@20ms); the RC's link "
+              "supervision finds it and hands its work to the others; repeatable");
+  list_option(cmd, "cut-line", "K@TIME",
+              "NC K's HDLC line carries nothing either way from TIME on; the NC is lost to the frame like a "
+              "killed one; repeatable");
+}
+
+void fault_options(const Parsed& a, SystemConfig& cfg) {
+  if (a.has("ber")) cfg.ber = parse_double("--ber", a.get("ber"), 0.0, 0.01);
+  if (a.has("seed")) cfg.seed = parse_unsigned("--seed", a.get("seed"), 0, 0xFFFFFFFFu);
+  const std::string machine = ": the machine has NC 1.." + std::to_string(cfg.nodes);
+  for (const std::string& d : a.all("dead-link")) {
+    cfg.dead_links.push_back(parse_dead_link(d));
+    if (cfg.dead_links.back().nc > cfg.nodes) throw CliError("--dead-link " + d + machine);
+  }
+  for (const std::string& k : a.all("kill-node")) {
     cfg.kills.push_back(parse_kill(k));
-    if (cfg.kills.back().nc > cfg.nodes)
-      throw CliError("--kill-node " + k + ": the machine has NC 1.." + std::to_string(cfg.nodes));
+    if (cfg.kills.back().nc > cfg.nodes) throw CliError("--kill-node " + k + machine);
   }
-  for (const std::string& c : cuts) {
+  for (const std::string& c : a.all("cut-line")) {
     cfg.cut_lines.push_back(parse_cut_line(c));
-    if (cfg.cut_lines.back().nc > cfg.nodes)
-      throw CliError("--cut-line " + c + ": the machine has NC 1.." + std::to_string(cfg.nodes));
+    if (cfg.cut_lines.back().nc > cfg.nodes) throw CliError("--cut-line " + c + machine);
   }
+}
+
+void add_report_options(CLI::App& cmd) {
+  value_option(cmd, "out", "FILE.png", "write the frame memory as PNG");
+  value_option(cmd, "stats", "FILE.json", "write statistics (docs/platform.md \"Statistics\")");
+  value_option(cmd, "gantt", "FILE.svg", "write the activity chart of every NC and the RC's dispatches");
+  value_option(cmd, "vcd", "FILE.vcd", "trace platform signals (HDLC line busy, image-bus grant/owner)");
 }
 
 EngineKind parse_engine(const std::string& s) {
@@ -163,20 +186,6 @@ SystemConfig machine_config() {
   SystemConfig cfg;
   cfg.engines = make_engine;
   return cfg;
-}
-
-bool wants_help(const std::vector<std::string>& args) {
-  for (const std::string& a : args)
-    if (a == "--help" || a == "-h") return true;
-  return false;
-}
-
-std::vector<std::string> take_params(TimingParams& t, const std::vector<std::string>& args) {
-  try {
-    return apply_param_args(t, args);
-  } catch (const ParamError& e) {
-    throw CliError(e.what());
-  }
 }
 
 void Outputs::add(const std::string& path, std::string_view bytes) { staged_.emplace_back(path, bytes); }

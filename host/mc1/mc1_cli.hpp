@@ -1,37 +1,46 @@
-// Command-line parsing of `mc1` (docs/platform.md "Running it"): option
-// values, sizes, times, dead-link windows. Errors are CliError naming the
-// option and the offending text.
+// Command-line parsing of `mc1` (docs/platform.md "Running it"), on CLI11
+// with the project's conventions (host/common/cmdline.hpp): the commands'
+// options, and the values CLI11 cannot read alone (sizes, times, dead-link
+// windows, fault lists). Errors are CliError (exit 2) naming the option and
+// the offending text.
 #pragma once
 
 #include <cstdint>
-#include <map>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "atomic_file.hpp"
+#include "cmdline.hpp"
 #include "mc1_system.hpp"
 
 namespace mc1::cli {
 
-class CliError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using CliError = cmdline::UsageError;
 
-// `--name value` or `--name=value`; flags without a value. Anything not
-// declared is an error naming it.
-class Args {
+// Declaring a command's options. Values are kept as text and read after
+// parsing by the parse_* functions below, which name the option in errors.
+// --name VALUE (or --name=VALUE); given twice, the last counts.
+CLI::Option* value_option(CLI::App& cmd, const std::string& name, const std::string& type, const std::string& help);
+// --name VALUE, repeatable: every value, in the order given.
+CLI::Option* list_option(CLI::App& cmd, const std::string& name, const std::string& type, const std::string& help);
+CLI::Option* flag_option(CLI::App& cmd, const std::string& name, const std::string& help);
+// --params FILE and --param key=value, both repeatable.
+void add_param_options(CLI::App& cmd);
+// The timing table: --params and --param applied in the order given, as one
+// sequence, then validated.
+void apply_params(const CLI::App& cmd, TimingParams& t);
+
+// The options of a parsed command, by name without the dashes.
+class Parsed {
  public:
-  Args(const std::vector<std::string>& args, const std::vector<std::string>& with_value,
-       const std::vector<std::string>& flags);
-  bool has(const std::string& name) const { return values_.count(name) != 0; }
+  explicit Parsed(const CLI::App& cmd) : cmd_(cmd) {}
+  bool has(const std::string& name) const { return cmd_.count("--" + name) != 0; }
   std::string get(const std::string& name, const std::string& fallback = "") const;
-  const std::vector<std::string>& all(const std::string& name) const;  // repeated options
+  std::vector<std::string> all(const std::string& name) const;  // repeated options
 
  private:
-  std::map<std::string, std::vector<std::string>> values_;
+  const CLI::App& cmd_;
 };
 
 unsigned parse_unsigned(const std::string& opt, const std::string& text, unsigned min, unsigned max);
@@ -48,8 +57,13 @@ std::vector<unsigned> parse_list(const std::string& opt, const std::string& text
 NodeKill parse_kill(const std::string& text);
 // "K@TIME", e.g. "3@20ms": both directions of NC K's line carry nothing from TIME on.
 CutLine parse_cut_line(const std::string& text);
-// The --kill-node and --cut-line options of a frame command, checked against cfg.nodes.
-void fault_options(const std::vector<std::string>& kills, const std::vector<std::string>& cuts, SystemConfig& cfg);
+// The faults of a frame command: --ber, --seed, --dead-link, --kill-node,
+// --cut-line (the last three repeatable).
+void add_fault_options(CLI::App& cmd);
+// Reads them into cfg, the NCs named checked against cfg.nodes.
+void fault_options(const Parsed& a, SystemConfig& cfg);
+// The files a frame command writes: --out, --stats, --gantt, --vcd.
+void add_report_options(CLI::App& cmd);
 // "iss" or "rtl".
 EngineKind parse_engine(const std::string& text);
 // A machine of the default configuration whose NCs can run either engine
@@ -57,9 +71,6 @@ EngineKind parse_engine(const std::string& text);
 SystemConfig machine_config();
 
 // Helpers of the commands.
-bool wants_help(const std::vector<std::string>& args);
-// The timing table first (it consumes --param/--params); returns the rest.
-std::vector<std::string> take_params(TimingParams& t, const std::vector<std::string>& args);
 // The files one run writes, whole or not at all (docs/reliability.md): each
 // is staged beside its target as it is made, and commit() renames them all
 // into place. A run that fails before commit(), a write that fails included,

@@ -16,11 +16,23 @@ endfunction()
 set(tiny ${SCENES}/tiny.json --size 16x16 --nodes 2 --quiet)
 expect(version 0 "^mc1 [0-9]+\\.[0-9]+\\.[0-9]+" --version)
 expect(help 0 "usage: mc1" --help)
+expect(help_command 0 "usage: mc1 \\[OPTIONS\\] SUBCOMMAND" help)
+expect(render_help 0 "usage: mc1 render.*--kill-node K@TIME" render --help)
+expect(no_command 2 "mc1: A subcommand is required" )
+expect(unknown_command 2 "mc1: unknown command 'paint'" paint)
 expect(missing_scene 2 "mc1 render: ${WORK_DIR}/none.json: cannot open scene file" render ${WORK_DIR}/none.json)
 expect(scene_is_dir 2 "is a directory" render ${WORK_DIR})
 expect(params_is_dir 2 "is a directory \\(expected a parameter file\\)" render ${tiny} --params ${WORK_DIR})
 expect(bad_kernel 2 "--kernel: ${WORK_DIR}: is a directory" diag --nodes 2 --kernel ${WORK_DIR})
-expect(bad_option 2 "unknown option" render ${tiny} --bogus)
+expect(bad_option 2 "not expected: --bogus" render ${tiny} --bogus)
+expect(bad_number 2 "mc1 diag: --nodes: '0' is out of range \\[1, 4096\\]" diag --nodes 0)
+expect(bad_time 2 "--kill-node: bad time '20parsecs'" render ${tiny} --kill-node 1@20parsecs)
+expect(params_extra 2 "not expected: extra" params extra)
+
+# --params and --param apply in the order given, as one sequence.
+file(WRITE ${WORK_DIR}/w4.params "hdlc_window = 4\n")
+expect(params_file_last 0 "hdlc_window = 4 " params --param hdlc_window=3 --params ${WORK_DIR}/w4.params)
+expect(param_last 0 "hdlc_window = 6 " params --params=${WORK_DIR}/w4.params --param=hdlc_window=6)
 
 # A failed write: exit 1, and none of the run's outputs is left behind.
 expect(stats_full 1 "/dev/full: .*No space left on device" render ${tiny}

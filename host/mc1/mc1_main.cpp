@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <systemc>
@@ -30,77 +31,52 @@ using cli::CliError;
 
 [[maybe_unused]] const int no_banner = setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
 
-const char* kUsage =
-    "usage: mc1 <command> [options]\n"
-    "\n"
+const char* kDescription =
     "The MC-1 multicomputer (RC + N node computers over HDLC, image bus, frame memory)\n"
-    "as a loosely-timed SystemC/TLM-2.0 model.\n"
-    "\n"
-    "commands:\n"
-    "  render        render a scene (fig. 3): broadcast, block lists, blocks by schedule;\n"
-    "                PNG, stats, Gantt\n"
-    "  bench-render  speed of the rendered frame: speedup, efficiency, lpt against static\n"
-    "  diag          run the self-test frame and check it bit for bit against the FP24 model\n"
-    "  bench         host seconds and simulated time of the self-test frame at 16 and 256 NCs\n"
-    "  params        print the timing table (after --params/--param)\n"
-    "  help          this text; `mc1 <command> --help` for a command's options\n";
+    "as a loosely-timed SystemC/TLM-2.0 model. `mc1 COMMAND --help` for a command's options.";
 
-const char* kDiagUsage =
-    "usage: mc1 diag [options]\n"
-    "\n"
+const char* kDiagDescription =
+    "run the self-test frame and check it bit for bit against the FP24 model\n\n"
     "The machine's self-test frame: the RC broadcasts the diag APU kernel over HDLC,\n"
     "hands out blocks of the screen dynamically, each NC computes its blocks on its APU\n"
     "and sends the pixels over the image bus to the frame memory. The frame is compared\n"
-    "with the host's FP24-model computation; the exit status is 0 only if they are equal.\n"
-    "\n"
-    "options:\n"
-    "  --nodes N            node computers, 1..4096 (default 4)\n"
-    "  --engine iss|rtl     APU engine: C++ ISS or verilated RTL core (default iss)\n"
-    "  --size WxH           frame size (default 256x256)\n"
-    "  --block B|WxH        block size (default 16; rows of at most 1024 pixels)\n"
-    "  --ber X              HDLC bit error rate on every line end, both directions (default 0)\n"
-    "  --seed S             seed of the bit-error streams (default 1)\n"
-    "  --dead-link NC@T0-T1 NC's link dead in both directions from T0 to T1 (e.g. 3@1ms-4ms;\n"
-    "                       units ps ns us ms s, bare numbers are ms); repeatable\n"
-    "  --kill-node K@TIME   NC K's processor, and with it its HDLC station, stops at TIME;\n"
-    "                       repeatable\n"
-    "  --cut-line K@TIME    NC K's HDLC line carries nothing either way from TIME on; repeatable.\n"
-    "                       With either, the RC's link supervision finds the NC lost and hands\n"
-    "                       its blocks to the others\n"
-    "  --params FILE        timing table file (docs/timing.md); repeatable, in order\n"
-    "  --param key=value    one timing figure; repeatable, in order\n"
-    "  --kernel FILE        APU image to broadcast instead of the built-in diag.bin\n"
-    "  --out FILE.png       write the frame memory as PNG\n"
-    "  --stats FILE.json    write statistics (docs/platform.md \"Statistics\")\n"
-    "  --gantt FILE.svg     write the activity chart of every NC and the RC's dispatches\n"
-    "  --vcd FILE.vcd       trace platform signals (HDLC line busy, image-bus grant/owner)\n"
-    "  --quiet              print nothing but errors\n";
+    "with the host's FP24-model computation; the exit status is 0 only if they are equal.";
 
-const char* kBenchUsage =
-    "usage: mc1 bench [options]\n"
-    "\n"
+const char* kBenchDescription =
+    "host seconds and simulated time of the self-test frame at 16 and 256 NCs\n\n"
     "Runs the self-test frame on the ISS engine for each node count and prints host\n"
     "seconds, simulated time, APU cycles and the share of host time spent in the APU\n"
-    "engine (the rest is SystemC, HDLC, bus and firmware model).\n"
-    "\n"
-    "options:\n"
-    "  --nodes LIST         node counts (default 16,256)\n"
-    "  --engine iss|rtl     APU engine (default iss)\n"
-    "  --size WxH           frame size (default 256x256)\n"
-    "  --block B|WxH        block size (default 16)\n"
-    "  --params FILE, --param key=value   timing table, as for diag\n"
-    "  --json FILE          also write the figures as JSON\n";
+    "engine (the rest is SystemC, HDLC, bus and firmware model).";
 
-const char* kParamsUsage =
-    "usage: mc1 params [--params FILE] [--param key=value]...\n"
-    "\n"
-    "Prints the timing table in effect, in the --params file format (docs/timing.md).\n";
+const char* kParamsDescription =
+    "print the timing table (after --params/--param)\n\n"
+    "Prints the timing table in effect, in the --params file format (docs/timing.md).";
+
+void add_frame_options(CLI::App& cmd, const std::string& block_help) {
+  cli::value_option(cmd, "engine", "iss|rtl", "APU engine: C++ ISS or verilated RTL core (default iss)");
+  cli::value_option(cmd, "size", "WxH", "frame size (default 256x256)");
+  cli::value_option(cmd, "block", "B|WxH", block_help);
+  cli::add_param_options(cmd);
+}
+
+void add_diag_options(CLI::App& cmd) {
+  cli::value_option(cmd, "nodes", "N", "node computers, 1..4096 (default 4)");
+  add_frame_options(cmd, "block size (default 16; rows of at most 1024 pixels)");
+  cli::add_fault_options(cmd);
+  cli::value_option(cmd, "kernel", "FILE", "APU image to broadcast instead of the built-in diag.bin");
+  cli::add_report_options(cmd);
+  cli::flag_option(cmd, "quiet", "print nothing but errors");
+}
+
+void add_bench_options(CLI::App& cmd) {
+  cli::value_option(cmd, "nodes", "LIST", "node counts (default 16,256)");
+  add_frame_options(cmd, "block size (default 16)");
+  cli::value_option(cmd, "json", "FILE", "also write the figures as JSON");
+}
 
 using cli::parse_engine;
-using cli::take_params;
-using cli::wants_help;
 
-void frame_options(const cli::Args& a, SystemConfig& cfg) {
+void frame_options(const cli::Parsed& a, SystemConfig& cfg) {
   if (a.has("engine")) cfg.engine = parse_engine(a.get("engine"));
   if (a.has("size")) std::tie(cfg.width, cfg.height) = cli::parse_size("--size", a.get("size"), false);
   if (a.has("block")) std::tie(cfg.block_w, cfg.block_h) = cli::parse_size("--block", a.get("block"), true);
@@ -148,26 +124,13 @@ std::vector<apu::Encoded> kernel_image(const std::string& path) {
   }
 }
 
-int cmd_diag(const std::vector<std::string>& argv) {
-  if (wants_help(argv)) {
-    std::cout << kDiagUsage;
-    return 0;
-  }
+int cmd_diag(const CLI::App& cmd) {
   SystemConfig cfg = cli::machine_config();
-  const cli::Args a(take_params(cfg.timing, argv),
-                    {"nodes", "engine", "size", "block", "ber", "seed", "dead-link", "kill-node", "cut-line", "kernel",
-                     "out", "stats", "gantt", "vcd"},
-                    {"quiet"});
+  cli::apply_params(cmd, cfg.timing);
+  const cli::Parsed a(cmd);
   if (a.has("nodes")) cfg.nodes = cli::parse_unsigned("--nodes", a.get("nodes"), 1, 4096);
   frame_options(a, cfg);
-  if (a.has("ber")) cfg.ber = cli::parse_double("--ber", a.get("ber"), 0.0, 0.01);
-  if (a.has("seed")) cfg.seed = cli::parse_unsigned("--seed", a.get("seed"), 0, 0xFFFFFFFFu);
-  for (const std::string& d : a.all("dead-link")) {
-    cfg.dead_links.push_back(cli::parse_dead_link(d));
-    if (cfg.dead_links.back().nc > cfg.nodes)
-      throw CliError("--dead-link " + d + ": the machine has NC 1.." + std::to_string(cfg.nodes));
-  }
-  cli::fault_options(a.all("kill-node"), a.all("cut-line"), cfg);
+  cli::fault_options(a, cfg);
   const bool quiet = a.has("quiet");
   const std::vector<apu::Encoded> program =
       a.has("kernel") ? kernel_image(a.get("kernel")) : diag::kernel();
@@ -206,13 +169,10 @@ int cmd_diag(const std::vector<std::string>& argv) {
   return 0;
 }
 
-int cmd_bench(const std::vector<std::string>& argv) {
-  if (wants_help(argv)) {
-    std::cout << kBenchUsage;
-    return 0;
-  }
+int cmd_bench(const CLI::App& cmd) {
   SystemConfig base = cli::machine_config();
-  const cli::Args a(take_params(base.timing, argv), {"nodes", "engine", "size", "block", "json"}, {});
+  cli::apply_params(cmd, base.timing);
+  const cli::Parsed a(cmd);
   frame_options(a, base);
   const std::vector<unsigned> nodes = cli::parse_list("--nodes", a.get("nodes", "16,256"), 1, 4096);
   std::ostringstream json;
@@ -243,16 +203,53 @@ int cmd_bench(const std::vector<std::string>& argv) {
   return all_ok ? 0 : 1;
 }
 
-int cmd_params(const std::vector<std::string>& argv) {
-  if (wants_help(argv)) {
-    std::cout << kParamsUsage;
-    return 0;
-  }
+int cmd_params(const CLI::App& cmd) {
   TimingParams t;
-  const std::vector<std::string> rest = take_params(t, argv);
-  if (!rest.empty()) throw CliError("unexpected argument '" + rest.front() + "'");
+  cli::apply_params(cmd, t);
   std::cout << t.to_text();
   return 0;
+}
+
+// `mc1 --help` lists each command by the first line of its description; the
+// rest is for `mc1 COMMAND --help`.
+class Formatter : public CLI::Formatter {
+ public:
+  std::string make_subcommand(const CLI::App* sub) const override {
+    const std::string& d = sub->get_description();
+    std::stringstream out;
+    CLI::detail::format_help(out, sub->get_display_name(), d.substr(0, d.find('\n')), column_width_);
+    return out.str();
+  }
+};
+
+// The command line: one subcommand, and `mc1 help` as `mc1 --help`.
+void add_commands(CLI::App& app) {
+  app.formatter(std::make_shared<Formatter>());
+  cmdline::conventions(app);
+  // `mc1 --version` prints "mc1 X.Y.Z", as it always has.
+  app.set_version_flag("--version", std::string("mc1 ") + cmdline::version(), "print the version and exit");
+  app.get_formatter()->label("Usage", "usage");
+  app.require_subcommand(1);
+  app.add_subcommand("help", "this text; `mc1 COMMAND --help` for a command's options");
+  cli::add_render_options(*app.add_subcommand("render", cli::kRenderDescription));
+  cli::add_bench_render_options(*app.add_subcommand("bench-render", cli::kBenchRenderDescription));
+  add_diag_options(*app.add_subcommand("diag", kDiagDescription));
+  add_bench_options(*app.add_subcommand("bench", kBenchDescription));
+  cli::add_param_options(*app.add_subcommand("params", kParamsDescription));
+}
+
+int run_command(const CLI::App& app, const CLI::App& cmd) {
+  const std::string name = cmd.get_name();
+  if (name == "help") {
+    // app.help() would describe the selected subcommand, `help` itself.
+    std::cout << app.get_formatter()->make_help(&app, app.get_name(), CLI::AppFormatMode::Normal);
+    return cmdline::kExitOk;
+  }
+  if (name == "diag") return cmd_diag(cmd);
+  if (name == "render") return cli::cmd_render(cmd);
+  if (name == "bench-render") return cli::cmd_bench_render(cmd);
+  if (name == "bench") return cmd_bench(cmd);
+  return cmd_params(cmd);
 }
 
 }  // namespace
@@ -260,33 +257,25 @@ int cmd_params(const std::vector<std::string>& argv) {
 int sc_main(int argc, char** argv) {
   // SystemC's notes (trace timescale, ...) would mix with the report.
   sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
-    std::cout << kUsage;
-    return args.empty() ? 2 : 0;
-  }
-  if (args[0] == "--version") {
-    std::cout << "mc1 " << MC1_VERSION << "\n";
-    return 0;
-  }
-  const std::string cmd = args[0];
-  args.erase(args.begin());
+  CLI::App app(kDescription, "mc1");
+  add_commands(app);
+  // CLI11 would only say that a command is required.
+  const auto named = [&](const CLI::App* sub) { return sub->check_name(argv[1]); };
+  if (argc > 1 && argv[1][0] != '-' && app.get_subcommands(named).empty())
+    return cmdline::usage_error(app, std::string("unknown command '") + argv[1] + "'");
+  if (const auto done = cmdline::parse(app, argc, argv)) return *done;
+  const CLI::App& cmd = *app.get_subcommands().front();
+  const std::string name = cmd.get_name();
   try {
-    if (cmd == "diag") return cmd_diag(args);
-    if (cmd == "render") return cli::cmd_render(args);
-    if (cmd == "bench-render") return cli::cmd_bench_render(args);
-    if (cmd == "bench") return cmd_bench(args);
-    if (cmd == "params") return cmd_params(args);
-    std::fprintf(stderr, "mc1: unknown command '%s'\n%s", cmd.c_str(), kUsage);
-    return 2;
+    return run_command(app, cmd);
   } catch (const CliError& e) {
-    std::fprintf(stderr, "mc1 %s: %s\n", cmd.c_str(), e.what());
-    return 2;
+    std::fprintf(stderr, "mc1 %s: %s\n", name.c_str(), e.what());
+    return cmdline::kExitUsage;
   } catch (const scene::SceneError& e) {  // a missing or bad scene is bad input
-    std::fprintf(stderr, "mc1 %s: %s\n", cmd.c_str(), e.what());
-    return 2;
+    std::fprintf(stderr, "mc1 %s: %s\n", name.c_str(), e.what());
+    return cmdline::kExitUsage;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "mc1 %s: %s\n", cmd.c_str(), e.what());
-    return 1;
+    std::fprintf(stderr, "mc1 %s: %s\n", name.c_str(), e.what());
+    return cmdline::kExitFailed;
   }
 }

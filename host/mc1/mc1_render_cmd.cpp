@@ -20,50 +20,18 @@
 #include "scene.hpp"
 
 namespace mc1::cli {
-namespace {
 
-const char* kRenderUsage =
-    "usage: mc1 render SCENE [options]\n"
-    "\n"
+const char* const kRenderDescription =
+    "render a scene (fig. 3): broadcast, block lists, blocks by schedule; PNG, stats, Gantt\n\n"
     "Renders a scene (docs/scene-format.md) on the machine as the paper's fig. 3 does: the RC\n"
     "broadcasts the renderer's kernels and the scene in FP24 over HDLC; every NC transforms it\n"
     "to view coordinates on its APU (step 1); the NCs build the block lists (step 2); the RC\n"
     "hands the blocks out by its schedule and the NCs render them and send the pixels over the\n"
     "image bus to the frame memory (step 3). The frame does not depend on the node count, the\n"
-    "schedule, the engine or the faults.\n"
-    "\n"
-    "options:\n"
-    "  --nodes N            node computers, 1..4096 (default 16)\n"
-    "  --size WxH           frame size (default: the scene's camera size)\n"
-    "  --block B|WxH        block size (default 16)\n"
-    "  --engine iss|rtl     APU engine: C++ ISS or verilated RTL core (default iss)\n"
-    "  --schedule S         lpt: heaviest predicted load first (the paper's, default);\n"
-    "                       fifo: screen order as NCs ask; static: block i to NC (i mod N) + 1\n"
-    "  --kill-node K@TIME   NC K's processor, and with it its HDLC station, stops at TIME (e.g.\n"
-    "                       3@20ms); the RC's link supervision finds it and hands its work to\n"
-    "                       the others; repeatable\n"
-    "  --cut-line K@TIME    NC K's HDLC line carries nothing either way from TIME on; the NC is\n"
-    "                       lost to the frame like a killed one; repeatable\n"
-    "  --ber X              HDLC bit error rate on every line end, both directions (default 0)\n"
-    "  --seed S             seed of the bit-error streams (default 1)\n"
-    "  --dead-link NC@T0-T1 NC's link dead in both directions from T0 to T1; repeatable\n"
-    "  --params FILE        timing table file (docs/timing.md); repeatable, in order\n"
-    "  --param key=value    one timing figure; repeatable, in order\n"
-    "  --out FILE.png       write the frame memory as PNG\n"
-    "  --stats FILE.json    write statistics (docs/platform.md \"Statistics\")\n"
-    "  --gantt FILE.svg     write the activity chart of every NC and the RC's dispatches\n"
-    "  --trace FILE.fst     APU waveform of NC --trace-node (that NC runs the RTL core)\n"
-    "  --trace-node K       the NC to trace (default 1)\n"
-    "  --vcd FILE.vcd       trace platform signals (HDLC line busy, image-bus grant/owner)\n"
-    "  --ref                also render the double-precision reference (mc1-ref) at the same\n"
-    "                       size and print the PSNR of the frame against it\n"
-    "  --diff FILE.png      with --ref: the difference image, |frame - reference| x 8\n"
-    "  --min-psnr DB        with --ref: exit status 1 when the PSNR is below DB\n"
-    "  --quiet              print nothing but errors (no progress bar)\n";
+    "schedule, the engine or the faults.";
 
-const char* kBenchRenderUsage =
-    "usage: mc1 bench-render [options]\n"
-    "\n"
+const char* const kBenchRenderDescription =
+    "speed of the rendered frame: speedup, efficiency, lpt against static\n\n"
     "The rendering benchmark (docs/platform.md \"Rendering benchmark\"), on the Whitted scene:\n"
     "  1. --size (256x256) on each of --nodes (1,4,16,64) NCs, lpt: simulated frame time,\n"
     "     speedup over 1 NC, APU utilization, host seconds;\n"
@@ -71,16 +39,45 @@ const char* kBenchRenderUsage =
     "  3. --big (512x512) on 1 and --big-nodes (64) NCs, lpt and static: parallel efficiency\n"
     "     T1 / (N TN), the serial download's share, lpt's gain over static;\n"
     "  4. with --rtl: --size on --static-nodes NCs on the RTL engine (host time).\n"
-    "Every run's frame must equal the first run's of its size bit for bit.\n"
-    "\n"
-    "options:\n"
-    "  --scene FILE         (default: scenes/whitted.json of the source tree)\n"
-    "  --size WxH           (default 256x256)   --nodes LIST (default 1,4,16,64)\n"
-    "  --static-nodes N     (default 16)        --block B (default 16)\n"
-    "  --big WxH|0          (default 512x512; 0 skips part 3)\n"
-    "  --big-nodes N        (default 64)        --rtl  also run part 4\n"
-    "  --params FILE, --param key=value         timing table\n"
-    "  --json FILE          also write the figures as JSON\n";
+    "Every run's frame must equal the first run's of its size bit for bit.";
+
+void add_render_options(CLI::App& cmd) {
+  cmd.add_option("SCENE", "the scene file (or --scene FILE)")->type_name("FILE");
+  value_option(cmd, "scene", "FILE", "the scene file, instead of SCENE");
+  value_option(cmd, "nodes", "N", "node computers, 1..4096 (default 16)");
+  value_option(cmd, "size", "WxH", "frame size (default: the scene's camera size)");
+  value_option(cmd, "block", "B|WxH", "block size (default 16)");
+  value_option(cmd, "engine", "iss|rtl", "APU engine: C++ ISS or verilated RTL core (default iss)");
+  value_option(cmd, "schedule", "S",
+               "lpt: heaviest predicted load first (the paper's, default); fifo: screen order as NCs ask; "
+               "static: block i to NC (i mod N) + 1");
+  add_fault_options(cmd);
+  add_param_options(cmd);
+  add_report_options(cmd);
+  value_option(cmd, "trace", "FILE.fst", "APU waveform of NC --trace-node (that NC runs the RTL core)");
+  value_option(cmd, "trace-node", "K", "the NC to trace (default 1)");
+  flag_option(cmd, "ref",
+              "also render the double-precision reference (mc1-ref) at the same size and print the PSNR of the "
+              "frame against it");
+  value_option(cmd, "diff", "FILE.png", "with --ref: the difference image, |frame - reference| x 8");
+  value_option(cmd, "min-psnr", "DB", "with --ref: exit status 1 when the PSNR is below DB");
+  flag_option(cmd, "quiet", "print nothing but errors (no progress bar)");
+}
+
+void add_bench_render_options(CLI::App& cmd) {
+  value_option(cmd, "scene", "FILE", "(default: scenes/whitted.json of the source tree)");
+  value_option(cmd, "size", "WxH", "(default 256x256)");
+  value_option(cmd, "nodes", "LIST", "(default 1,4,16,64)");
+  value_option(cmd, "static-nodes", "N", "(default 16)");
+  value_option(cmd, "block", "B", "(default 16)");
+  value_option(cmd, "big", "WxH|0", "(default 512x512; 0 skips part 3)");
+  value_option(cmd, "big-nodes", "N", "(default 64)");
+  flag_option(cmd, "rtl", "also run part 4");
+  add_param_options(cmd);
+  value_option(cmd, "json", "FILE", "also write the figures as JSON");
+}
+
+namespace {
 
 std::string pct(double x) {
   char b[32];
@@ -122,7 +119,7 @@ class ProgressBar {
   std::chrono::steady_clock::time_point last_;
 };
 
-void frame_options(const Args& a, SystemConfig& cfg, RenderJob& job) {
+void frame_options(const Parsed& a, SystemConfig& cfg, RenderJob& job) {
   if (a.has("nodes")) cfg.nodes = parse_unsigned("--nodes", a.get("nodes"), 1, 4096);
   if (a.has("engine")) cfg.engine = parse_engine(a.get("engine"));
   if (a.has("size")) std::tie(job.width, job.height) = parse_size("--size", a.get("size"), false);
@@ -192,34 +189,17 @@ int compare_to_reference(const RenderJob& job, const FrameReport& r, const std::
 
 }  // namespace
 
-int cmd_render(const std::vector<std::string>& argv_in) {
-  if (wants_help(argv_in)) {
-    std::cout << kRenderUsage;
-    return 0;
-  }
-  std::vector<std::string> argv = argv_in;
+int cmd_render(const CLI::App& cmd) {
   RenderJob job;
-  if (!argv.empty() && argv[0].rfind("--", 0) != 0) {
-    job.scene = argv[0];
-    argv.erase(argv.begin());
-  }
+  if (cmd.count("SCENE")) job.scene = cmd.get_option("SCENE")->results().back();
   SystemConfig cfg = machine_config();
   cfg.nodes = 16;
-  const Args a(take_params(cfg.timing, argv),
-               {"nodes", "size", "block", "engine", "schedule", "kill-node", "cut-line", "ber", "seed", "dead-link", "out",
-                "stats", "gantt", "trace", "trace-node", "vcd", "diff", "scene", "min-psnr"},
-               {"quiet", "ref"});
+  apply_params(cmd, cfg.timing);
+  const Parsed a(cmd);
   if (a.has("scene")) job.scene = a.get("scene");
   if (job.scene.empty()) throw CliError("missing SCENE (see --help)");
   frame_options(a, cfg, job);
-  if (a.has("ber")) cfg.ber = parse_double("--ber", a.get("ber"), 0.0, 0.01);
-  if (a.has("seed")) cfg.seed = parse_unsigned("--seed", a.get("seed"), 0, 0xFFFFFFFFu);
-  for (const std::string& d : a.all("dead-link")) {
-    cfg.dead_links.push_back(parse_dead_link(d));
-    if (cfg.dead_links.back().nc > cfg.nodes)
-      throw CliError("--dead-link " + d + ": the machine has NC 1.." + std::to_string(cfg.nodes));
-  }
-  fault_options(a.all("kill-node"), a.all("cut-line"), cfg);
+  fault_options(a, cfg);
   if (a.has("trace")) {
     cfg.trace_path = a.get("trace");
     cfg.trace_node = a.has("trace-node") ? parse_unsigned("--trace-node", a.get("trace-node"), 1, cfg.nodes) : 1;
@@ -267,14 +247,10 @@ struct BenchRun {
 
 }  // namespace
 
-int cmd_bench_render(const std::vector<std::string>& argv) {
-  if (wants_help(argv)) {
-    std::cout << kBenchRenderUsage;
-    return 0;
-  }
+int cmd_bench_render(const CLI::App& cmd) {
   SystemConfig base = machine_config();
-  const Args a(take_params(base.timing, argv),
-               {"scene", "size", "nodes", "static-nodes", "block", "big", "big-nodes", "json"}, {"rtl"});
+  apply_params(cmd, base.timing);
+  const Parsed a(cmd);
   const std::string scene = a.get("scene", MC1_SOURCE_DIR "/scenes/whitted.json");
   const auto size = parse_size("--size", a.get("size", "256x256"), false);
   const std::vector<unsigned> nodes = parse_list("--nodes", a.get("nodes", "1,4,16,64"), 1, 4096);
