@@ -85,6 +85,14 @@ class NcTest : public test::SystemCTest {};
 // A kernel that never halts nor takes a bank: the watchdog's case.
 const char* kSpin = "spin:   jmp spin\n";
 
+// After the RC's broadcasts: `words` loaded, handed over and started at 0.
+void start_kernel(nc::NcPort& port, const std::vector<apu::Encoded>& words) {
+  drain_rc(port);
+  port.apu().load_program(words);
+  port.apu().hand_over_program();
+  port.apu().start(0);
+}
+
 TimingParams watchdog_of(std::uint64_t cycles) {
   TimingParams t;
   t.apu_watchdog_cycles = cycles;
@@ -100,10 +108,7 @@ TEST_F(NcTest, WatchdogStopsARunawayKernelWaitedForToHalt) {
   bool returned = false;
   OneNc b(
       [&](nc::NcPort& port) {
-        drain_rc(port);
-        port.apu().load_program(words);
-        port.apu().hand_over_program();
-        port.apu().start(0);
+        start_kernel(port, words);
         port.apu_wait_halt();
         returned = true;
       },
@@ -125,10 +130,7 @@ TEST_F(NcTest, WatchdogStopsAKernelThatNeverTakesTheDataBank) {
   const auto words = apuasm::assemble(kSpin).words;
   OneNc b(
       [&](nc::NcPort& port) {
-        drain_rc(port);
-        port.apu().load_program(words);
-        port.apu().hand_over_program();
-        port.apu().start(0);
+        start_kernel(port, words);
         port.apu().hand_over_data();
         port.apu_wait_swap();
       },
@@ -148,10 +150,7 @@ TEST_F(NcTest, WatchdogLeavesARunWithinItsBudget) {
   const std::uint64_t n = bare_cycles(words);
   OneNc b(
       [&](nc::NcPort& port) {
-        drain_rc(port);
-        port.apu().load_program(words);
-        port.apu().hand_over_program();
-        port.apu().start(0);
+        start_kernel(port, words);
         port.apu_wait_halt();
       },
       std::make_unique<apu::Iss>(), watchdog_of(n + 1));
