@@ -40,16 +40,8 @@ void any_stream(const std::uint8_t* data, std::size_t size) {
   }
 }
 
-// LSB-first bits of the frame's octets, FCS included, without zero insertion.
-Bits octet_bits(const Frame& f) {
-  Bits out;
-  for (std::uint8_t o : frame_octets(f))
-    for (int b = 0; b < 8; ++b) out.push_back(static_cast<std::uint8_t>((o >> b) & 1u));
-  return out;
-}
-
 bool sent_by_sender(const Frame& got, const Bits& sent) {
-  const Bits g = octet_bits(got);
+  const Bits g = lsb_first_bits(frame_octets(got));
   return std::search(sent.begin(), sent.end(), g.begin(), g.end()) != sent.end();
 }
 
@@ -63,7 +55,7 @@ void round_trip_and_one_bit_errors(const std::uint8_t* data, std::size_t size) {
   const Bits wire = encode(f);
   std::optional<Frame> back = decode(wire);
   if (!back || !(*back == f)) violated("round trip lost the frame", f);
-  const Bits sent = octet_bits(f);
+  const Bits sent = lsb_first_bits(frame_octets(f));
   // One flipped bit chosen by the input, and a sweep of 64 more spread over the image.
   for (std::size_t k = 0; k < 65; ++k) {
     const std::size_t bit = (flip_seed + k * (wire.size() / 64 + 1)) % wire.size();

@@ -169,17 +169,6 @@ TEST(HdlcDecode, DetectsFcsErrorAbortShortAndMisaligned) {
   EXPECT_EQ(d.counters().aborts, 0u);
 }
 
-namespace {
-
-Bits octet_bits(const Frame& f) {
-  Bits out;
-  for (std::uint8_t o : frame_octets(f))
-    for (int b = 0; b < 8; ++b) out.push_back(static_cast<std::uint8_t>((o >> b) & 1u));
-  return out;
-}
-
-}  // namespace
-
 // What the FCS cannot see (docs/hdlc.md): one flipped wire bit can make a
 // flag inside a frame (flag emulation); if the information field carries a
 // whole frame image of its own, that frame is then delivered. The frame here
@@ -194,7 +183,7 @@ TEST(HdlcDecode, OneBitErrorsDeliverOnlyBitsTheSenderSent) {
   f.control = in[1];
   f.info.assign(in.begin() + 4, in.end());
   const Bits wire = encode(f);
-  const Bits sent = octet_bits(f);
+  const Bits sent = lsb_first_bits(frame_octets(f));
   int emulated = 0;
   for (std::size_t bit = 0; bit < wire.size(); ++bit) {
     Bits bad = wire;
@@ -205,7 +194,7 @@ TEST(HdlcDecode, OneBitErrorsDeliverOnlyBitsTheSenderSent) {
     d.idle();
     for (const Frame& g : got) {
       if (g == f) continue;
-      const Bits gb = octet_bits(g);
+      const Bits gb = lsb_first_bits(frame_octets(g));
       EXPECT_NE(std::search(sent.begin(), sent.end(), gb.begin(), gb.end()), sent.end())
           << "bit " << bit << " delivered " << describe(g);
       ++emulated;

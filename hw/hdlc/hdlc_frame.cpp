@@ -93,6 +93,14 @@ void push_flag(Bits& b) {
 }
 }  // namespace
 
+Bits lsb_first_bits(const Bytes& octets) {
+  Bits b;
+  b.reserve(octets.size() * 8);
+  for (std::uint8_t o : octets)
+    for (int i = 0; i < 8; ++i) b.push_back(static_cast<std::uint8_t>((o >> i) & 1u));
+  return b;
+}
+
 Bits stuff(const Bytes& octets) {
   Bits b;
   b.reserve(octets.size() * 8 * 6 / 5 + 8);

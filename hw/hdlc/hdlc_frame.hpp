@@ -61,6 +61,8 @@ struct Frame {
 
 // Address, control, information and FCS octets (no flags, no stuffing).
 Bytes frame_octets(const Frame& f);
+// Octets to LSB-first bits, as on the wire before zero insertion.
+Bits lsb_first_bits(const Bytes& octets);
 // Octets to LSB-first bits, then zero insertion after every run of five 1s.
 Bits stuff(const Bytes& octets);
 // The complete wire image: opening flag, stuffed frame octets, closing flag.
