@@ -176,7 +176,7 @@ int cmd_bench(const CLI::App& cmd) {
   frame_options(a, base);
   const std::vector<unsigned> nodes = cli::parse_list("--nodes", a.get("nodes", "16,256"), 1, 4096);
   std::ostringstream json;
-  json << "{\"engine\": \"" << engine_name(base.engine) << "\", \"width\": " << base.width
+  json << "{\"schema\": \"mc1-bench/1\", \"engine\": \"" << engine_name(base.engine) << "\", \"width\": " << base.width
        << ", \"height\": " << base.height << ", \"block_width\": " << base.block_w
        << ", \"block_height\": " << base.block_h << ", \"runs\": [";
   std::printf("%6s %12s %10s %14s %12s %12s %6s\n", "NCs", "simulated", "host", "APU cycles", "cycles/s",
