@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "image.hpp"
+#include "json.hpp"
 #include "cmdline.hpp"
 #include "mc1_cli.hpp"
 #include "mc1_render.hpp"
@@ -300,7 +301,7 @@ int cmd_bench_render(const CLI::App& cmd) {
   };
 
   std::ostringstream json;
-  json << "{\"schema\": \"mc1-bench-render/1\", \"scene\": " << scene::json::quote(scene) << ", \"block\": " << base.block_w << ", \"runs\": [";
+  json << "{\"schema\": \"mc1-bench-render/1\", \"scene\": " << mc1::scene::json::quote(scene) << ", \"block\": " << base.block_w << ", \"runs\": [";
   std::map<unsigned, Picos> t_size;
   for (unsigned n : nodes)
     t_size[n] = run_one("speedup", n, size, rc::Schedule::Lpt, EngineKind::Iss).frame_time;
