@@ -226,8 +226,6 @@ class Formatter : public CLI::Formatter {
 void add_commands(CLI::App& app) {
   app.formatter(std::make_shared<Formatter>());
   cmdline::conventions(app);
-  // `mc1 --version` prints "mc1 X.Y.Z", as it always has.
-  app.set_version_flag("--version", std::string("mc1 ") + cmdline::version(), "print the version and exit");
   app.get_formatter()->label("Usage", "usage");
   app.require_subcommand(1);
   app.add_subcommand("help", "this text; `mc1 COMMAND --help` for a command's options");
