@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "apu_driver.hpp"
+#include "atomic_file.hpp"
 #include "apu_lockstep.hpp"
 #include "apu_profile.hpp"
 #include "apu_tools.hpp"
@@ -28,6 +29,7 @@ struct Options {
   std::string program, trace, engine = "iss";
   std::vector<std::string> data, read_texts;
   bool profile = false;
+  std::string profile_json;
   int top = 10;
   std::uint64_t max_cycles = 100'000'000;
   std::uint16_t start = 0;
@@ -53,6 +55,8 @@ void add_options(CLI::App& app, Options& o) {
   tools::add_data_option(app, o.data);
   app.add_option("--trace", o.trace, "rtl only: write an FST waveform of the core to FILE")->type_name("FILE");
   app.add_flag("--profile", o.profile, "print the cycle profile");
+  app.add_option("--profile-json", o.profile_json, "also write the profile as JSON to FILE (docs/apu-tools.md)")
+      ->type_name("FILE");
   app.add_option("--top", o.top, "stalling words the profile lists")
       ->transform(cli::unsigned_in(0, 2 * kProgramWords))
       ->capture_default_str();
@@ -105,7 +109,7 @@ int run(const Options& o) {
   drv.hand_over_program();
   drv.start(o.start);
   std::unique_ptr<Profile> profile;
-  if (o.profile) {
+  if (o.profile || !o.profile_json.empty()) {
     profile = std::make_unique<Profile>([&drv](int bank, std::uint16_t pc) { return drv.program_word(bank, pc); });
     drv.set_observer([&](const CycleRecord& r) { profile->add(r); });
   }
@@ -131,7 +135,15 @@ int run(const Options& o) {
                 << hex_text(v[i], 6);
     std::cout << "\n";
   }
-  if (profile) std::cout << profile->report(o.top);
+  if (profile && o.profile) std::cout << profile->report(o.top);
+  if (profile && !o.profile_json.empty()) {
+    try {
+      mc1::write_file_atomically(o.profile_json, profile->json(o.program));
+    } catch (const std::exception& e) {
+      std::cerr << "apu-run: --profile-json: " << e.what() << "\n";
+      rc = 1;
+    }
+  }
   return rc;
 }
 
