@@ -102,6 +102,12 @@ elseif(PROGRAM STREQUAL "apu-run")
     endif()
   endforeach()
   expect(profile_json_full RC 1 ERR "--profile-json: /dev/full" ARGS stall.apu --profile-json /dev/full)
+  # A trace comes with its pc-to-disassembly filter.
+  expect(trace_pc RC 0 ARGS stall.apu --engine rtl --trace s.fst)
+  file(READ ${WORK_DIR}/s.fst.pc.txt pcs)
+  if(NOT pcs MATCHES "\n003 add f3, f2, f1\n004 dbnz a1, ")
+    message(SEND_ERROR "apu-run --trace: s.fst.pc.txt: ${pcs}")
+  endif()
 elseif(PROGRAM STREQUAL "apu-cosim")
   file(WRITE ${WORK_DIR}/halt.apu "  halt\n")
   expect(random_ok RC 0 OUT "3 random programs \\(seed 4\\), iss and iss agree"
