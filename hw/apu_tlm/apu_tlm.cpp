@@ -22,6 +22,20 @@ ApuTlm::ApuTlm(sc_core::sc_module_name name, const TimingParams& t, std::unique_
   mpu2apu.register_transport_dbg(this, &ApuTlm::transport_dbg);
   SC_HAS_PROCESS(ApuTlm);
   SC_THREAD(watch);
+  SC_METHOD(drive_irq);
+  sensitive << irq_changed_;
+  dont_initialize();
+}
+
+void ApuTlm::set_irq(bool level) {
+  irq_level_ = level;
+  irq_changed_.notify(sc_core::SC_ZERO_TIME);
+}
+
+// halted() follows the irq's rise, so a thread woken by it reads the irq high.
+void ApuTlm::drive_irq() {
+  apu2mpu_irq.write(irq_level_);
+  if (irq_level_) halted_.notify(sc_core::SC_ZERO_TIME);
 }
 
 void ApuTlm::catch_up(Picos t) {
@@ -38,6 +52,8 @@ void ApuTlm::catch_up(Picos t) {
   CycleRecord settle;  // the HALT word's own results land (Clarification 7)
   for (int i = 0; i < ApuDriver::kSettleCycles; ++i) engine_->step(settle);
   apu_time_ = t;
+  // Whoever finds the stop (an access or the watch) tells the MPU, at once.
+  set_irq(true);
 }
 
 void ApuTlm::watch() {
@@ -47,8 +63,6 @@ void ApuTlm::watch() {
       sc_core::wait(quantum_);
       catch_up(to_picos(sc_core::sc_time_stamp()));
     }
-    apu2mpu_irq.write(true);
-    halted_.notify(sc_core::SC_ZERO_TIME);
   }
 }
 
@@ -64,10 +78,10 @@ bool ApuTlm::write_ctrl(std::uint32_t v) {
   if (v & kCtrlStart) {
     if (engine_->state() == RunState::Running) return false;
     driver_.start(start_pc_);
-    apu2mpu_irq.write(false);
+    set_irq(false);
     started_.notify(sc_core::SC_ZERO_TIME);
   }
-  if (v & kCtrlIrqAck) apu2mpu_irq.write(false);
+  if (v & kCtrlIrqAck) set_irq(false);
   return true;
 }
 

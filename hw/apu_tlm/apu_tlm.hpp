@@ -10,9 +10,10 @@
 // STATUS sees what the MPU would see at that time, and a bank written then is
 // the one the APU is not using. A transaction dated before the APU's own time
 // (an initiator behind by its quantum) acts at the APU's time: the APU cannot
-// be un-run. While the APU runs, a thread also clocks it every `quantum` and,
-// within one quantum of the stop, raises apu2mpu_irq and notifies halted();
-// the cycle it stopped in is exact (HALT_CYCLE).
+// be un-run. While the APU runs, a thread also clocks it every `quantum`;
+// the first of the two to find the stop raises apu2mpu_irq and notifies
+// halted(), so both come within one quantum of the stop; the cycle it
+// stopped in is exact (HALT_CYCLE).
 //
 // After HALT (or a fault) the APU is clocked ApuDriver::kSettleCycles more,
 // so that results of the HALT word's own ops land (docs/apu-isa.md,
@@ -85,6 +86,10 @@ class ApuTlm : public sc_core::sc_module {
   std::uint32_t status() const;
   void catch_up(Picos t);  // clock the APU up to simulated time t
   void watch();            // SC_THREAD: the stop, within a quantum
+  // apu2mpu_irq has one driver, drive_irq (an SC_METHOD); the accesses and
+  // the watch set the level it drives.
+  void set_irq(bool level);
+  void drive_irq();
 
   std::unique_ptr<ApuEngine> engine_;
   ApuDriver driver_;
@@ -95,7 +100,8 @@ class ApuTlm : public sc_core::sc_module {
   std::uint64_t halt_cycle_ = 0;
   Encoded pending_;        // the microword being written, piece by piece
   std::uint16_t pending_addr_ = 0;
-  sc_core::sc_event started_, halted_;
+  bool irq_level_ = false;
+  sc_core::sc_event started_, halted_, irq_changed_;
 };
 
 }  // namespace mc1::apu
