@@ -231,6 +231,13 @@ void bind_asm(py::module_& m) {
   py::register_exception<apuasm::AsmError>(m, "AsmError", PyExc_ValueError);
 }
 
+int reg_index(int i, int count, const char* file) {
+  if (i < 0 || i >= count)
+    throw py::index_error(std::string(file) + std::to_string(i) + ": there are " + file + "0.." + file +
+                          std::to_string(count - 1));
+  return i;
+}
+
 void bind_apu(py::module_& m) {
   m.doc() = "The APU through its MPU driver, on the ISS or the verilated RTL core (docs/apu-tools.md)";
   py::register_exception<apu::ApuError>(m, "ApuError", PyExc_RuntimeError);
@@ -252,8 +259,10 @@ void bind_apu(py::module_& m) {
       .def_property_readonly("data_ready", [](Apu& a) { return a.driver().data_ready(); })
       .def_property_readonly("program_ready", [](Apu& a) { return a.driver().program_ready(); })
       .def("read_data", &Apu::read_data, py::arg("addr"), py::arg("n"), "from the MPU's data bank")
-      .def("freg", [](const Apu& a, int i) { return a.engine().freg(i % apu::kNumFRegs); }, py::arg("i"))
-      .def("areg", [](const Apu& a, int i) { return a.engine().areg(i % apu::kNumARegs); }, py::arg("i"))
+      .def("freg", [](const Apu& a, int i) { return a.engine().freg(reg_index(i, apu::kNumFRegs, "F")); },
+           py::arg("i"))
+      .def("areg", [](const Apu& a, int i) { return a.engine().areg(reg_index(i, apu::kNumARegs, "A")); },
+           py::arg("i"))
       .def_property_readonly("flags", [](const Apu& a) { return a.engine().flags(); })
       .def_property_readonly("cc", [](const Apu& a) { return a.engine().cc(); })
       .def_property_readonly("cycle", [](const Apu& a) { return a.engine().cycle(); })

@@ -198,6 +198,8 @@ class ApuRuns(unittest.TestCase):
             apu.run(100)
         with self.assertRaisesRegex(ValueError, "unknown engine 'gpu'"):
             Apu("gpu")
+        with self.assertRaisesRegex(IndexError, "F64: there are F0..F63"):
+            apu.freg(64)
         with self.assertRaisesRegex(ValueError, "go past the 4096-word bank"):
             apu.load_data(4095, np.zeros(2, dtype=np.uint32))
 
