@@ -12,13 +12,13 @@
 
 int main(int argc, char** argv) {
   if (argc != 3) {
-    std::cerr << "usage: fp24_golden VEC EXPECTED\n";
+    std::cerr << "usage: fp24_known VEC EXPECTED\n";
     return 2;
   }
   using namespace mc1::fp24;
   std::ifstream vec(argv[1]), expected(argv[2]);
   if (!vec || !expected) {
-    std::cerr << "fp24_golden: cannot read " << (vec ? argv[2] : argv[1]) << "\n";
+    std::cerr << "fp24_known: cannot read " << (vec ? argv[2] : argv[1]) << "\n";
     return 2;
   }
   int lines = 0, bad = 0;
@@ -41,6 +41,6 @@ int main(int argc, char** argv) {
       }
     ++lines;
   }
-  std::printf("fp24_golden: %d vectors, model and RTL, %d mismatches\n", lines, bad);
+  std::printf("fp24_known: %d vectors, model and RTL, %d mismatches\n", lines, bad);
   return bad || lines == 0 ? 1 : 0;
 }

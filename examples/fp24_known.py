@@ -1,4 +1,4 @@
-"""FP24 golden vectors through the Python module: python3 fp24_golden.py VEC EXPECTED"""
+"""FP24 golden vectors through the Python module: python3 fp24_known.py VEC EXPECTED"""
 import sys, numpy as np, mc1
 vec = [l.split() for l in open(sys.argv[1]) if l.strip() and not l.startswith("#")]
 want = [tuple(int(x, 16) for x in l.split()) for l in open(sys.argv[2]) if l.strip()]
