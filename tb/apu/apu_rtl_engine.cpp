@@ -52,6 +52,11 @@ RtlEngine::RtlEngine(const char* fst_path) : ctx_(std::make_unique<VerilatedCont
 }
 
 RtlEngine::~RtlEngine() {
+  // Verilator 5.006 erases the model's scopes from the thread's current
+  // context (Verilated::threadContextp()), not the model's own: with several
+  // engines, that may be one already destroyed (a hang on its freed mutex,
+  // seen in examples/apu_tb.cpp). Make it ours while top_ goes.
+  Verilated::threadContextp(ctx_.get());
   if (fst_) fst_->close();
   top_->final();
 }
