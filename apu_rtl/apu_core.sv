@@ -32,7 +32,7 @@ module apu_core
     input  logic                    mpu2apu_dmem_we,
     input  logic [DADDR_W-1:0]      mpu2apu_dmem_addr,
     input  logic [FP_W-1:0]         mpu2apu_dmem_wdata,
-    output logic [FP_W-1:0]         apu2mpu_dmem_rdata,
+    output logic [FP_W-1:0]         apu2mpu_dmem_rdata,  // the word addressed in the last cycle
     input  logic                    mpu2apu_hand_over_program,
     input  logic                    mpu2apu_hand_over_data,
     input  logic                    mpu2apu_start,
@@ -50,8 +50,18 @@ module apu_core
     output logic [PC_W-1:0]         dbg_pc,
     output logic                    dbg_issue,
     output stall_e                  dbg_stall_reason,
+    // why: the word's F sources (bit per read port: M a, M b, A a, A b, F a,
+    // ST f, MOVFA) that read a register in flight, and the units whose
+    // results they wait for (bit 0 multiplier, 1 adder unit, 2 function
+    // unit); the same for the destinations (M d, A d, F d, LD f, MOVAF/LIF
+    // d) whose write would land no later than one in flight (waw)
+    output logic [6:0]              dbg_raw_src,
+    output logic [2:0]              dbg_raw_unit,
+    output logic [4:0]              dbg_waw_dst,
+    output logic [2:0]              dbg_waw_unit,
     // F register writes visible from this cycle on: completions (mul, add,
-    // func RECIP/SQRT, func SIN/COS) and the previous word's LD, MOVAF/LIF
+    // func RECIP/SQRT, func SIN/COS, the previous word's LD out of the data
+    // memory) and the previous word's MOVAF/LIF
     output logic [5:0]              dbg_fc_en,
     output logic [5:0][5:0]         dbg_fc_idx,
     output logic [5:0][23:0]        dbg_fc_val,
@@ -114,7 +124,7 @@ module apu_core
   microword_t        w;
 
   // The sequencer only fetches; the MPU only writes program words.
-  apu_banks #(.DATA_W(WORD_W), .ADDR_W(PC_W)) u_pmem (
+  apu_banks #(.DATA_W(WORD_W), .ADDR_W(PC_W), .SYNC_READ(1'b0)) u_pmem (
       .clk      (clk),
       .sel      (psel),
       .apu_addr (pc),
@@ -149,11 +159,17 @@ module apu_core
   // F destinations of the word (for `waw`).
   localparam int DS_M = 0, DS_A = 1, DS_F = 2, DS_LD = 3, DS_I = 4, N_DS = 5;
 
+  localparam int LAT_W = 4;  // apu_interlock's latency fields
+
   logic [FREG_AW-1:0] src_addr [N_RD];
   logic               src_en   [N_RD];
   logic [FREG_AW-1:0] dst_addr [N_DS];
   logic               dst_en   [N_DS];
+  logic [LAT_W-1:0]   dst_lat  [N_DS];  // the latency of each destination's write
   logic [FP_W-1:0]    fop      [N_RD];
+  logic               fu_trig;
+
+  assign fu_trig = (w.f_op == F_SIN) || (w.f_op == F_COS);
 
   always_comb begin
     src_addr[RD_MA]    = w.m_a;          src_en[RD_MA]    = w.m_en;
@@ -168,6 +184,11 @@ module apu_core
     dst_addr[DS_F]     = w.f_d;          dst_en[DS_F]     = w.f_en;
     dst_addr[DS_LD]    = w.d_f;          dst_en[DS_LD]    = is_ld;
     dst_addr[DS_I]     = w.i_d;          dst_en[DS_I]     = i_writes_f;
+    dst_lat[DS_M]      = LAT_W'(LAT_MUL);
+    dst_lat[DS_A]      = LAT_W'(LAT_ADD);
+    dst_lat[DS_F]      = fu_trig ? LAT_W'(LAT_TRIG) : LAT_W'(LAT_FUNC);
+    dst_lat[DS_LD]     = LAT_W'(LAT_LOAD);
+    dst_lat[DS_I]      = LAT_W'(LAT_LOAD);
   end
 
   // A operands: I s, I t, D base, S r.
@@ -189,11 +210,10 @@ module apu_core
   logic [FP_W-1:0]    mul_out_result, add_out_result, fu_out_result, fu_trig_result;
   logic [FLAGS_W-1:0] mul_out_flags, add_out_flags, fu_out_flags, fu_trig_flags;
 
-  logic mul_issue, add_issue, fu_issue, fu_trig;
+  logic mul_issue, add_issue, fu_issue;
   assign mul_issue = issue && w.m_en;
   assign add_issue = issue && w.a_en;
   assign fu_issue  = issue && w.f_en;
-  assign fu_trig   = (w.f_op == F_SIN) || (w.f_op == F_COS);
 
   fp24_mul u_mul (
       .clk       (clk),
@@ -234,10 +254,43 @@ module apu_core
   );
 
   logic               raw_hazard, waw_hazard, cmp_in_flight, pipes_busy;
+  // Why a word stalls, for waveforms: raw_src / waw_dst by slot (RD_* / DS_*
+  // bit), raw_unit / waw_unit by the unit whose result it waits for (bit 0
+  // multiplier, 1 adder unit, 2 function unit).
+  logic [N_RD-1:0]    raw_src;
+  logic [N_DS-1:0]    waw_dst;
+  logic [2:0]         raw_unit, waw_unit;
   logic               mul_wb_valid, add_wb_valid, add_wb_cmp, fu_wb_valid, fu_trig_wb_valid;
   logic [FREG_AW-1:0] mul_wb_d, add_wb_d, fu_wb_d, fu_trig_wb_d;
+  // The interlock's flat ports (slot i at [i*W +: W]).
+  logic [N_RD*FREG_AW-1:0] src_addr_v;
+  logic [N_RD-1:0]         src_en_v;
+  logic [N_DS*FREG_AW-1:0] dst_addr_v;
+  logic [N_DS-1:0]         dst_en_v;
+  logic [N_DS*LAT_W-1:0]   dst_lat_v;
 
-  apu_interlock #(.ADDR_W(FREG_AW), .N_SRC(N_RD), .N_DST(N_DS)) u_ilk (
+  always_comb begin
+    for (int i = 0; i < N_RD; i++) begin
+      src_addr_v[i*FREG_AW +: FREG_AW] = src_addr[i];
+      src_en_v[i]                      = src_en[i];
+    end
+    for (int j = 0; j < N_DS; j++) begin
+      dst_addr_v[j*FREG_AW +: FREG_AW] = dst_addr[j];
+      dst_en_v[j]                      = dst_en[j];
+      dst_lat_v[j*LAT_W +: LAT_W]      = dst_lat[j];
+    end
+  end
+
+  apu_interlock #(
+      .ADDR_W  (FREG_AW),
+      .N_SRC   (N_RD),
+      .N_DST   (N_DS),
+      .LAT_W   (LAT_W),
+      .LAT_MUL (LAT_MUL),
+      .LAT_ADD (LAT_ADD),
+      .LAT_FUNC(LAT_FUNC),
+      .LAT_TRIG(LAT_TRIG)
+  ) u_ilk (
       .clk             (clk),
       .rst_n           (rst_n),
       .mul_issue       (mul_issue),
@@ -248,12 +301,17 @@ module apu_core
       .fu_issue        (fu_issue),
       .fu_d            (w.f_d),
       .fu_trig         (fu_trig),
-      .src_addr        (src_addr),
-      .src_en          (src_en),
-      .dst_addr        (dst_addr),
-      .dst_en          (dst_en),
+      .src_addr        (src_addr_v),
+      .src_en          (src_en_v),
+      .dst_addr        (dst_addr_v),
+      .dst_en          (dst_en_v),
+      .dst_lat         (dst_lat_v),
       .raw_hazard      (raw_hazard),
+      .raw_src         (raw_src),
+      .raw_unit        (raw_unit),
       .waw_hazard      (waw_hazard),
+      .waw_dst         (waw_dst),
+      .waw_unit        (waw_unit),
       .cmp_in_flight   (cmp_in_flight),
       .pipes_busy      (pipes_busy),
       .mul_wb_valid    (mul_wb_valid),
@@ -328,25 +386,37 @@ module apu_core
   // =========================================================================
   // Register files and data memory
   // =========================================================================
-  // Completion writes (write-first: the bypass that makes t + L usable).
-  localparam int N_WB = 4;  // mul, add, func RECIP/SQRT, func SIN/COS
+  // Completion writes (write-first: the bypass that makes t + L usable). A
+  // LD reads the synchronous data memory at the edge ending its issue cycle
+  // t: the word comes out of the RAM in t + 1 and is written (and bypassed)
+  // then, like a unit's result of latency 1 (LAT_LOAD).
+  localparam int N_WB = 5;  // mul, add, func RECIP/SQRT, func SIN/COS, LD
+  localparam int N_WI = 1;  // MOVAF/LIF
   logic               wb_en   [N_WB];
   logic [FREG_AW-1:0] wb_addr [N_WB];
   logic [FP_W-1:0]    wb_data [N_WB];
-  // Issue writes: LD, MOVAF/LIF.
-  logic               wi_en   [2];
-  logic [FREG_AW-1:0] wi_addr [2];
-  logic [FP_W-1:0]    wi_data [2];
+  // Issue writes: MOVAF/LIF.
+  logic               wi_en   [N_WI];
+  logic [FREG_AW-1:0] wi_addr [N_WI];
+  logic [FP_W-1:0]    wi_data [N_WI];
   logic [FP_W-1:0]    dmem_rdata;
+  logic               ld_wb_valid;  // a LD issued in the last cycle
+  logic [FREG_AW-1:0] ld_wb_d;
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) ld_wb_valid <= 1'b0;
+    else        ld_wb_valid <= issue && is_ld;
+    ld_wb_d <= w.d_f;
+  end
 
   always_comb begin
     wb_en[0] = mul_wb_valid;                 wb_addr[0] = mul_wb_d;      wb_data[0] = mul_out_result;
     wb_en[1] = add_wb_valid && !add_wb_cmp;  wb_addr[1] = add_wb_d;      wb_data[1] = add_out_result;
     wb_en[2] = fu_wb_valid;                  wb_addr[2] = fu_wb_d;       wb_data[2] = fu_out_result;
     wb_en[3] = fu_trig_wb_valid;             wb_addr[3] = fu_trig_wb_d;  wb_data[3] = fu_trig_result;
-    wi_en[0] = issue && is_ld;               wi_addr[0] = w.d_f;         wi_data[0] = dmem_rdata;
-    wi_en[1] = issue && i_writes_f;          wi_addr[1] = w.i_d;
-    wi_data[1] = (w.i_op == I_MOVAF) ? {8'h00, aop[AR_S]} : {w.i_imm, 8'h00};
+    wb_en[4] = ld_wb_valid;                  wb_addr[4] = ld_wb_d;       wb_data[4] = dmem_rdata;
+    wi_en[0] = issue && i_writes_f;          wi_addr[0] = w.i_d;
+    wi_data[0] = (w.i_op == I_MOVAF) ? {8'h00, aop[AR_S]} : {w.i_imm, 8'h00};
   end
 
   // *_v: a register file's ports as flat vectors, port i at [i*W +: W]
@@ -354,9 +424,9 @@ module apu_core
   // the issue writes.
   logic [N_RD*FREG_AW-1:0]     f_rd_addr_v;
   logic [N_RD*FP_W-1:0]        f_rd_data_v;
-  logic [N_WB+1:0]             f_wr_en_v;
-  logic [(N_WB+2)*FREG_AW-1:0] f_wr_addr_v;
-  logic [(N_WB+2)*FP_W-1:0]    f_wr_data_v;
+  logic [N_WB+N_WI-1:0]           f_wr_en_v;
+  logic [(N_WB+N_WI)*FREG_AW-1:0] f_wr_addr_v;
+  logic [(N_WB+N_WI)*FP_W-1:0]    f_wr_data_v;
 
   always_comb begin
     for (int i = 0; i < N_RD; i++) f_rd_addr_v[i*FREG_AW +: FREG_AW] = src_addr[i];
@@ -365,7 +435,7 @@ module apu_core
     for (int i = 0; i < N_RD; i++) fop[i] = f_rd_data_v[i*FP_W +: FP_W];
   end
   always_comb begin
-    for (int i = 0; i < N_WB + 2; i++) begin
+    for (int i = 0; i < N_WB + N_WI; i++) begin
       f_wr_en_v[i]                      = (i < N_WB) ? wb_en[i]   : wi_en[i-N_WB];
       f_wr_addr_v[i*FREG_AW +: FREG_AW] = (i < N_WB) ? wb_addr[i] : wi_addr[i-N_WB];
       f_wr_data_v[i*FP_W +: FP_W]       = (i < N_WB) ? wb_data[i] : wi_data[i-N_WB];
@@ -376,7 +446,7 @@ module apu_core
       .DATA_W    (FP_W),
       .ADDR_W    (FREG_AW),
       .N_RD      (N_RD),
-      .N_WR      (N_WB + 2),
+      .N_WR      (N_WB + N_WI),
       .N_WR_FIRST(N_WB)
   ) u_fregs (
       .clk    (clk),
@@ -388,7 +458,7 @@ module apu_core
       .wr_data(f_wr_data_v)
   );
 
-  apu_banks #(.DATA_W(FP_W), .ADDR_W(DADDR_W)) u_dmem (
+  apu_banks #(.DATA_W(FP_W), .ADDR_W(DADDR_W), .SYNC_READ(1'b1)) u_dmem (
       .clk      (clk),
       .sel      (dsel_q),
       .apu_addr (mem_addr[DADDR_W-1:0]),
@@ -581,33 +651,37 @@ module apu_core
   // Debug view of the commits (not part of the datapath)
   // =========================================================================
   // Issue-time writes become visible in the next cycle, which is where the
-  // ISA page records them: this retire stage holds them for one cycle.
-  logic               rt_fi_en   [2];   // LD, MOVAF/LIF
-  logic [FREG_AW-1:0] rt_fi_idx  [2];
-  logic [FP_W-1:0]    rt_fi_val  [2];
-  logic               rt_a_en    [2];   // I slot, DBNZ
+  // ISA page records them: this retire stage holds them for one cycle. (A
+  // LD's write is a completion of the next cycle already: wb port 4.)
+  logic               rt_fi_en   [N_WI];   // MOVAF/LIF
+  logic [FREG_AW-1:0] rt_fi_idx  [N_WI];
+  logic [FP_W-1:0]    rt_fi_val  [N_WI];
+  logic               rt_a_en    [2];      // I slot, DBNZ
   logic [AREG_AW-1:0] rt_a_idx   [2];
   logic [INT_W-1:0]   rt_a_val   [2];
 
   always_ff @(posedge clk) begin
-    for (int i = 0; i < 2; i++) begin
-      if (!rst_n) begin
-        rt_fi_en[i] <= 1'b0;
-        rt_a_en[i]  <= 1'b0;
-      end else begin
-        rt_fi_en[i] <= wi_en[i];
-        rt_a_en[i]  <= awr_en[i] && (awr_addr[i] != '0);  // A0 drops writes
-      end
+    for (int i = 0; i < N_WI; i++) begin
+      if (!rst_n) rt_fi_en[i] <= 1'b0;
+      else        rt_fi_en[i] <= wi_en[i];
       rt_fi_idx[i] <= wi_addr[i];
       rt_fi_val[i] <= wi_data[i];
-      rt_a_idx[i]  <= awr_addr[i];
-      rt_a_val[i]  <= awr_data[i];
+    end
+    for (int i = 0; i < 2; i++) begin
+      if (!rst_n) rt_a_en[i] <= 1'b0;
+      else        rt_a_en[i] <= awr_en[i] && (awr_addr[i] != '0);  // A0 drops writes
+      rt_a_idx[i] <= awr_addr[i];
+      rt_a_val[i] <= awr_data[i];
     end
   end
 
   assign dbg_pc           = pc;
   assign dbg_issue        = issue;
   assign dbg_stall_reason = stall_reason;
+  assign dbg_raw_src      = raw_src;
+  assign dbg_raw_unit     = raw_unit;
+  assign dbg_waw_dst      = waw_dst;
+  assign dbg_waw_unit     = waw_unit;
 
   always_comb begin
     for (int i = 0; i < N_WB; i++) begin
@@ -615,10 +689,12 @@ module apu_core
       dbg_fc_idx[i] = wb_addr[i];
       dbg_fc_val[i] = wb_data[i];
     end
-    for (int i = 0; i < 2; i++) begin
+    for (int i = 0; i < N_WI; i++) begin
       dbg_fc_en[N_WB + i]  = rt_fi_en[i];
       dbg_fc_idx[N_WB + i] = rt_fi_idx[i];
       dbg_fc_val[N_WB + i] = rt_fi_val[i];
+    end
+    for (int i = 0; i < 2; i++) begin
       dbg_ac_en[i]  = rt_a_en[i];
       dbg_ac_idx[i] = rt_a_idx[i];
       dbg_ac_val[i] = rt_a_val[i];

@@ -53,9 +53,11 @@ class CorePorts {
     top.mpu2apu_dmem_wdata = v;
     edge();
   }
+  // The data memory reads synchronously: the word addressed in one cycle is
+  // on apu2mpu_dmem_rdata in the next (one edge).
   std::uint32_t read_data(std::uint16_t addr) {
     top.mpu2apu_dmem_addr = addr;
-    top.eval();
+    edge();
     return top.apu2mpu_dmem_rdata;
   }
 

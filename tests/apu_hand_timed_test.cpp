@@ -165,14 +165,62 @@ TEST_P(ApuHandTimed, SinCosAndOtherFunctionOpsIssueBackToBack) {
 }
 
 TEST_P(ApuHandTimed, RecipAfterSinIntoTheSameRegisterWaitsForIt) {
-  // SIN F2 at 1 is in flight at 2 and 3: RECIP F2 is a waw stall twice,
-  // issues at 4 (visible 6), after the SIN result (visible 4).
+  // SIN F2 at 1 is visible at 4. A RECIP F2 issued at 2 would be visible at 4
+  // too: waw once; issued at 3 it lands at 5, after the SIN's: no second stall.
   auto r = program({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Recip, 2, 1), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Waw, Stall::Waw, N, Stall::Drain, N}));
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Waw, N, Stall::Drain, N}));
   EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, fp24::sin(kOne).value}));
-  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 2, kOne}}));
+  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 2, kOne}}));
   EXPECT_EQ(r.apu->freg(2), kOne);
+}
+
+TEST_P(ApuHandTimed, BackToBackWritesOfOneLatencyDoNotStall) {
+  // MUL F3 at 1 and 2 (visible 3 and 4), ADD F3 at 3 (visible 5): equal
+  // latencies in order cannot reorder, so no waw; each write is recorded in
+  // its own cycle and the last one stays.
+  auto r = program({lif(1, 0x3F00), mul(3, 1, 1), mul(3, 1, 1) | lif(2, 0x4000), addu(AddOp::Add, 3, 2, 2),
+                    halt()});
+  r.go();
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, Stall::Drain, N}));
+  EXPECT_EQ(r.recs[3].commits, (Commits{{K::FReg, 2, kTwo}, {K::FReg, 3, kOne}}));
+  EXPECT_EQ(r.recs[4].commits, (Commits{{K::FReg, 3, kOne}}));
+  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 3, 0x410000u}}));
+  EXPECT_EQ(r.apu->freg(3), 0x410000u);
+}
+
+TEST_P(ApuHandTimed, ShorterWriteAfterLongerOneWaitsUntilItLandsLater) {
+  // SIN F2 at 1 (visible 4); MUL F2 at 2 would land at 4 as well: waw; at 3
+  // it lands at 5. A longer write after a shorter one (MUL F4 at 4, visible
+  // 6; COS F4 at 5, visible 8) never waits.
+  auto r = program({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), mul(2, 1, 1), mul(4, 1, 1),
+                    func(FuncOp::Cos, 4, 1), halt()});
+  r.go();
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Waw, N, N, N, Stall::Drain, Stall::Drain, N}));
+  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, -1, 2, 3, 4, -1, -1, 5}));
+  EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, fp24::sin(kOne).value}));
+  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 2, kOne}}));
+  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, kOne}}));
+  EXPECT_EQ(r.recs[8].commits[0], (Commit{K::FReg, 4, fp24::cos(kOne).value}));
+  EXPECT_EQ(r.apu->freg(2), kOne);
+  EXPECT_EQ(r.apu->freg(4), fp24::cos(kOne).value);
+}
+
+TEST_P(ApuHandTimed, OneWordLoopOfAllUnitsRunsAtOneCycleAnIteration) {
+  // docs/apu-isa.md's example: each unit rewrites its own register every
+  // cycle. 100 iterations, 100 cycles, no stall; HALT drains the last ones.
+  const MicroWord loop =
+      mul(1, 2, 3) | addu(AddOp::Add, 4, 5, 6) | func(FuncOp::Recip, 7, 8) | seq(SeqOp::Dbnz, 1, 2);
+  auto r = program({li(1, 100), lif(8, 0x4000), loop, halt()});
+  r.go();
+  ASSERT_EQ(r.apu->state(), RunState::Halted);
+  const auto st = r.stalls();
+  ASSERT_EQ(st.size(), 2u + 100u + 1u + 1u);  // 2 words, the loop, drain, HALT
+  for (std::size_t c = 0; c < 102; ++c) EXPECT_EQ(st[c], N) << "cycle " << c;
+  EXPECT_EQ(st[102], Stall::Drain);
+  EXPECT_EQ(st[103], N);
+  EXPECT_EQ(r.apu->freg(7), 0x3E0000u);  // 1/2
+  EXPECT_EQ(r.apu->areg(1), 0);
 }
 
 TEST_P(ApuHandTimed, CosReaderStallsRawTwice) {

@@ -33,7 +33,9 @@ struct DecodedWord {
   };
   MicroWord w;
   std::uint64_t src = 0;  // F registers read (raw)
-  std::uint64_t dst = 0;  // F registers written (waw)
+  // F registers written, by the latency of the write (waw): a write with
+  // latency L must land after every write already in flight to its register.
+  std::array<std::uint64_t, kMaxLatency + 1> dst_at{};
   std::uint8_t kind = 0;
 
   static DecodedWord from(const Encoded& e);
