@@ -73,6 +73,7 @@ module apu_interlock #(
   logic [N_TAG-1:0]        fl, fl_kind;
   logic [N_TAG*ADDR_W-1:0] fl_d;
   logic [N_TAG*LAT_W-1:0]  fl_rem;
+  logic                    add_wb_f;  // an adder op that writes F completes
 
   apu_tagpipe #(.ADDR_W(ADDR_W), .LAT0(LAT_MUL), .LAT1(LAT_MUL), .REM_W(LAT_W)) u_mul_tags (
       .clk       (clk),
@@ -87,7 +88,6 @@ module apu_interlock #(
       .wb0_valid (mul_wb_valid),
       .wb0_d     (mul_wb_d),
       /* verilator lint_off PINCONNECTEMPTY */
-      .wb0_kind  (),
       .wb1_valid (),
       .wb1_d     ()
       /* verilator lint_on PINCONNECTEMPTY */
@@ -104,14 +104,14 @@ module apu_interlock #(
       .fl_d      (fl_d[O_ADD*ADDR_W +: D_ADD*ADDR_W]),
       .fl_kind   (fl_kind[O_ADD +: D_ADD]),
       .fl_rem    (fl_rem[O_ADD*LAT_W +: D_ADD*LAT_W]),
-      .wb0_valid (add_wb_valid),
+      .wb0_valid (add_wb_f),
       .wb0_d     (add_wb_d),
-      .wb0_kind  (add_wb_cmp),
+      .wb1_valid (add_wb_cmp),
       /* verilator lint_off PINCONNECTEMPTY */
-      .wb1_valid (),
       .wb1_d     ()
       /* verilator lint_on PINCONNECTEMPTY */
   );
+  assign add_wb_valid = add_wb_f || add_wb_cmp;
 
   // kind = SIN/COS (LAT_TRIG); RECIP/SQRT take LAT_FUNC.
   apu_tagpipe #(.ADDR_W(ADDR_W), .LAT0(LAT_FUNC), .LAT1(LAT_TRIG), .REM_W(LAT_W)) u_fu_tags (
@@ -126,9 +126,6 @@ module apu_interlock #(
       .fl_rem    (fl_rem[O_FU*LAT_W +: D_FU*LAT_W]),
       .wb0_valid (fu_wb_valid),
       .wb0_d     (fu_wb_d),
-      /* verilator lint_off PINCONNECTEMPTY */
-      .wb0_kind  (),
-      /* verilator lint_on PINCONNECTEMPTY */
       .wb1_valid (fu_trig_wb_valid),
       .wb1_d     (fu_trig_wb_d)
   );

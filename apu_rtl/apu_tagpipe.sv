@@ -27,10 +27,9 @@ module apu_tagpipe #(
     output logic [DEPTH*ADDR_W-1:0]   fl_d,
     output logic [DEPTH-1:0]          fl_kind,
     output logic [DEPTH*REM_W-1:0]    fl_rem,    // cycles until its result is visible
-    output logic                      wb0_valid, // a kind-0 op completes (any op if LAT0 == LAT1)
+    output logic                      wb0_valid, // a kind-0 op completes
     output logic [ADDR_W-1:0]         wb0_d,
-    output logic                      wb0_kind,
-    output logic                      wb1_valid, // a kind-1 op completes (LAT0 != LAT1 only)
+    output logic                      wb1_valid, // a kind-1 op completes
     output logic [ADDR_W-1:0]         wb1_d
 );
   logic [DEPTH-1:0]        v;     // stage k holds an op (in flight or completing)
@@ -63,10 +62,9 @@ module apu_tagpipe #(
     end
   end
 
-  assign wb0_valid = v[LAT0-1] && (LAT0 == LAT1 || !kind[LAT0-1]);
+  assign wb0_valid = v[LAT0-1] && !kind[LAT0-1];
   assign wb0_d     = d[(LAT0-1)*ADDR_W +: ADDR_W];
-  assign wb0_kind  = kind[LAT0-1];
-  assign wb1_valid = (LAT0 != LAT1) && v[LAT1-1] && kind[LAT1-1];
+  assign wb1_valid = v[LAT1-1] && kind[LAT1-1];
   assign wb1_d     = d[(LAT1-1)*ADDR_W +: ADDR_W];
 
 endmodule

@@ -284,6 +284,22 @@ TEST_P(ApuHandTimed, StateBetweenStepsIsWhatTheNextWordReads) {
   EXPECT_EQ(r.apu->cc(), fp24::kEQ);
 }
 
+TEST_P(ApuHandTimed, LoadedWordIsVisibleBetweenStepsAndToTheNextWord) {
+  // ST F1 at 1, LD F2 from the same word at 2 (visible at 3): after step 3
+  // freg(2) shows it, and the MUL at 3 reads it with no stall.
+  auto r = program({lif(1, 0x4000), mem(MemOp::St, 1, 0, 9), mem(MemOp::Ld, 2, 0, 9), mul(3, 2, 2), halt()});
+  r.step();
+  r.step();
+  EXPECT_EQ(r.apu->freg(2), 0u);
+  r.step();  // cycle 2: the LD
+  EXPECT_EQ(r.apu->freg(2), kTwo);
+  const CycleRecord& rec = r.step();  // cycle 3
+  EXPECT_TRUE(rec.issued);
+  EXPECT_EQ(rec.commits, (Commits{{K::FReg, 2, kTwo}}));
+  r.go();
+  EXPECT_EQ(r.apu->freg(3), 0x410000u);
+}
+
 TEST_P(ApuHandTimed, BranchOnCcWaitsForTheCompare) {
   // CMP 1 < 2 at 2 (CC visible at 4); BCC LT at 3 stalls once, is taken.
   auto r = program({lif(1, 0x3F00), lif(2, 0x4000), addu(AddOp::Cmp, 0, 1, 2), seq(SeqOp::Bcc, fp24::kLT, 6), halt(),
