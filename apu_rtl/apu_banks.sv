@@ -1,27 +1,20 @@
-// APU dual-bank memory, used twice by apu_core (paper section 2): program
-// memory (2 x 1024 x 128-bit microwords, PSEL) and data memory (2 x 4096 x
-// 24-bit words, DSEL). `sel` gives one bank to the APU's port, the other to
-// the MPU's; a swap exchanges them.
+// APU data memory (paper section 2): 2 banks x 4096 x 24-bit words. DSEL
+// (`sel`) gives one bank to the APU's port (the D slot: LD reads, ST
+// writes), the other to the MPU's; a swap exchanges them.
 //
-// Each bank is a single-port RAM (one address, read and write): the port
-// that owns the bank in a cycle drives its address, write enable and data.
-// The two ports never share a bank, so they never meet. With SYNC_READ (the
-// data memory) the read is synchronous, as in an SRAM or a block RAM, which
-// Yosys infers: the word read at the clock edge ending a cycle is on the
-// owner's *_rdata in the next cycle (read-first: a word written at an edge
-// is read at the next one). Without it (the program memory, whose word is
-// decoded in the cycle that addresses it: docs/apu-rtl.md "Memories") the
-// owner's word is on *_rdata in the same cycle. The program memory leaves
-// the APU port's write and the MPU port's read unused (tied off,
-// unconnected).
+// Each bank is a single-port synchronous RAM (one address, read and write),
+// the shape of an SRAM or a block RAM (Yosys infers it): the port that owns
+// the bank in a cycle drives its address, write enable and data, and the
+// word read at the clock edge ending that cycle is on the owner's *_rdata in
+// the next cycle (read-first: a word written at an edge is read at the next
+// one). The two ports never share a bank, so they never meet.
 module apu_banks #(
-    parameter int DATA_W    = 24,
-    parameter int ADDR_W    = 12,
-    parameter bit SYNC_READ = 1'b1
+    parameter int DATA_W = 24,
+    parameter int ADDR_W = 12
 ) (
     input  logic              clk,
     input  logic              sel,
-    // APU: fetch, or the D slot (LD reads, ST writes)
+    // APU: the D slot
     input  logic [ADDR_W-1:0] apu_addr,
     output logic [DATA_W-1:0] apu_rdata,
     input  logic              apu_we,
@@ -58,16 +51,10 @@ module apu_banks #(
     if (we1) bank1[addr1] <= wdata1;
   end
 
-  if (SYNC_READ) begin : g_sync
-    always_ff @(posedge clk) begin
-      q0    <= bank0[addr0];
-      q1    <= bank1[addr1];
-      sel_q <= sel;
-    end
-  end else begin : g_async
-    assign q0    = bank0[addr0];
-    assign q1    = bank1[addr1];
-    assign sel_q = sel;
+  always_ff @(posedge clk) begin
+    q0    <= bank0[addr0];
+    q1    <= bank1[addr1];
+    sel_q <= sel;
   end
 
   assign apu_rdata = sel_q ? q1 : q0;

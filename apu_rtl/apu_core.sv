@@ -2,19 +2,25 @@
 // (paper section 2; docs/apu-isa.md is normative, docs/apu-rtl.md describes
 // this implementation).
 //
-// One 128-bit microword per cycle, or a stall: the word at PC is fetched and
-// decoded combinationally; if no stall condition holds, all its slots issue
-// in this cycle. FP ops enter fp24_mul / fp24_add / fp24_func; their results
-// come back at t + L and are written (and bypassed) in that cycle (the
-// function unit can return a SIN/COS and a RECIP/SQRT in one cycle: two
-// ports). LD, MOVAF, LIF, the I slot and DBNZ write at the end of the issue
-// cycle.
+// One 128-bit microword per cycle, or a stall. The program memory is a
+// synchronous RAM whose output register is the microword register: in each
+// cycle the sequencer decides the address of the next cycle's word (the
+// branch target, PC + 1, or the same word again when this one stalls) and
+// the RAM reads it at the edge, so a taken branch costs no cycle. The word
+// is decoded in its cycle; if no stall condition holds, all its slots issue.
+// FP ops enter fp24_mul / fp24_add / fp24_func; their results come back at
+// t + L and are written (and bypassed) in that cycle (the function unit can
+// return a SIN/COS and a RECIP/SQRT in one cycle: two ports). A LD reads the
+// (synchronous) data memory at the end of its issue cycle and its word is
+// written, and bypassed, in the next. MOVAF, LIF, the I slot and DBNZ write
+// at the end of the issue cycle.
 //
 // MPU requests (hand-over, start) act in the cycle in which they are
 // presented: the core forwards them combinationally, so that an MPU call made
 // between two clock cycles behaves exactly as the ISA page says (a SWAPD in
-// the next cycle already sees `data_ready`; start(pc) runs the word at pc in
-// the next cycle).
+// the next cycle already sees `data_ready`). A start(pc) fetches the word at
+// pc in that cycle (LAT_FETCH: the start's fetch cycle issues nothing); it
+// runs in the next.
 //
 // The dbg_* outputs report, before the clock edge, what the cycle commits in
 // the ISA page's terms (Clarification 2): results that become visible in this
@@ -101,42 +107,43 @@ module apu_core
   // start (which completes a pending program hand-over: the MPU says so with
   // mpu2apu_start_new_program), then the hand-overs. So "hand over, start,
   // hand over the next program" before one cycle is expressible.
-  logic          start_req;       // start(pc) while idle
+  localparam int FW_W = $clog2(START_FETCH + 1);
+  logic          start_req;       // start(pc) while idle: this cycle fetches the word at pc
+  logic [FW_W-1:0] fetch_wait_q;  // a start's fetch cycles still to come after this one
   logic          running;         // the sequencer works on a word this cycle
   logic          program_ready;   // after this cycle's MPU requests
   logic          data_ready;
   logic          start_swaps;     // start completes a pending program hand-over
-  logic          psel;            // program bank of this cycle
+  logic          psel;            // program bank of this cycle, after a start's swap
   logic [PC_W-1:0] pc;            // address of the word of this cycle
 
   assign start_req     = mpu2apu_start && (run_state_q != RUN_RUNNING);
-  assign running       = (run_state_q == RUN_RUNNING) || start_req;
+  assign running       = (run_state_q == RUN_RUNNING) && (fetch_wait_q == '0);
   assign start_swaps   = start_req && mpu2apu_start_new_program;
   assign program_ready = (program_ready_q && !start_swaps) || mpu2apu_hand_over_program;
   assign data_ready    = data_ready_q || mpu2apu_hand_over_data;
   assign psel          = psel_q ^ start_swaps;
-  assign pc            = start_req ? mpu2apu_start_pc : pc_q;
+  assign pc            = pc_q;
 
   // =========================================================================
   // Fetch and decode
   // =========================================================================
-  logic [WORD_W-1:0] fetch_word;
+  logic [WORD_W-1:0] fetch_word;   // the word at pc, read at the last edge
+  logic [PC_W-1:0]   fetch_addr;   // the word of the next cycle
+  logic              fetch_bank;
   microword_t        w;
 
-  // The sequencer only fetches; the MPU only writes program words.
-  apu_banks #(.DATA_W(WORD_W), .ADDR_W(PC_W), .SYNC_READ(1'b0)) u_pmem (
-      .clk      (clk),
-      .sel      (psel),
-      .apu_addr (pc),
-      .apu_rdata(fetch_word),
-      .apu_we   (1'b0),
-      .apu_wdata({WORD_W{1'b0}}),
-      .mpu_addr (mpu2apu_pmem_addr),
-      /* verilator lint_off PINCONNECTEMPTY */
-      .mpu_rdata(),
-      /* verilator lint_on PINCONNECTEMPTY */
-      .mpu_we   (mpu2apu_pmem_we),
-      .mpu_wdata(mpu2apu_pmem_wdata)
+  // The sequencer only fetches; the MPU only writes program words, into the
+  // bank the sequencer does not use (before a swap of this cycle).
+  apu_pmem #(.DATA_W(WORD_W), .ADDR_W(PC_W)) u_pmem (
+      .clk       (clk),
+      .fetch_bank(fetch_bank),
+      .fetch_addr(fetch_addr),
+      .fetch_word(fetch_word),
+      .mpu_bank  (!psel),
+      .mpu_we    (mpu2apu_pmem_we),
+      .mpu_addr  (mpu2apu_pmem_addr),
+      .mpu_wdata (mpu2apu_pmem_wdata)
   );
 
   assign w = microword_t'(fetch_word);
@@ -458,7 +465,7 @@ module apu_core
       .wr_data(f_wr_data_v)
   );
 
-  apu_banks #(.DATA_W(FP_W), .ADDR_W(DADDR_W), .SYNC_READ(1'b1)) u_dmem (
+  apu_banks #(.DATA_W(FP_W), .ADDR_W(DADDR_W)) u_dmem (
       .clk      (clk),
       .sel      (dsel_q),
       .apu_addr (mem_addr[DADDR_W-1:0]),
@@ -585,6 +592,21 @@ module apu_core
   assign swapd     = issue && (w.s_op == S_SWAPD);
   assign swapp     = issue && (w.s_op == S_SWAPP);
 
+  // The next cycle's word: the start PC, the word after an issued one, else
+  // (stall, fault, not running) the same word again. A HALT's pc_next is its
+  // own address. A SWAPP fetches its target from the new bank.
+  assign fetch_addr = start_req ? mpu2apu_start_pc : issue ? pc_next[PC_W-1:0] : pc_q;
+  assign fetch_bank = psel ^ swapp;
+
+  // A start's first word is read at the edge ending its cycle; the table's
+  // START_FETCH (1; the ISS counts from the same number) says how many cycles
+  // the start waits for it. Any more than one re-read pc_q (not running).
+  always_ff @(posedge clk) begin
+    if (!rst_n)                   fetch_wait_q <= '0;
+    else if (start_req)           fetch_wait_q <= FW_W'(START_FETCH - 1);
+    else if (fetch_wait_q != '0)  fetch_wait_q <= fetch_wait_q - 1'b1;
+  end
+
   // FLAGS: sticky OR of the flags of every op completing this cycle.
   logic [FLAGS_W-1:0] flags_next;
   assign flags_next = flags_q
@@ -611,17 +633,18 @@ module apu_core
       flags_q         <= '0;
       unit_mismatch_q <= 1'b0;
     end else begin
-      if (running) begin
+      if (start_req) begin
+        run_state_q <= RUN_RUNNING;
+        fault_q     <= FAULT_NONE;
+      end else if (running) begin
         if (fault_now) begin
           run_state_q <= RUN_FAULTED;
           fault_q     <= fault_code;
-          pc_q        <= pc;
         end else begin
           run_state_q <= (issue && (w.s_op == S_HALT)) ? RUN_HALTED : RUN_RUNNING;
-          if (start_req) fault_q <= FAULT_NONE;
-          pc_q <= issue ? pc_next[PC_W-1:0] : pc;
         end
       end
+      pc_q <= fetch_addr;
       psel_q          <= psel ^ swapp;
       program_ready_q <= program_ready && !swapp;
       dsel_q          <= dsel_q ^ swapd;
@@ -675,7 +698,7 @@ module apu_core
     end
   end
 
-  assign dbg_pc           = pc;
+  assign dbg_pc           = start_req ? mpu2apu_start_pc : pc;  // a start's fetch cycle shows the start PC
   assign dbg_issue        = issue;
   assign dbg_stall_reason = stall_reason;
   assign dbg_raw_src      = raw_src;

@@ -101,7 +101,7 @@ TEST_P(ApuHandTimed, RawAtDistanceOneStallsOneCycleAndHaltDrains) {
   EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, kThree}}));
   EXPECT_EQ(r.apu->freg(4), kThree);
   EXPECT_EQ(r.apu->flags(), 0);
-  EXPECT_EQ(r.apu->cycle(), 7u);
+  EXPECT_EQ(r.apu->cycle(), 8u);  // the start's fetch cycle, then the 7 records
   if (const Iss* s = iss(r.apu)) {
     EXPECT_EQ(s->pc(), 4);  // PC stays at the HALT
   }
@@ -339,6 +339,9 @@ TEST_P(ApuHandTimed, BankStallUntilTheMpuHandsOverData) {
   drv.hand_over_program();
   drv.start(0);
   CycleRecord rec;
+  apu.step(rec);  // the start's fetch cycle
+  EXPECT_FALSE(rec.issued);
+  EXPECT_EQ(rec.stall, N);
   for (int i = 0; i < 10; ++i) {
     apu.step(rec);
     EXPECT_EQ(rec.stall, Stall::Bank);
@@ -350,16 +353,16 @@ TEST_P(ApuHandTimed, BankStallUntilTheMpuHandsOverData) {
   }
   drv.hand_over_data();
   EXPECT_TRUE(apu.data_ready());
-  apu.step(rec);  // cycle 10: SWAPD issues
+  apu.step(rec);  // cycle 11: SWAPD issues
   EXPECT_TRUE(rec.issued);
   EXPECT_EQ(rec.dsel, 0);  // the select in effect during the swap cycle
   EXPECT_FALSE(apu.data_ready());
   if (const Iss* s = iss(&apu)) {
     EXPECT_EQ(s->dsel(), 1);
   }
-  apu.step(rec);  // cycle 11: LD F1 <- [5] of bank 1
+  apu.step(rec);  // cycle 12: LD F1 <- [5] of bank 1
   EXPECT_EQ(rec.dsel, 1);
-  apu.step(rec);  // cycle 12: ST [6] <- F1; F1 visible
+  apu.step(rec);  // cycle 13: ST [6] <- F1; F1 visible
   EXPECT_EQ(rec.commits, (Commits{{K::FReg, 1, 0x123456}, {K::Mem, 6, 0x123456}}));
   for (int i = 0; i < 3; ++i) {
     apu.step(rec);
@@ -372,7 +375,7 @@ TEST_P(ApuHandTimed, BankStallUntilTheMpuHandsOverData) {
   drv.hand_over_data();
   EXPECT_EQ(drv.run_until_done(100), 2u);  // SWAPD, HALT
   EXPECT_EQ(drv.read_results(5, 2), (std::vector<std::uint32_t>{0x123456, 0x123456}));
-  EXPECT_EQ(apu.cycle(), 10u + 3 + 3 + 2 + ApuDriver::kSettleCycles);
+  EXPECT_EQ(apu.cycle(), 1u + 10 + 3 + 3 + 2 + ApuDriver::kSettleCycles);  // the fetch first
 }
 
 TEST_P(ApuHandTimed, ProgramBankHandOverContinuesInTheNewBank) {
@@ -592,9 +595,9 @@ TEST_P(ApuHandTimed, PcPast1023Faults) {
     } catch (const ApuError& e) {
       EXPECT_EQ(e.kind(), ApuError::Kind::Fault);
       EXPECT_EQ(e.fault(), Fault::PcOverflow);
-      EXPECT_EQ(e.cycle(), 2u);
+      EXPECT_EQ(e.cycle(), 3u);  // 0 fetch, 1 JMP, 2 LI, 3 BZ
       EXPECT_EQ(e.pc(), 1023);
-      EXPECT_NE(std::string(e.what()).find("pc-overflow at cycle 2, pc 0x3ff"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("pc-overflow at cycle 3, pc 0x3ff"), std::string::npos) << e.what();
     }
   }
   // Cycle by cycle.
@@ -604,9 +607,9 @@ TEST_P(ApuHandTimed, PcPast1023Faults) {
   drv.hand_over_program();
   drv.start(0);
   CycleRecord rec;
-  for (int i = 0; i < 3; ++i) apu.step(rec);
+  for (int i = 0; i < 4; ++i) apu.step(rec);
   EXPECT_EQ(apu.fault(), Fault::PcOverflow);
-  EXPECT_EQ(rec.cycle, 2u);
+  EXPECT_EQ(rec.cycle, 3u);
   EXPECT_EQ(rec.pc, 1023);
   EXPECT_FALSE(rec.issued);
   // CALL at 1023 would push 1024: also a PC overflow; a taken branch is fine.
@@ -615,13 +618,15 @@ TEST_P(ApuHandTimed, PcPast1023Faults) {
   drv.load_program(prog);
   drv.hand_over_program();
   drv.start(1023);
+  apu.step(rec);  // fetch
+  EXPECT_EQ(apu.fault(), Fault::None);
   apu.step(rec);
   EXPECT_EQ(apu.fault(), Fault::PcOverflow);
   prog[1023] = seq(SeqOp::Bnz, 1, 5).encode();
   drv.load_program(prog);
   drv.hand_over_program();
   drv.start(1023);
-  EXPECT_EQ(drv.run_until_done(10), 2u);
+  EXPECT_EQ(drv.run_until_done(10), 3u);  // fetch, BNZ, HALT
 }
 
 TEST_P(ApuHandTimed, StartAfterHaltKeepsStateAndEmptiesTheStack) {
@@ -640,8 +645,37 @@ TEST_P(ApuHandTimed, StartAfterHaltKeepsStateAndEmptiesTheStack) {
   EXPECT_EQ(r.apu->fault(), Fault::None);
   r.go(2000);
   EXPECT_EQ(r.apu->fault(), Fault::PcOverflow);
-  EXPECT_EQ(r.recs.size() - before, 1020u);
+  EXPECT_EQ(r.recs.size() - before, 1021u);  // the fetch cycle, words 4..1023
   EXPECT_EQ(r.recs.back().pc, 1023);
+}
+
+TEST_P(ApuHandTimed, StartFetchesOnceThenBranchesCostNoCycle) {
+  // LIF F1 | HALT at 0 (record 0, cycle 1). start(2): cycle 2 fetches word 2
+  // and records the LIF's write; then JMP 5, CALL 8, RET (to 6), HALT issue
+  // in consecutive cycles: the next word's address is known a cycle ahead.
+  std::vector<MicroWord> prog(9);
+  prog[0] = lif(1, 0x3F00) | halt();
+  prog[2] = seq(SeqOp::Jmp, 0, 5);
+  prog[5] = seq(SeqOp::Call, 0, 8);
+  prog[6] = halt();
+  prog[8] = seq(SeqOp::Ret);
+  auto r = program(prog);
+  r.go();
+  ASSERT_EQ(r.apu->state(), RunState::Halted);
+  r.apu->start(2);
+  const CycleRecord& fetch = r.step();
+  EXPECT_EQ(fetch.cycle, 2u);
+  EXPECT_FALSE(fetch.issued);
+  EXPECT_EQ(fetch.stall, N);
+  EXPECT_EQ(fetch.pc, 2);
+  EXPECT_EQ(fetch.commits, (Commits{{K::FReg, 1, kOne}}));
+  EXPECT_EQ(r.apu->state(), RunState::Running);
+  const std::size_t first = r.recs.size();
+  r.go();
+  ASSERT_EQ(r.apu->state(), RunState::Halted);
+  EXPECT_EQ(r.recs.size() - first, 4u);
+  EXPECT_EQ(r.pcs(), (std::vector<int>{0, -1, 2, 5, 8, 6}));
+  EXPECT_EQ(r.apu->cycle(), 7u);
 }
 
 TEST_P(ApuHandTimed, CycleLimitThrowsWithTheStall) {
@@ -651,12 +685,12 @@ TEST_P(ApuHandTimed, CycleLimitThrowsWithTheStall) {
     FAIL() << "no limit";
   } catch (const ApuError& e) {
     EXPECT_EQ(e.kind(), ApuError::Kind::CycleLimit);
-    EXPECT_EQ(e.cycle(), 49u);
+    EXPECT_EQ(e.cycle(), 50u);  // cycle 0 was the program's fetch
     EXPECT_NE(std::string(e.what()).find("stalled: bank"), std::string::npos) << e.what();
   }
   // To name the stall, the driver steps a copy of the ISS, but any other
   // engine itself, once (a stuck APU stays stuck).
-  EXPECT_EQ(r.apu->cycle(), iss(r.apu) ? 50u : 51u);
+  EXPECT_EQ(r.apu->cycle(), iss(r.apu) ? 51u : 52u);
 }
 
 TEST_P(ApuHandTimed, MpuHookHandsOverDuringTheRun) {
@@ -667,8 +701,10 @@ TEST_P(ApuHandTimed, MpuHookHandsOverDuringTheRun) {
     ++calls;
     if (!drv.data_ready() && r.apu->cycle() >= 20) drv.hand_over_data();
   }, 10);
-  EXPECT_EQ(cycles, 32u);  // hand-overs at cycles 20 and 30, HALT at 31
-  EXPECT_EQ(calls, 4);     // at cycles 0, 10, 20, 30
+  // Cycle 0 was the program's fetch: the run clocks 1..31, the hook at 10,
+  // 20 and 30, hand-overs at 20 and 30, HALT at 31.
+  EXPECT_EQ(cycles, 31u);
+  EXPECT_EQ(calls, 3);
 }
 
 TEST_P(ApuHandTimed, StepAndRunAgreeOnCounters) {

@@ -37,13 +37,16 @@ TEST(ApuRtl, MpuPortsOfTheCoreFillAndReadTheIdleBanks) {
   top.mpu2apu_start_pc = 0;
   top.eval();
   EXPECT_EQ(top.apu2mpu_psel, 1);
-  EXPECT_TRUE(top.dbg_issue);  // the SWAPD issues in the start cycle
+  EXPECT_FALSE(top.dbg_issue);  // the start's cycle fetches word 0
+  EXPECT_EQ(top.dbg_pc, 0);
+  core.edge();
+  EXPECT_TRUE(top.dbg_issue);  // the SWAPD issues in the next
   core.edge();
   EXPECT_EQ(top.apu2mpu_dsel, 1);
   core.write_data(7, 0x123456);  // the MPU owns bank 0 now: the APU does not see this
-  // (that port write was APU cycle 1, the LD.) The second SWAPD (cycle 5)
+  // (that port write was APU cycle 2, the LD.) The second SWAPD (cycle 6)
   // waits for a hand-over; presented in that cycle, it lets it issue there.
-  int cycles = 2, bank_stalls = 0;
+  int cycles = 3, bank_stalls = 0;
   for (; cycles < 50 && top.apu2mpu_run_state == 1; ++cycles) {
     if (top.dbg_stall_reason == static_cast<int>(Stall::Bank)) {
       ++bank_stalls;
@@ -55,7 +58,7 @@ TEST(ApuRtl, MpuPortsOfTheCoreFillAndReadTheIdleBanks) {
     core.edge();
   }
   EXPECT_EQ(top.apu2mpu_run_state, 2);  // halted
-  EXPECT_EQ(cycles, 7);                 // 7 words, no stall left
+  EXPECT_EQ(cycles, 8);                 // the fetch, 7 words, no stall left
   EXPECT_EQ(bank_stalls, 1);
   EXPECT_EQ(top.apu2mpu_dsel, 0);
   EXPECT_EQ(core.read_data(8), 0x410000u);  // 2 * 2, stored in bank 1, handed back
@@ -89,12 +92,13 @@ TEST(ApuRtl, StallCauseSignalsNameTheSlotAndTheUnit) {
     core.edge();
   }
   const int R = static_cast<int>(Stall::Raw), W = static_cast<int>(Stall::Waw), D = static_cast<int>(Stall::Drain);
-  // cycles: 0 LIF, 1 MUL, 2 raw, 3 ADD, 4 SIN, 5 waw, 6 ST|RECIP, 7 drain, 8 HALT
-  EXPECT_EQ(stall, (std::vector<int>{0, 0, R, 0, 0, W, 0, D, 0}));
-  EXPECT_EQ(raw_src, (std::vector<int>{0, 0, 1 << 3, 0, 0, 0, 0, 0, 0}));
-  EXPECT_EQ(raw_unit, (std::vector<int>{0, 0, 1 << 0, 0, 0, 0, 0, 0, 0}));
-  EXPECT_EQ(waw_dst, (std::vector<int>{0, 0, 0, 0, 0, 1 << 2, 0, 0, 0}));
-  EXPECT_EQ(waw_unit, (std::vector<int>{0, 0, 0, 0, 0, 1 << 2, 0, 0, 0}));
+  // cycles: 0 fetch, 1 LIF, 2 MUL, 3 raw, 4 ADD, 5 SIN, 6 waw, 7 ST|RECIP,
+  // 8 drain, 9 HALT
+  EXPECT_EQ(stall, (std::vector<int>{0, 0, 0, R, 0, 0, W, 0, D, 0}));
+  EXPECT_EQ(raw_src, (std::vector<int>{0, 0, 0, 1 << 3, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(raw_unit, (std::vector<int>{0, 0, 0, 1 << 0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(waw_dst, (std::vector<int>{0, 0, 0, 0, 0, 0, 1 << 2, 0, 0, 0}));
+  EXPECT_EQ(waw_unit, (std::vector<int>{0, 0, 0, 0, 0, 0, 1 << 2, 0, 0, 0}));
   EXPECT_FALSE(top.dbg_unit_mismatch);
 }
 

@@ -77,6 +77,7 @@ void Iss::reset() {
   state_ = RunState::Idle;
   fault_ = Fault::None;
   cycle_ = 0;
+  fetching_ = 0;
   const DecodedWord zero = DecodedWord::from(Encoded{});
   for (int b = 0; b < 2; ++b) {
     program_[b].fill(Encoded{});
@@ -111,6 +112,7 @@ void Iss::start(std::uint16_t pc) {
   fault_ = Fault::None;
   pc_ = pc % kProgramWords;
   state_ = RunState::Running;
+  fetching_ = kStartFetchCycles;
 }
 
 MC1_HOT void Iss::push_f(int latency, std::uint8_t index, std::uint32_t value) {
@@ -355,7 +357,9 @@ void Iss::clock(CycleRecord* rec) {
     rec->commits.clear();
   }
   take_due<kRecord>(rec, cc, flags);
-  if (state_ == RunState::Running) {
+  if (fetching_ > 0) {
+    --fetching_;  // the program RAM reads the word at pc: nothing issues
+  } else if (state_ == RunState::Running) {
     const DecodedWord& dw = decoded_[psel_][pc_];
     const Stall s = stall_reason(dw);
     if (s != Stall::None) {

@@ -131,6 +131,7 @@ class Iss final : public ApuEngine {
   RunState state_ = RunState::Idle;
   Fault fault_ = Fault::None;
   std::uint64_t cycle_ = 0;
+  int fetching_ = 0;  // cycles left in which a start fetches its first word
   std::array<std::array<Encoded, kProgramWords>, 2> program_{};
   std::array<std::array<DecodedWord, kProgramWords>, 2> decoded_{};
   std::array<std::array<std::uint32_t, kDataWords>, 2> data_{};
