@@ -12,8 +12,8 @@ namespace mc1::apu {
 
 namespace {
 
-constexpr int kFCompletionPorts = 4;  // mul, add, func RECIP/SQRT, func SIN/COS
-constexpr int kFCommitPorts = 6;      // the completions; LD, MOVAF/LIF of t - 1
+constexpr int kFCompletionPorts = 5;  // mul, add, func RECIP/SQRT, func SIN/COS, LD (from the RAM)
+constexpr int kFCommitPorts = 6;      // the completions; MOVAF/LIF of t - 1
 
 // Bits [pos + width - 1 : pos] of a wide Verilator port.
 template <typename Wide>
