@@ -47,7 +47,7 @@ module fp24_func #(
   localparam logic [SEXP_W-1:0] BIAS     = SEXP_W'((1 << (EXP_W - 1)) - 1);
   localparam logic [W-1:0]      NAN      = {1'b0, EXP_ONES, 1'b1, {(FRAC_W - 1) {1'b0}}};
   localparam logic [W-1:0]      ONE      = {2'b00, {(EXP_W - 1) {1'b1}}, {FRAC_W{1'b0}}};
-  localparam logic [4:0] F_NV = 5'h10, F_DZ = 5'h08, F_NX = 5'h01, F_NONE = 5'h00;
+  localparam logic [4:0] F_NV = 5'h10, F_NX = 5'h01, F_NONE = 5'h00;
 
   // ---- stage 1 registers: the op as issued ----------------------------------
   logic         s1_valid;
@@ -56,8 +56,8 @@ module fp24_func #(
 
   always_ff @(posedge clk) begin
     if (!rst_n) s1_valid <= 1'b0;
-    else        s1_valid <= in_valid;
-    if (in_valid) begin
+    else        s1_valid <= in_valid && in_op[1];
+    if (in_valid && in_op[1]) begin
       s1_op <= in_op;
       s1_a  <= in_a;
     end
@@ -90,64 +90,18 @@ module fp24_func #(
   logic [4:0]   spec_flags;
 
   always_comb begin
-    spec        = x_zero || x_inf || x_nan || (s1_op == OP_SQRT && x_sign);
+    // sin +-0 = +-0, cos 0 = 1, +-inf invalid, NaN: the canonical NaN.
+    spec        = x_zero || x_inf || x_nan;
     spec_flags  = F_NONE;
     spec_result = NAN;
-    if (!x_nan) begin
-      unique case (s1_op)
-        OP_RECIP: begin  // 1/+-0 = +-inf DZ, 1/+-inf = +-0
-          spec_result = x_zero ? {x_sign, EXP_ONES, {FRAC_W{1'b0}}} : {x_sign, {(W - 1) {1'b0}}};
-          spec_flags  = x_zero ? F_DZ : F_NONE;
-        end
-        OP_SQRT: begin   // sqrt(+-0) = +-0, sqrt(+inf) = +inf, sqrt(< 0) invalid
-          if (x_zero) spec_result = {x_sign, {(W - 1) {1'b0}}};
-          else if (!x_sign) spec_result = {1'b0, EXP_ONES, {FRAC_W{1'b0}}};
-          else spec_flags = F_NV;
-        end
-        default: begin   // sin +-0 = +-0, cos 0 = 1, +-inf invalid
-          if (x_inf) spec_flags = F_NV;
-          else spec_result = (s1_op == OP_SIN) ? {x_sign, {(W - 1) {1'b0}}} : ONE;
-        end
-      endcase
-    end
+    if (x_inf) spec_flags = F_NV;
+    else if (x_zero) spec_result = (s1_op == OP_SIN) ? {x_sign, {(W - 1) {1'b0}}} : ONE;
   end
 
-  // ---- stage 1 -> 2, RECIP/SQRT: quotient / root, round, pack ---------------
-  // RECIP: 1/(m 2^(E-16)) = floor(2^34/m) 2^(-18-E); m = 2^16 is exact 2^-E.
-  // SQRT: sqrt(m 2^(18+odd)) 2^((E-odd)/2 - 17).
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic [SIG_W:0] recip_q, sqrt_root;  // 1.f and the rounding bit; the leading 1 is implied
-  /* verilator lint_on UNUSEDSIGNAL */
-  logic           recip_sticky, sqrt_sticky;
-
-  fp24_func_recip #(.SIG_W(SIG_W)) u_recip (
-      .en(s1_valid && s1_op == OP_RECIP), .m(x_sig), .q(recip_q), .sticky(recip_sticky));
-  fp24_func_sqrt #(.SIG_W(SIG_W)) u_sqrt (
-      .en(s1_valid && s1_op == OP_SQRT), .m(x_sig), .odd(x_eunb[0]), .root(sqrt_root), .sticky(sqrt_sticky));
-
-  logic              rnd_guard, rnd_sticky;
-  logic [SEXP_W-1:0] rnd_exp;
-  logic [FRAC_W-1:0] rnd_frac;
-  logic [W-1:0]      rnd_result;
-  logic [4:0]        rnd_flags;
-
-  always_comb begin
-    if (s1_op == OP_RECIP) begin
-      rnd_frac   = (x_frac == '0) ? '0 : recip_q[FRAC_W:1];
-      rnd_guard  = (x_frac != '0) && recip_q[0];
-      rnd_sticky = (x_frac != '0) && recip_sticky;
-      rnd_exp    = BIAS - x_eunb - SEXP_W'(x_frac != '0);
-    end else begin
-      rnd_frac   = sqrt_root[FRAC_W:1];
-      rnd_guard  = sqrt_root[0];
-      rnd_sticky = sqrt_sticky;
-      rnd_exp    = {x_eunb[SEXP_W-1], x_eunb[SEXP_W-1:1]} + BIAS;  // floor(E/2)
-    end
-  end
-
-  fp24_round #(.EXP_W(EXP_W), .FRAC_W(FRAC_W), .SEXP_W(SEXP_W)) u_round (
-      .sign(x_sign), .exp(rnd_exp), .frac(rnd_frac), .guard(rnd_guard), .sticky(rnd_sticky),
-      .result(rnd_result), .flags(rnd_flags));
+  // ---- RECIP, SQRT: their own three stages ---------------------------------
+  fp24_func_rsq #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_rsq (
+      .clk(clk), .rst_n(rst_n), .in_valid(in_valid && (in_op == OP_RECIP || in_op == OP_SQRT)), .in_sqrt(in_op == OP_SQRT), .in_a(in_a),
+      .out_valid(out_valid), .out_result(out_result), .out_flags(out_flags));
 
   // ---- stage 1 -> 2, SIN/COS: range reduction -------------------------------
   logic [1:0]        red_quadrant;
@@ -203,16 +157,13 @@ module fp24_func #(
     else        s2_valid <= s1_valid;
     if (s1_valid) begin
       s2_trig  <= s1_op[1];
-      s2_known <= spec || !s1_op[1] || hard[W];
+      s2_known <= spec || hard[W];
       if (spec) begin
         s2_result <= spec_result;
         s2_flags  <= spec_flags;
-      end else if (s1_op[1]) begin
+      end else begin
         s2_result <= hard[W-1:0];
         s2_flags  <= F_NX;
-      end else begin
-        s2_result <= rnd_result;
-        s2_flags  <= rnd_flags;
       end
     end
     if (s1_trig) begin
@@ -266,9 +217,6 @@ module fp24_func #(
     end
   end
 
-  assign out_valid       = s2_valid && !s2_trig;
-  assign out_result      = s2_result;
-  assign out_flags       = s2_flags;
   assign out_trig_valid  = s3_valid;
   assign out_trig_result = s3_result;
   assign out_trig_flags  = s3_flags;
