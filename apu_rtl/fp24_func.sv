@@ -38,7 +38,6 @@ module fp24_func #(
     output logic [EXP_W+FRAC_W:0] out_trig_result,
     output logic [4:0]            out_trig_flags
 );
-  import fp24_func_pkg::*;
 
   localparam int W      = EXP_W + FRAC_W + 1;
   localparam int SIG_W  = FRAC_W + 1;
@@ -95,12 +94,13 @@ module fp24_func #(
     spec_flags  = F_NONE;
     spec_result = NAN;
     if (x_inf) spec_flags = F_NV;
-    else if (x_zero) spec_result = (s1_op == OP_SIN) ? {x_sign, {(W - 1) {1'b0}}} : ONE;
+    else if (x_zero) spec_result = (s1_op == fp24_func_pkg::OP_SIN) ? {x_sign, {(W - 1) {1'b0}}} : ONE;
   end
 
   // ---- RECIP, SQRT: their own three stages ---------------------------------
   fp24_func_rsq #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_rsq (
-      .clk(clk), .rst_n(rst_n), .in_valid(in_valid && (in_op == OP_RECIP || in_op == OP_SQRT)), .in_sqrt(in_op == OP_SQRT), .in_a(in_a),
+      .clk(clk), .rst_n(rst_n), .in_valid(in_valid && (in_op == fp24_func_pkg::OP_RECIP || in_op == fp24_func_pkg::OP_SQRT)),
+      .in_sqrt(in_op == fp24_func_pkg::OP_SQRT), .in_a(in_a),
       .out_valid(out_valid), .out_result(out_result), .out_flags(out_flags));
 
   // ---- stage 1 -> 2, SIN/COS: range reduction -------------------------------
@@ -131,11 +131,11 @@ module fp24_func #(
   logic [W:0] hard;  // {hit, result}
 
   always_comb begin
-    is_cos  = s1_op == OP_COS;
+    is_cos  = s1_op == fp24_func_pkg::OP_COS;
     quarter = red_quadrant + {1'b0, is_cos};
     use_cos = quarter[0];
     y_sign  = quarter[1] ^ (!use_cos && red_zneg) ^ (!is_cos && x_sign);
-    hard    = s1_trig ? rom_hard_case({is_cos, s1_a}) : '0;
+    hard    = s1_trig ? fp24_func_pkg::rom_hard_case({is_cos, s1_a}) : '0;
   end
 
   // ---- stage 2 registers ----------------------------------------------------
