@@ -1,23 +1,21 @@
 // FP24 function unit: RECIP, SQRT, SIN, COS (docs/fp24.md, docs/fp24-rtl.md;
-// algorithms and error analysis in docs/fp24-func.md). Same algorithm, bit
-// for bit, as the C++ model hw/apu/fp24_func.cpp + fp24_trig.cpp.
-//
-// One issue per cycle, whatever the op.
-//   RECIP, SQRT: latency 2, result on out_*.
-//     s1 <- the op
-//     s2 <- special operands resolved; else exact 18-bit quotient
-//           (fp24_func_recip) or root (fp24_func_sqrt) with its sticky
-//           remainder, rounded and packed (fp24_round)
-//   SIN, COS: latency 3, result on out_trig_*.
+// algorithms and error analysis in docs/fp24-func.md). Two pipes behind one
+// issue port, one op per cycle, whatever the op:
+//   RECIP, SQRT: fp24_func_rsq, latency 3, result on out_*: a seed ROM,
+//     interpolation, and an exact remainder that picks the floor and the
+//     sticky bit (correctly rounded like the model's exact division in
+//     hw/apu/fp24_func.cpp, so the two agree on every input).
+//   SIN, COS: latency 3, result on out_trig_*; the same algorithm, bit for
+//     bit, as the model's hw/apu/fp24_trig.cpp.
 //     s1 <- the op
 //     s2 <- x * 2/pi mod 4 (fp24_func_reduce), the reduced argument z and z^2
 //           (fp24_func_argnorm), the result's sign; or the final result of a
 //           special operand or a hard case (ROM)
 //     s3 <- series (fp24_func_series), rounded and packed
-// A RECIP/SQRT issued the cycle after a SIN/COS finishes in the same cycle as
-// it: that is why the SIN/COS result has its own port.
-// Every datapath block has an enable (operand isolation), so the verilated
-// model only evaluates the arithmetic of the ops in flight.
+// Both latencies come from apu_rtl/isa/apu_isa.tbl (LAT_FUNC, LAT_TRIG); with
+// other values the two pipes could finish in one cycle: hence two ports.
+// Every SIN/COS datapath block has an enable (operand isolation), so the
+// verilated model only evaluates the arithmetic of the ops in flight.
 // rst_n is synchronous and clears only the valid bits.
 module fp24_func #(
     parameter int EXP_W  = 7,
@@ -139,10 +137,9 @@ module fp24_func #(
   end
 
   // ---- stage 2 registers ----------------------------------------------------
-  // s2_result holds every result known by now: RECIP/SQRT (out_*), and a
-  // SIN/COS of a special operand or a hard case (s2_known: no series needed).
+  // s2_result holds the result of a special operand or a hard case
+  // (s2_known: no series needed). Only SIN/COS enter these stages.
   logic              s2_valid;
-  logic              s2_trig;
   logic              s2_known;
   logic [W-1:0]      s2_result;
   logic [4:0]        s2_flags;
@@ -156,7 +153,6 @@ module fp24_func #(
     if (!rst_n) s2_valid <= 1'b0;
     else        s2_valid <= s1_valid;
     if (s1_valid) begin
-      s2_trig  <= s1_op[1];
       s2_known <= spec || hard[W];
       if (spec) begin
         s2_result <= spec_result;
@@ -182,7 +178,7 @@ module fp24_func #(
   logic [W-1:0]      trig_result;
   logic [4:0]        trig_flags;
 
-  assign s2_series = s2_valid && s2_trig && !s2_known;
+  assign s2_series = s2_valid && !s2_known;
 
   fp24_func_series #(.SEXP_W(SEXP_W)) u_series (
       .en(s2_series), .use_cos(s2_use_cos), .z_sig(s2_zsig), .z_exp(s2_zexp), .u(s2_u),
@@ -210,8 +206,8 @@ module fp24_func #(
 
   always_ff @(posedge clk) begin
     if (!rst_n) s3_valid <= 1'b0;
-    else        s3_valid <= s2_valid && s2_trig;
-    if (s2_valid && s2_trig) begin
+    else        s3_valid <= s2_valid;
+    if (s2_valid) begin
       s3_result <= s2_known ? s2_result : trig_result;
       s3_flags  <= s2_known ? s2_flags : trig_flags;
     end
