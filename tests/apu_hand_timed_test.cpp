@@ -144,9 +144,9 @@ TEST_P(ApuHandTimed, OneOperandAdderOpsDoNotReadB) {
 }
 
 TEST_P(ApuHandTimed, SinCosAndOtherFunctionOpsIssueBackToBack) {
-  // SIN at 1 (visible 4), COS at 2 (visible 5), RECIP at 3 (visible 5: the
-  // function unit returns it in the COS's cycle); the ADD reading the SIN
-  // result issues at 4 with no stall.
+  // SIN at 1 (visible 4), COS at 2 (visible 5), RECIP at 3 (visible 6, with
+  // the ADD's result); the ADD reading the SIN result issues at 4 with no
+  // stall. HALT at 5 drains (RECIP and ADD in flight), issues at 6.
   auto r = program({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Cos, 3, 1), func(FuncOp::Recip, 4, 1),
                     addu(AddOp::Add, 5, 2, 2), halt()});
   r.go();
@@ -156,20 +156,21 @@ TEST_P(ApuHandTimed, SinCosAndOtherFunctionOpsIssueBackToBack) {
   const auto twice = fp24::add(s.value, s.value);
   EXPECT_EQ(s.flags, fp24::kNX);  // so FLAGS changes with the SIN result
   EXPECT_EQ(r.recs[4].commits, (Commits{{K::FReg, 2, s.value}, {K::Flags, 0, s.flags}}));
-  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 3, c.value}, {K::FReg, 4, kOne}}));
-  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 5, twice.value}}));
+  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 3, c.value}}));
+  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, kOne}, {K::FReg, 5, twice.value}}));
   EXPECT_EQ(r.apu->freg(3), c.value);
   EXPECT_EQ(r.apu->freg(4), kOne);
   EXPECT_EQ(r.apu->freg(5), twice.value);
   EXPECT_EQ(r.apu->flags(), s.flags | c.flags | twice.flags);
 }
 
-TEST_P(ApuHandTimed, RecipAfterSinIntoTheSameRegisterWaitsForIt) {
-  // SIN F2 at 1 is visible at 4. A RECIP F2 issued at 2 would be visible at 4
-  // too: waw once; issued at 3 it lands at 5, after the SIN's: no second stall.
+TEST_P(ApuHandTimed, RecipAfterSinIntoTheSameRegisterNeedNotWait) {
+  // SIN F2 at 1 is visible at 4; RECIP F2 at 2, of the same latency
+  // (FUNC = TRIG = 3), lands at 5, after it: in-order pipes of one latency
+  // cannot reorder, so no waw. HALT drains at 3 and 4.
   auto r = program({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Recip, 2, 1), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Waw, N, Stall::Drain, N}));
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, Stall::Drain, Stall::Drain, N}));
   EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, fp24::sin(kOne).value}));
   EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 2, kOne}}));
   EXPECT_EQ(r.apu->freg(2), kOne);
@@ -233,17 +234,18 @@ TEST_P(ApuHandTimed, CosReaderStallsRawTwice) {
 }
 
 TEST_P(ApuHandTimed, FunctionUnitTakesAnOpEveryCycle) {
-  // SQRT at 1 (visible 3), COS at 2 and 3 (visible 5, 6), SQRT at 4 (visible
-  // 6, with the second COS). HALT at 5 drains: the COS of 3 is in s2, the
-  // SQRT of 4 in s1; both complete at 6, where HALT issues.
+  // SQRT at 1 (visible 4), COS at 2 and 3 (visible 5, 6), SQRT at 4 (visible
+  // 7): one result a cycle, in issue order. HALT at 5 drains: the COS of 3
+  // and the SQRT of 4 are in flight; at 6 the SQRT still is; HALT issues at 7.
   auto r = program({lif(1, 0x4000), func(FuncOp::Sqrt, 2, 1), func(FuncOp::Cos, 3, 1), func(FuncOp::Cos, 4, 1),
                     func(FuncOp::Sqrt, 5, 1), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, N, Stall::Drain, N}));
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, N, Stall::Drain, Stall::Drain, N}));
   const auto c = fp24::cos(kTwo), q = fp24::sqrt(kTwo);
-  EXPECT_EQ(r.recs[3].commits[0], (Commit{K::FReg, 2, q.value}));
+  EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, q.value}));
   EXPECT_EQ(r.recs[5].commits[0], (Commit{K::FReg, 3, c.value}));
-  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, c.value}, {K::FReg, 5, q.value}}));
+  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, c.value}}));
+  EXPECT_EQ(r.recs[7].commits, (Commits{{K::FReg, 5, q.value}}));
   EXPECT_EQ(r.apu->freg(5), q.value);
 }
 
@@ -714,7 +716,7 @@ TEST_P(ApuHandTimed, StepAndRunAgreeOnCounters) {
   stepped.go();
   auto fast = program(prog);
   EXPECT_EQ(fast.apu->run(10000), stepped.recs.size());
-  EXPECT_EQ(stepped.recs.size(), 2u + 20 * 3 + 2);  // loop: word, raw, word; HALT: drain, word
+  EXPECT_EQ(stepped.recs.size(), 2u + 20 * 4 + 2);  // loop: word, raw, raw (SQRT: t + 3), word; HALT: drain, word
   EXPECT_EQ(fast.apu->freg(4), stepped.apu->freg(4));
   EXPECT_EQ(fast.apu->flags(), stepped.apu->flags());
   const Iss* s = iss(stepped.apu);
@@ -722,7 +724,7 @@ TEST_P(ApuHandTimed, StepAndRunAgreeOnCounters) {
   if (s && f) {
     EXPECT_EQ(f->counters().issued, s->counters().issued);
     EXPECT_EQ(f->counters().unit_ops[2], 20u);
-    EXPECT_EQ(f->counters().stalls[int(Stall::Raw)], 20u);
+    EXPECT_EQ(f->counters().stalls[int(Stall::Raw)], 40u);
   }
 }
 

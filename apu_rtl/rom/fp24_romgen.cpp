@@ -10,6 +10,7 @@
 #include <mpfr.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <cstdint>
 #include <cstdio>
@@ -99,6 +100,93 @@ std::array<std::uint64_t, trig::kTerms> inverse_factorials(int first) {
   return c;
 }
 
+
+// ---- RECIP/SQRT seed table -----------------------------------------------------
+// The RTL's RECIP and SQRT (docs/fp24-func.md) start from a piecewise-linear
+// approximation q0 = floor((A * 2^(F-FA) + B * d) / 2^F) of the 18-bit
+// quotient 2^34/m or root sqrt(m * 2^(18+odd)), with A and B from this ROM
+// and d the low fraction bits of the input; the exact remainder then decides
+// between q0 - 1 and q0. The generator proves, for every significand, that
+// the true floor is one of the two; the build fails if it is not.
+constexpr int kSeedF = 12;          // fraction bits of B (and of the sum)
+constexpr int kSeedFA = 3;          // fraction bits of A
+constexpr int kSeedAWidth = 22;     // A < 2^(19 + FA)
+constexpr int kSeedBWidth = 16;     // B, two's complement
+constexpr int kRecipIndexBits = 9;  // RECIP: segment = f[15:7], d = f[6:0]
+constexpr int kSqrtIndexBits = 7;   // SQRT: segment = {odd, f[15:9]}, d = f[8:0]
+constexpr int kSeedEntries = 768;   // 512 RECIP + 256 SQRT; address 512 + {odd, f[15:9]}
+
+struct Seed {
+  std::uint32_t a;
+  std::int32_t b;
+};
+
+// The exact value the seed approximates, and its floor.
+long double seed_target(bool is_sqrt, int odd, std::uint32_t m) {
+  if (!is_sqrt) return std::ldexp(1.0L, 34) / static_cast<long double>(m);
+  return std::sqrt(std::ldexp(static_cast<long double>(m), 18 + odd));
+}
+
+std::uint64_t exact_floor(bool is_sqrt, int odd, std::uint32_t m) {
+  if (!is_sqrt) return (std::uint64_t{1} << 34) / m;
+  const std::uint64_t x = static_cast<std::uint64_t>(m) << (18 + odd);
+  auto r = static_cast<std::uint64_t>(std::sqrt(static_cast<long double>(x)));
+  while (r * r > x) --r;
+  while ((r + 1) * (r + 1) <= x) ++r;
+  return r;
+}
+
+std::int64_t seed_q0(const Seed& s, std::uint32_t d) {
+  const std::int64_t t = (static_cast<std::int64_t>(s.a) << (kSeedF - kSeedFA)) + static_cast<std::int64_t>(s.b) * d;
+  return t >> kSeedF;  // t > 0: checked by the caller's range test
+}
+
+// One segment: the chord through its first and last point, moved half-way
+// towards the curve (the curve's two extremes of distance to the chord are then
+// equal and opposite), plus 1/2 so that the floor rounds.
+Seed fit_segment(bool is_sqrt, int odd, std::uint32_t m0, int len) {
+  const long double f0 = seed_target(is_sqrt, odd, m0);
+  const long double f1 = seed_target(is_sqrt, odd, m0 + len - 1);
+  const long double slope = (f1 - f0) / (len - 1);
+  long double lo = 0, hi = 0;
+  for (int d = 0; d < len; ++d) {
+    const long double dev = seed_target(is_sqrt, odd, m0 + d) - (f0 + slope * d);
+    lo = std::min(lo, dev);
+    hi = std::max(hi, dev);
+  }
+  const long double a = f0 + (lo + hi) / 2 + 0.5L;
+  return {static_cast<std::uint32_t>(std::llround(std::ldexp(a, kSeedFA))),
+          static_cast<std::int32_t>(std::llround(std::ldexp(slope, kSeedF)))};
+}
+
+// Fits every segment and checks every significand it serves.
+std::vector<Seed> make_seed_table() {
+  std::vector<Seed> t(kSeedEntries, Seed{0, 0});
+  auto fit = [&t](bool is_sqrt, int odd, int index_bits, int addr) {
+    const int len = 1 << (kFracBits - index_bits);
+    for (int seg = 0; seg < (1 << index_bits); ++seg) {
+      const std::uint32_t m0 = (1u << kFracBits) + static_cast<std::uint32_t>(seg * len);
+      const Seed s = fit_segment(is_sqrt, odd, m0, len);
+      if (s.a >= (1u << kSeedAWidth) || s.b >= (1 << (kSeedBWidth - 1)) || s.b < -(1 << (kSeedBWidth - 1)))
+        throw std::runtime_error("seed entry out of range");
+      for (int d = 0; d < len; ++d) {
+        const std::uint32_t m = m0 + static_cast<std::uint32_t>(d);
+        if (!is_sqrt && m == (1u << kFracBits)) continue;  // exact power of two: the RTL's bypass
+        const std::int64_t q0 = seed_q0(s, static_cast<std::uint32_t>(d));
+        const auto fl = static_cast<std::int64_t>(exact_floor(is_sqrt, odd, m));
+        if (q0 >= (1 << 18) || (fl != q0 && fl != q0 - 1))
+          throw std::runtime_error("seed table: floor not in {q0-1, q0} for m=" + std::to_string(m) +
+                                   (is_sqrt ? " (sqrt)" : " (recip)"));
+      }
+      t[static_cast<std::size_t>(addr + seg)] = s;
+    }
+  };
+  fit(false, 0, kRecipIndexBits, 0);
+  fit(true, 0, kSqrtIndexBits, 512);
+  fit(true, 1, kSqrtIndexBits, 512 + (1 << kSqrtIndexBits));
+  return t;
+}
+
 struct HardCase {
   std::uint32_t key;     // is_cos << 24 | input encoding
   std::uint32_t result;  // correctly rounded encoding (flags: NX)
@@ -157,6 +245,7 @@ struct Roms {
   std::array<std::uint64_t, trig::kTerms> sin_coef;
   std::array<std::uint64_t, trig::kTerms> cos_coef;
   std::vector<HardCase> hard;
+  std::vector<Seed> seed;
 };
 
 constexpr const char* kBanner =
@@ -212,6 +301,19 @@ std::string sv_rom(const Roms& r) {
     for (int k = 0; k < trig::kTerms; ++k)
       o << "    4'd" << (c * 8 + k) << ": rom_coef = 64'h" << hex((c ? r.cos_coef : r.sin_coef)[k], 16) << ";\n";
   o << "    default: rom_coef = '0;\n  endcase\nendfunction\n\n";
+  o << "// RECIP/SQRT seeds {A, B} (" << kSeedAWidth << " + " << kSeedBWidth
+    << " bits): address f[15:7] (RECIP) or 512 + {odd, f[15:9]} (SQRT).\n"
+    << "// Sum fraction bits F = " << kSeedF << ", A fraction bits FA = " << kSeedFA << ".\n"
+    << "localparam int SEED_F = " << kSeedF << ";\nlocalparam int SEED_FA = " << kSeedFA << ";\n"
+    << "localparam int SEED_A_W = " << kSeedAWidth << ";\nlocalparam int SEED_B_W = " << kSeedBWidth << ";\n"
+    << "function automatic logic [" << kSeedAWidth + kSeedBWidth - 1 << ":0] rom_seed(input logic [9:0] addr);\n"
+    << "  case (addr)\n";
+  for (std::size_t i = 0; i < r.seed.size(); ++i) {
+    const auto b = static_cast<std::uint32_t>(r.seed[i].b) & ((1u << kSeedBWidth) - 1);
+    o << "    10'd" << i << ": rom_seed = {" << kSeedAWidth << "'h" << hex(r.seed[i].a, 6) << ", " << kSeedBWidth
+      << "'h" << hex(b, 4) << "};\n";
+  }
+  o << "    default: rom_seed = '0;\n  endcase\nendfunction\n\n";
   o << "// Hard cases: key = {is_cos, input}; returns {hit, correctly rounded result}.\n"
     << "// " << r.hard.size() << " entries.\n"
     << "function automatic logic [24:0] rom_hard_case(input logic [24:0] key);\n"
@@ -247,6 +349,7 @@ int main(int argc, char** argv) {
     const trig::Tables t{r.windows.data(), r.half_pi, r.sin_coef.data(), r.cos_coef.data()};
     std::uint64_t min_distance = 0;
     r.hard = find_hard_cases(t, &min_distance);
+    r.seed = make_seed_table();
     const std::string dir = argv[1];
     write_if_changed(dir + "/fp24_rom.inc", cpp_rom(r));
     write_if_changed(dir + "/fp24_rom.svh", sv_rom(r));

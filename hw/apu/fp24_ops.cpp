@@ -5,18 +5,26 @@
 
 #include <array>
 
+#include "apu_isa.hpp"
+
 namespace mc1::fp24 {
 namespace {
 
-// Function-unit SIN/COS have a third stage for range reduction: latency 3,
-// still one issue per cycle. Everything else is the paper's 2-stage pipe.
+// The latencies are the instruction-set table's (apu_rtl/isa/apu_isa.tbl):
+// the multiplier and the adder are the paper's 2-stage pipes; the function
+// unit's RECIP/SQRT (seed ROM, interpolation, remainder check) and SIN/COS
+// take more stages, still one issue per cycle (docs/fp24-func.md).
+constexpr int kAdd = apu::kAddLatency;
+constexpr int kMul = apu::kMulLatency;
+constexpr int kFunc = apu::kFuncLatency;
+constexpr int kTrig = apu::kTrigLatency;
 constexpr std::array<OpInfo, kOpCount> kOps = {{
-    {"add", Unit::Adder, 2, 2, 1, 0},   {"sub", Unit::Adder, 2, 2, 1, 1},
-    {"mul", Unit::Mul, 2, 2, 1, 0},     {"recip", Unit::Func, 1, 2, 1, 0},
-    {"sqrt", Unit::Func, 1, 2, 1, 1},   {"sin", Unit::Func, 1, 3, 1, 2},
-    {"cos", Unit::Func, 1, 3, 1, 3},    {"cmp", Unit::Adder, 2, 2, 1, 2},
-    {"float", Unit::Adder, 1, 2, 1, 3}, {"fix", Unit::Adder, 1, 2, 1, 4},
-    {"neg", Unit::Adder, 1, 2, 1, 5},   {"abs", Unit::Adder, 1, 2, 1, 6},
+    {"add", Unit::Adder, 2, kAdd, 1, 0},   {"sub", Unit::Adder, 2, kAdd, 1, 1},
+    {"mul", Unit::Mul, 2, kMul, 1, 0},     {"recip", Unit::Func, 1, kFunc, 1, 0},
+    {"sqrt", Unit::Func, 1, kFunc, 1, 1},  {"sin", Unit::Func, 1, kTrig, 1, 2},
+    {"cos", Unit::Func, 1, kTrig, 1, 3},   {"cmp", Unit::Adder, 2, kAdd, 1, 2},
+    {"float", Unit::Adder, 1, kAdd, 1, 3}, {"fix", Unit::Adder, 1, kAdd, 1, 4},
+    {"neg", Unit::Adder, 1, kAdd, 1, 5},   {"abs", Unit::Adder, 1, kAdd, 1, 6},
 }};
 
 }  // namespace
