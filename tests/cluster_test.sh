@@ -3,7 +3,8 @@
 # localhost (tools/slurm/local-cluster.sh: munge key, slurm.conf, slurmctld
 # and slurmd in a temporary directory), a 4-shard fp24-regress sweep as a job
 # array with its merge job after it (tools/slurm/fp24-sweep.sh --wait), the
-# merged report compared with the unsharded run's, the daemons stopped.
+# merged report compared with the unsharded run's; a sweep whose shards fail
+# exits non-zero with no merged report; the daemons stopped.
 #   tests/cluster_test.sh FP24_REGRESS SOURCE_DIR
 set -eu
 regress=$1 src=$2
@@ -30,3 +31,11 @@ grep -q '"shard": "all/4"' "$dir/out/merged.json" || { echo "cluster_test: merge
 nice "$regress" $args --threads 2 --json "$dir/whole.json" >/dev/null
 cmake -DA="$dir/whole.json" -DB="$dir/out/merged.json" -P "$src/tb/fp24_report_compare.cmake"
 cat "$dir/out/merged.txt"
+
+# A shard that fails (a usage error: no report) cancels the merge, and the
+# sweep says so.
+if "$src/tools/slurm/fp24-sweep.sh" --wait 2 "$dir/bad" "$regress" --ops fma >/dev/null 2>"$dir/bad.err"; then
+  echo "cluster_test: a sweep of failing shards exited 0" >&2; exit 1
+fi
+grep -q "no merged report: a shard failed" "$dir/bad.err" || { cat "$dir/bad.err" >&2; exit 1; }
+grep -q "unknown op 'fma'" "$dir/bad/shard-1.log"
