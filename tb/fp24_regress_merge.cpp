@@ -30,14 +30,14 @@ struct Report {
   std::uint64_t shard = 0, shards = 0;
 };
 
-Value number(double n) {
+Value number_value(double n) {
   Value v;
   v.type = Type::number;
   v.number = n;
   return v;
 }
 
-Value string(const std::string& text) {
+Value string_value(const std::string& text) {
   Value v;
   v.type = Type::string;
   v.string = text;
@@ -163,7 +163,7 @@ void add_op(const Report& r, Value& into, const Value& op) {
   const Value& ulp = member(r, op, "max_ulp_error", Type::number);
   Value& max_ulp = *mutable_member(into, "max_ulp_error");
   if (ulp.type == Type::number)
-    max_ulp = number(max_ulp.type == Type::null ? ulp.number : std::max(max_ulp.number, ulp.number));
+    max_ulp = number_value(max_ulp.type == Type::null ? ulp.number : std::max(max_ulp.number, ulp.number));
   mutable_member(into, "cpu_seconds")->number += member(r, op, "cpu_seconds", Type::number).number;
   Value& timing = *mutable_member(into, "rtl_timing_error");
   if (timing.type == Type::null) timing = member(r, op, "rtl_timing_error", Type::string);
@@ -184,7 +184,7 @@ void add_op(const Report& r, Value& into, const Value& op) {
 Value merge(std::vector<Report>& reports) {
   std::sort(reports.begin(), reports.end(), [](const Report& a, const Report& b) { return a.shard < b.shard; });
   Value out = reports.front().root;
-  *mutable_member(out, "shard") = string("all/" + std::to_string(reports.front().shards));
+  *mutable_member(out, "shard") = string_value("all/" + std::to_string(reports.front().shards));
   *mutable_member(out, "threads") = Value{};
   *mutable_member(out, "wall_seconds") = Value{};
   Value& ops = *mutable_member(out, "ops");
