@@ -2,19 +2,25 @@
 // (paper section 2; docs/apu-isa.md is normative, docs/apu-rtl.md describes
 // this implementation).
 //
-// One 128-bit microword per cycle, or a stall: the word at PC is fetched and
-// decoded combinationally; if no stall condition holds, all its slots issue
-// in this cycle. FP ops enter fp24_mul / fp24_add / fp24_func; their results
-// come back at t + L and are written (and bypassed) in that cycle (the
-// function unit can return a SIN/COS and a RECIP/SQRT in one cycle: two
-// ports). LD, MOVAF, LIF, the I slot and DBNZ write at the end of the issue
-// cycle.
+// One 128-bit microword per cycle, or a stall. The program memory is a
+// synchronous RAM whose output register is the microword register: in each
+// cycle the sequencer decides the address of the next cycle's word (the
+// branch target, PC + 1, or the same word again when this one stalls) and
+// the RAM reads it at the edge, so a taken branch costs no cycle. The word
+// is decoded in its cycle; if no stall condition holds, all its slots issue.
+// FP ops enter fp24_mul / fp24_add / fp24_func; their results come back at
+// t + L and are written (and bypassed) in that cycle (the function unit can
+// return a SIN/COS and a RECIP/SQRT in one cycle: two ports). A LD reads the
+// (synchronous) data memory at the end of its issue cycle and its word is
+// written, and bypassed, in the next. MOVAF, LIF, the I slot and DBNZ write
+// at the end of the issue cycle.
 //
 // MPU requests (hand-over, start) act in the cycle in which they are
 // presented: the core forwards them combinationally, so that an MPU call made
 // between two clock cycles behaves exactly as the ISA page says (a SWAPD in
-// the next cycle already sees `data_ready`; start(pc) runs the word at pc in
-// the next cycle).
+// the next cycle already sees `data_ready`). A start(pc) fetches the word at
+// pc in that cycle (START_FETCH: the start's fetch cycle issues nothing); it
+// runs in the next.
 //
 // The dbg_* outputs report, before the clock edge, what the cycle commits in
 // the ISA page's terms (Clarification 2): results that become visible in this
@@ -31,7 +37,7 @@ module apu_core
     input  logic                              mpu2apu_dmem_we,
     input  logic [apu_pkg::DADDR_W-1:0]       mpu2apu_dmem_addr,
     input  logic [apu_pkg::FP_W-1:0]          mpu2apu_dmem_wdata,
-    output logic [apu_pkg::FP_W-1:0]          apu2mpu_dmem_rdata,
+    output logic [apu_pkg::FP_W-1:0]          apu2mpu_dmem_rdata,  // the word addressed in the last cycle
     input  logic                              mpu2apu_hand_over_program,
     input  logic                              mpu2apu_hand_over_data,
     input  logic                              mpu2apu_start,
@@ -49,8 +55,18 @@ module apu_core
     output logic [apu_pkg::PC_W-1:0]          dbg_pc,
     output logic                              dbg_issue,
     output apu_pkg::stall_e                   dbg_stall_reason,
+    // why: the word's F sources (bit per read port: M a, M b, A a, A b, F a,
+    // ST f, MOVFA) that read a register in flight, and the units whose
+    // results they wait for (bit 0 multiplier, 1 adder unit, 2 function
+    // unit); the same for the destinations (M d, A d, F d, LD f, MOVAF/LIF
+    // d) whose write would land no later than one in flight (waw)
+    output logic [6:0]                        dbg_raw_src,
+    output logic [2:0]                        dbg_raw_unit,
+    output logic [4:0]                        dbg_waw_dst,
+    output logic [2:0]                        dbg_waw_unit,
     // F register writes visible from this cycle on: completions (mul, add,
-    // func RECIP/SQRT, func SIN/COS) and the previous word's LD, MOVAF/LIF;
+    // func RECIP/SQRT, func SIN/COS, the previous word's LD out of the data
+    // memory) and the previous word's MOVAF/LIF;
     // write i at [i*6 +: 6] / [i*24 +: 24] (flat: Yosys 0.23 takes no
     // multi-dimensional port)
     output logic [5:0]                        dbg_fc_en,
@@ -104,42 +120,43 @@ module apu_core
   // start (which completes a pending program hand-over: the MPU says so with
   // mpu2apu_start_new_program), then the hand-overs. So "hand over, start,
   // hand over the next program" before one cycle is expressible.
-  logic          start_req;       // start(pc) while idle
+  localparam int FW_W = $clog2(apu_pkg::START_FETCH + 1);
+  logic          start_req;       // start(pc) while idle: this cycle fetches the word at pc
+  logic [FW_W-1:0] fetch_wait_q;  // a start's fetch cycles still to come after this one
   logic          running;         // the sequencer works on a word this cycle
   logic          program_ready;   // after this cycle's MPU requests
   logic          data_ready;
   logic          start_swaps;     // start completes a pending program hand-over
-  logic          psel;            // program bank of this cycle
+  logic          psel;            // program bank of this cycle, after a start's swap
   logic [PC_W-1:0] pc;            // address of the word of this cycle
 
   assign start_req     = mpu2apu_start && (run_state_q != apu_pkg::RUN_RUNNING);
-  assign running       = (run_state_q == apu_pkg::RUN_RUNNING) || start_req;
+  assign running       = (run_state_q == apu_pkg::RUN_RUNNING) && (fetch_wait_q == '0);
   assign start_swaps   = start_req && mpu2apu_start_new_program;
   assign program_ready = (program_ready_q && !start_swaps) || mpu2apu_hand_over_program;
   assign data_ready    = data_ready_q || mpu2apu_hand_over_data;
   assign psel          = psel_q ^ start_swaps;
-  assign pc            = start_req ? mpu2apu_start_pc : pc_q;
+  assign pc            = pc_q;
 
   // =========================================================================
   // Fetch and decode
   // =========================================================================
-  logic [WORD_W-1:0]   fetch_word;
+  logic [WORD_W-1:0] fetch_word;   // the word at pc, read at the last edge
+  logic [PC_W-1:0]   fetch_addr;   // the word of the next cycle
+  logic              fetch_bank;
   apu_pkg::microword_t w;
 
-  // The sequencer only fetches; the MPU only writes program words.
-  apu_banks #(.DATA_W(WORD_W), .ADDR_W(PC_W)) u_pmem (
-      .clk      (clk),
-      .sel      (psel),
-      .apu_addr (pc),
-      .apu_rdata(fetch_word),
-      .apu_we   (1'b0),
-      .apu_wdata({WORD_W{1'b0}}),
-      .mpu_addr (mpu2apu_pmem_addr),
-      /* verilator lint_off PINCONNECTEMPTY */
-      .mpu_rdata(),
-      /* verilator lint_on PINCONNECTEMPTY */
-      .mpu_we   (mpu2apu_pmem_we),
-      .mpu_wdata(mpu2apu_pmem_wdata)
+  // The sequencer only fetches; the MPU only writes program words, into the
+  // bank the sequencer does not use (before a swap of this cycle).
+  apu_pmem #(.DATA_W(WORD_W), .ADDR_W(PC_W)) u_pmem (
+      .clk       (clk),
+      .fetch_bank(fetch_bank),
+      .fetch_addr(fetch_addr),
+      .fetch_word(fetch_word),
+      .mpu_bank  (!psel),
+      .mpu_we    (mpu2apu_pmem_we),
+      .mpu_addr  (mpu2apu_pmem_addr),
+      .mpu_wdata (mpu2apu_pmem_wdata)
   );
 
   assign w = fetch_word;  // same width; Yosys 0.23 takes no cast to a package's type
@@ -162,11 +179,17 @@ module apu_core
   // F destinations of the word (for `waw`).
   localparam int DS_M = 0, DS_A = 1, DS_F = 2, DS_LD = 3, DS_I = 4, N_DS = 5;
 
+  localparam int LAT_W = 4;  // apu_interlock's latency fields
+
   logic [FREG_AW-1:0] src_addr [N_RD];
   logic [N_RD-1:0]    src_en;
   logic [FREG_AW-1:0] dst_addr [N_DS];
   logic [N_DS-1:0]    dst_en;
+  logic [LAT_W-1:0]   dst_lat  [N_DS];  // the latency of each destination's write
   logic [FP_W-1:0]    fop      [N_RD];
+  logic               fu_trig;
+
+  assign fu_trig = (w.f_op == apu_pkg::F_SIN) || (w.f_op == apu_pkg::F_COS);
 
   always_comb begin
     src_addr[RD_MA]    = w.m_a;          src_en[RD_MA]    = w.m_en;
@@ -181,6 +204,11 @@ module apu_core
     dst_addr[DS_F]     = w.f_d;          dst_en[DS_F]     = w.f_en;
     dst_addr[DS_LD]    = w.d_f;          dst_en[DS_LD]    = is_ld;
     dst_addr[DS_I]     = w.i_d;          dst_en[DS_I]     = i_writes_f;
+    dst_lat[DS_M]      = LAT_W'(apu_pkg::LAT_MUL);
+    dst_lat[DS_A]      = LAT_W'(apu_pkg::LAT_ADD);
+    dst_lat[DS_F]      = fu_trig ? LAT_W'(apu_pkg::LAT_TRIG) : LAT_W'(apu_pkg::LAT_FUNC);
+    dst_lat[DS_LD]     = LAT_W'(apu_pkg::LAT_LOAD);
+    dst_lat[DS_I]      = LAT_W'(apu_pkg::LAT_LOAD);
   end
 
   // The same as flat vectors, entry i at [i*FREG_AW +: FREG_AW] (the port
@@ -211,11 +239,10 @@ module apu_core
   logic [FP_W-1:0]    mul_out_result, add_out_result, fu_out_result, fu_trig_result;
   logic [FLAGS_W-1:0] mul_out_flags, add_out_flags, fu_out_flags, fu_trig_flags;
 
-  logic mul_issue, add_issue, fu_issue, fu_trig;
+  logic mul_issue, add_issue, fu_issue;
   assign mul_issue = issue && w.m_en;
   assign add_issue = issue && w.a_en;
   assign fu_issue  = issue && w.f_en;
-  assign fu_trig   = (w.f_op == apu_pkg::F_SIN) || (w.f_op == apu_pkg::F_COS);
 
   fp24_mul u_mul (
       .clk       (clk),
@@ -256,10 +283,30 @@ module apu_core
   );
 
   logic               raw_hazard, waw_hazard, cmp_in_flight, pipes_busy;
+  // Why a word stalls, for waveforms: raw_src / waw_dst by slot (RD_* / DS_*
+  // bit), raw_unit / waw_unit by the unit whose result it waits for (bit 0
+  // multiplier, 1 adder unit, 2 function unit).
+  logic [N_RD-1:0]    raw_src;
+  logic [N_DS-1:0]    waw_dst;
+  logic [2:0]         raw_unit, waw_unit;
   logic               mul_wb_valid, add_wb_valid, add_wb_cmp, fu_wb_valid, fu_trig_wb_valid;
   logic [FREG_AW-1:0] mul_wb_d, add_wb_d, fu_wb_d, fu_trig_wb_d;
+  // The destinations' latencies as a flat vector for the interlock.
+  logic [N_DS*LAT_W-1:0]   dst_lat_v;
+  always_comb begin
+    for (int j = 0; j < N_DS; j++) dst_lat_v[j*LAT_W +: LAT_W] = dst_lat[j];
+  end
 
-  apu_interlock #(.ADDR_W(FREG_AW), .N_SRC(N_RD), .N_DST(N_DS)) u_ilk (
+  apu_interlock #(
+      .ADDR_W  (FREG_AW),
+      .N_SRC   (N_RD),
+      .N_DST   (N_DS),
+      .LAT_W   (LAT_W),
+      .LAT_MUL (apu_pkg::LAT_MUL),
+      .LAT_ADD (apu_pkg::LAT_ADD),
+      .LAT_FUNC(apu_pkg::LAT_FUNC),
+      .LAT_TRIG(apu_pkg::LAT_TRIG)
+  ) u_ilk (
       .clk             (clk),
       .rst_n           (rst_n),
       .mul_issue       (mul_issue),
@@ -274,8 +321,13 @@ module apu_core
       .src_en          (src_en),
       .dst_addr        (dst_addr_v),
       .dst_en          (dst_en),
+      .dst_lat         (dst_lat_v),
       .raw_hazard      (raw_hazard),
+      .raw_src         (raw_src),
+      .raw_unit        (raw_unit),
       .waw_hazard      (waw_hazard),
+      .waw_dst         (waw_dst),
+      .waw_unit        (waw_unit),
       .cmp_in_flight   (cmp_in_flight),
       .pipes_busy      (pipes_busy),
       .mul_wb_valid    (mul_wb_valid),
@@ -350,40 +402,52 @@ module apu_core
   // =========================================================================
   // Register files and data memory
   // =========================================================================
-  // Completion writes (write-first: the bypass that makes t + L usable).
-  localparam int N_WB = 4;  // mul, add, func RECIP/SQRT, func SIN/COS
+  // Completion writes (write-first: the bypass that makes t + L usable). A
+  // LD reads the synchronous data memory at the edge ending its issue cycle
+  // t: the word comes out of the RAM in t + 1 and is written (and bypassed)
+  // then, like a unit's result of latency 1 (LAT_LOAD).
+  localparam int N_WB = 5;  // mul, add, func RECIP/SQRT, func SIN/COS, LD
+  localparam int N_WI = 1;  // MOVAF/LIF
   logic               wb_en   [N_WB];
   logic [FREG_AW-1:0] wb_addr [N_WB];
   logic [FP_W-1:0]    wb_data [N_WB];
-  // Issue writes: LD, MOVAF/LIF.
-  logic               wi_en   [2];
-  logic [FREG_AW-1:0] wi_addr [2];
-  logic [FP_W-1:0]    wi_data [2];
+  // Issue writes: MOVAF/LIF.
+  logic               wi_en   [N_WI];
+  logic [FREG_AW-1:0] wi_addr [N_WI];
+  logic [FP_W-1:0]    wi_data [N_WI];
   logic [FP_W-1:0]    dmem_rdata;
+  logic               ld_wb_valid;  // a LD issued in the last cycle
+  logic [FREG_AW-1:0] ld_wb_d;
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) ld_wb_valid <= 1'b0;
+    else        ld_wb_valid <= issue && is_ld;
+    ld_wb_d <= w.d_f;
+  end
 
   always_comb begin
     wb_en[0] = mul_wb_valid;                 wb_addr[0] = mul_wb_d;      wb_data[0] = mul_out_result;
     wb_en[1] = add_wb_valid && !add_wb_cmp;  wb_addr[1] = add_wb_d;      wb_data[1] = add_out_result;
     wb_en[2] = fu_wb_valid;                  wb_addr[2] = fu_wb_d;       wb_data[2] = fu_out_result;
     wb_en[3] = fu_trig_wb_valid;             wb_addr[3] = fu_trig_wb_d;  wb_data[3] = fu_trig_result;
-    wi_en[0] = issue && is_ld;               wi_addr[0] = w.d_f;         wi_data[0] = dmem_rdata;
-    wi_en[1] = issue && i_writes_f;          wi_addr[1] = w.i_d;
-    wi_data[1] = (w.i_op == apu_pkg::I_MOVAF) ? {8'h00, aop[AR_S]} : {w.i_imm, 8'h00};
+    wb_en[4] = ld_wb_valid;                  wb_addr[4] = ld_wb_d;       wb_data[4] = dmem_rdata;
+    wi_en[0] = issue && i_writes_f;          wi_addr[0] = w.i_d;
+    wi_data[0] = (w.i_op == apu_pkg::I_MOVAF) ? {8'h00, aop[AR_S]} : {w.i_imm, 8'h00};
   end
 
   // *_v: a register file's ports as flat vectors, port i at [i*W +: W]
   // (apu_regfile). F write ports: the completions first (write-first), then
   // the issue writes.
   logic [N_RD*FP_W-1:0]        f_rd_data_v;
-  logic [N_WB+1:0]             f_wr_en_v;
-  logic [(N_WB+2)*FREG_AW-1:0] f_wr_addr_v;
-  logic [(N_WB+2)*FP_W-1:0]    f_wr_data_v;
+  logic [N_WB+N_WI-1:0]           f_wr_en_v;
+  logic [(N_WB+N_WI)*FREG_AW-1:0] f_wr_addr_v;
+  logic [(N_WB+N_WI)*FP_W-1:0]    f_wr_data_v;
 
   always_comb begin
     for (int i = 0; i < N_RD; i++) fop[i] = f_rd_data_v[i*FP_W +: FP_W];
   end
   always_comb begin
-    for (int i = 0; i < N_WB + 2; i++) begin
+    for (int i = 0; i < N_WB + N_WI; i++) begin
       f_wr_en_v[i]                      = (i < N_WB) ? wb_en[i]   : wi_en[i-N_WB];
       f_wr_addr_v[i*FREG_AW +: FREG_AW] = (i < N_WB) ? wb_addr[i] : wi_addr[i-N_WB];
       f_wr_data_v[i*FP_W +: FP_W]       = (i < N_WB) ? wb_data[i] : wi_data[i-N_WB];
@@ -394,7 +458,7 @@ module apu_core
       .DATA_W    (FP_W),
       .ADDR_W    (FREG_AW),
       .N_RD      (N_RD),
-      .N_WR      (N_WB + 2),
+      .N_WR      (N_WB + N_WI),
       .N_WR_FIRST(N_WB)
   ) u_fregs (
       .clk    (clk),
@@ -533,6 +597,21 @@ module apu_core
   assign swapd     = issue && (w.s_op == apu_pkg::S_SWAPD);
   assign swapp     = issue && (w.s_op == apu_pkg::S_SWAPP);
 
+  // The next cycle's word: the start PC, the word after an issued one, else
+  // (stall, fault, not running) the same word again. A HALT's pc_next is its
+  // own address. A SWAPP fetches its target from the new bank.
+  assign fetch_addr = start_req ? mpu2apu_start_pc : issue ? pc_next[PC_W-1:0] : pc_q;
+  assign fetch_bank = psel ^ swapp;
+
+  // A start's first word is read at the edge ending its cycle; the table's
+  // START_FETCH (1; the ISS counts from the same number) says how many cycles
+  // the start waits for it. Any more than one re-read pc_q (not running).
+  always_ff @(posedge clk) begin
+    if (!rst_n)                   fetch_wait_q <= '0;
+    else if (start_req)           fetch_wait_q <= FW_W'(apu_pkg::START_FETCH - 1);
+    else if (fetch_wait_q != '0)  fetch_wait_q <= fetch_wait_q - 1'b1;
+  end
+
   // FLAGS: sticky OR of the flags of every op completing this cycle.
   logic [FLAGS_W-1:0] flags_next;
   assign flags_next = flags_q
@@ -559,17 +638,18 @@ module apu_core
       flags_q         <= '0;
       unit_mismatch_q <= 1'b0;
     end else begin
-      if (running) begin
+      if (start_req) begin
+        run_state_q <= apu_pkg::RUN_RUNNING;
+        fault_q     <= apu_pkg::FAULT_NONE;
+      end else if (running) begin
         if (fault_now) begin
           run_state_q <= apu_pkg::RUN_FAULTED;
           fault_q     <= fault_code;
-          pc_q        <= pc;
         end else begin
           run_state_q <= (issue && (w.s_op == apu_pkg::S_HALT)) ? apu_pkg::RUN_HALTED : apu_pkg::RUN_RUNNING;
-          if (start_req) fault_q <= apu_pkg::FAULT_NONE;
-          pc_q <= issue ? pc_next[PC_W-1:0] : pc;
         end
       end
+      pc_q <= fetch_addr;
       psel_q          <= psel ^ swapp;
       program_ready_q <= program_ready && !swapp;
       dsel_q          <= dsel_q ^ swapd;
@@ -599,33 +679,37 @@ module apu_core
   // Debug view of the commits (not part of the datapath)
   // =========================================================================
   // Issue-time writes become visible in the next cycle, which is where the
-  // ISA page records them: this retire stage holds them for one cycle.
-  logic               rt_fi_en   [2];   // LD, MOVAF/LIF
-  logic [FREG_AW-1:0] rt_fi_idx  [2];
-  logic [FP_W-1:0]    rt_fi_val  [2];
-  logic               rt_a_en    [2];   // I slot, DBNZ
+  // ISA page records them: this retire stage holds them for one cycle. (A
+  // LD's write is a completion of the next cycle already: wb port 4.)
+  logic               rt_fi_en   [N_WI];   // MOVAF/LIF
+  logic [FREG_AW-1:0] rt_fi_idx  [N_WI];
+  logic [FP_W-1:0]    rt_fi_val  [N_WI];
+  logic               rt_a_en    [2];      // I slot, DBNZ
   logic [AREG_AW-1:0] rt_a_idx   [2];
   logic [INT_W-1:0]   rt_a_val   [2];
 
   always_ff @(posedge clk) begin
-    for (int i = 0; i < 2; i++) begin
-      if (!rst_n) begin
-        rt_fi_en[i] <= 1'b0;
-        rt_a_en[i]  <= 1'b0;
-      end else begin
-        rt_fi_en[i] <= wi_en[i];
-        rt_a_en[i]  <= awr_en[i] && (awr_addr[i] != '0);  // A0 drops writes
-      end
+    for (int i = 0; i < N_WI; i++) begin
+      if (!rst_n) rt_fi_en[i] <= 1'b0;
+      else        rt_fi_en[i] <= wi_en[i];
       rt_fi_idx[i] <= wi_addr[i];
       rt_fi_val[i] <= wi_data[i];
-      rt_a_idx[i]  <= awr_addr[i];
-      rt_a_val[i]  <= awr_data[i];
+    end
+    for (int i = 0; i < 2; i++) begin
+      if (!rst_n) rt_a_en[i] <= 1'b0;
+      else        rt_a_en[i] <= awr_en[i] && (awr_addr[i] != '0);  // A0 drops writes
+      rt_a_idx[i] <= awr_addr[i];
+      rt_a_val[i] <= awr_data[i];
     end
   end
 
-  assign dbg_pc           = pc;
+  assign dbg_pc           = start_req ? mpu2apu_start_pc : pc;  // a start's fetch cycle shows the start PC
   assign dbg_issue        = issue;
   assign dbg_stall_reason = stall_reason;
+  assign dbg_raw_src      = raw_src;
+  assign dbg_raw_unit     = raw_unit;
+  assign dbg_waw_dst      = waw_dst;
+  assign dbg_waw_unit     = waw_unit;
 
   always_comb begin
     for (int i = 0; i < N_WB; i++) begin
@@ -633,10 +717,12 @@ module apu_core
       dbg_fc_idx[i*FREG_AW +: FREG_AW] = wb_addr[i];
       dbg_fc_val[i*FP_W +: FP_W]       = wb_data[i];
     end
-    for (int i = 0; i < 2; i++) begin
+    for (int i = 0; i < N_WI; i++) begin
       dbg_fc_en[N_WB + i]  = rt_fi_en[i];
       dbg_fc_idx[(N_WB + i)*FREG_AW +: FREG_AW] = rt_fi_idx[i];
       dbg_fc_val[(N_WB + i)*FP_W +: FP_W]       = rt_fi_val[i];
+    end
+    for (int i = 0; i < 2; i++) begin
       dbg_ac_en[i]                        = rt_a_en[i];
       dbg_ac_idx[i*AREG_AW +: AREG_AW]    = rt_a_idx[i];
       dbg_ac_val[i*INT_W +: INT_W]        = rt_a_val[i];

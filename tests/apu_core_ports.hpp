@@ -53,16 +53,18 @@ class CorePorts {
     top.mpu2apu_dmem_wdata = v;
     edge();
   }
+  // The data memory reads synchronously: the word addressed in one cycle is
+  // on apu2mpu_dmem_rdata in the next (one edge).
   std::uint32_t read_data(std::uint16_t addr) {
     top.mpu2apu_dmem_addr = addr;
-    top.eval();
+    edge();
     return top.apu2mpu_dmem_rdata;
   }
 
   // Hands over the MPU's program bank (and its data bank if asked), starts
   // at pc in the new program and clocks until the APU stops (at most
   // max_cycles); one more edge lands the last word's writes. Returns the
-  // cycles it ran.
+  // cycles it ran, the start's fetch cycle included.
   int run_handed_over(std::uint16_t pc, bool hand_over_data, int max_cycles = 100) {
     top.mpu2apu_hand_over_program = 1;
     top.mpu2apu_hand_over_data = hand_over_data;

@@ -101,7 +101,7 @@ TEST_P(ApuHandTimed, RawAtDistanceOneStallsOneCycleAndHaltDrains) {
   EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, kThree}}));
   EXPECT_EQ(r.apu->freg(4), kThree);
   EXPECT_EQ(r.apu->flags(), 0);
-  EXPECT_EQ(r.apu->cycle(), 7u);
+  EXPECT_EQ(r.apu->cycle(), 8u);  // the start's fetch cycle, then the 7 records
   if (const Iss* s = iss(r.apu)) {
     EXPECT_EQ(s->pc(), 4);  // PC stays at the HALT
   }
@@ -165,14 +165,62 @@ TEST_P(ApuHandTimed, SinCosAndOtherFunctionOpsIssueBackToBack) {
 }
 
 TEST_P(ApuHandTimed, RecipAfterSinIntoTheSameRegisterWaitsForIt) {
-  // SIN F2 at 1 is in flight at 2 and 3: RECIP F2 is a waw stall twice,
-  // issues at 4 (visible 6), after the SIN result (visible 4).
+  // SIN F2 at 1 is visible at 4. A RECIP F2 issued at 2 would be visible at 4
+  // too: waw once; issued at 3 it lands at 5, after the SIN's: no second stall.
   auto r = program({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Recip, 2, 1), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Waw, Stall::Waw, N, Stall::Drain, N}));
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Waw, N, Stall::Drain, N}));
   EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, fp24::sin(kOne).value}));
-  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 2, kOne}}));
+  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 2, kOne}}));
   EXPECT_EQ(r.apu->freg(2), kOne);
+}
+
+TEST_P(ApuHandTimed, BackToBackWritesOfOneLatencyDoNotStall) {
+  // MUL F3 at 1 and 2 (visible 3 and 4), ADD F3 at 3 (visible 5): equal
+  // latencies in order cannot reorder, so no waw; each write is recorded in
+  // its own cycle and the last one stays.
+  auto r = program({lif(1, 0x3F00), mul(3, 1, 1), mul(3, 1, 1) | lif(2, 0x4000), addu(AddOp::Add, 3, 2, 2),
+                    halt()});
+  r.go();
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, Stall::Drain, N}));
+  EXPECT_EQ(r.recs[3].commits, (Commits{{K::FReg, 2, kTwo}, {K::FReg, 3, kOne}}));
+  EXPECT_EQ(r.recs[4].commits, (Commits{{K::FReg, 3, kOne}}));
+  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 3, 0x410000u}}));
+  EXPECT_EQ(r.apu->freg(3), 0x410000u);
+}
+
+TEST_P(ApuHandTimed, ShorterWriteAfterLongerOneWaitsUntilItLandsLater) {
+  // SIN F2 at 1 (visible 4); MUL F2 at 2 would land at 4 as well: waw; at 3
+  // it lands at 5. A longer write after a shorter one (MUL F4 at 4, visible
+  // 6; COS F4 at 5, visible 8) never waits.
+  auto r = program({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), mul(2, 1, 1), mul(4, 1, 1),
+                    func(FuncOp::Cos, 4, 1), halt()});
+  r.go();
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Waw, N, N, N, Stall::Drain, Stall::Drain, N}));
+  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, -1, 2, 3, 4, -1, -1, 5}));
+  EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, fp24::sin(kOne).value}));
+  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 2, kOne}}));
+  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, kOne}}));
+  EXPECT_EQ(r.recs[8].commits[0], (Commit{K::FReg, 4, fp24::cos(kOne).value}));
+  EXPECT_EQ(r.apu->freg(2), kOne);
+  EXPECT_EQ(r.apu->freg(4), fp24::cos(kOne).value);
+}
+
+TEST_P(ApuHandTimed, OneWordLoopOfAllUnitsRunsAtOneCycleAnIteration) {
+  // docs/apu-isa.md's example: each unit rewrites its own register every
+  // cycle. 100 iterations, 100 cycles, no stall; HALT drains the last ones.
+  const MicroWord loop =
+      mul(1, 2, 3) | addu(AddOp::Add, 4, 5, 6) | func(FuncOp::Recip, 7, 8) | seq(SeqOp::Dbnz, 1, 2);
+  auto r = program({li(1, 100), lif(8, 0x4000), loop, halt()});
+  r.go();
+  ASSERT_EQ(r.apu->state(), RunState::Halted);
+  const auto st = r.stalls();
+  ASSERT_EQ(st.size(), 2u + 100u + 1u + 1u);  // 2 words, the loop, drain, HALT
+  for (std::size_t c = 0; c < 102; ++c) EXPECT_EQ(st[c], N) << "cycle " << c;
+  EXPECT_EQ(st[102], Stall::Drain);
+  EXPECT_EQ(st[103], N);
+  EXPECT_EQ(r.apu->freg(7), 0x3E0000u);  // 1/2
+  EXPECT_EQ(r.apu->areg(1), 0);
 }
 
 TEST_P(ApuHandTimed, CosReaderStallsRawTwice) {
@@ -236,6 +284,22 @@ TEST_P(ApuHandTimed, StateBetweenStepsIsWhatTheNextWordReads) {
   EXPECT_EQ(r.apu->cc(), fp24::kEQ);
 }
 
+TEST_P(ApuHandTimed, LoadedWordIsVisibleBetweenStepsAndToTheNextWord) {
+  // ST F1 at 1, LD F2 from the same word at 2 (visible at 3): after step 3
+  // freg(2) shows it, and the MUL at 3 reads it with no stall.
+  auto r = program({lif(1, 0x4000), mem(MemOp::St, 1, 0, 9), mem(MemOp::Ld, 2, 0, 9), mul(3, 2, 2), halt()});
+  r.step();
+  r.step();
+  EXPECT_EQ(r.apu->freg(2), 0u);
+  r.step();  // cycle 2: the LD
+  EXPECT_EQ(r.apu->freg(2), kTwo);
+  const CycleRecord& rec = r.step();  // cycle 3
+  EXPECT_TRUE(rec.issued);
+  EXPECT_EQ(rec.commits, (Commits{{K::FReg, 2, kTwo}}));
+  r.go();
+  EXPECT_EQ(r.apu->freg(3), 0x410000u);
+}
+
 TEST_P(ApuHandTimed, BranchOnCcWaitsForTheCompare) {
   // CMP 1 < 2 at 2 (CC visible at 4); BCC LT at 3 stalls once, is taken.
   auto r = program({lif(1, 0x3F00), lif(2, 0x4000), addu(AddOp::Cmp, 0, 1, 2), seq(SeqOp::Bcc, fp24::kLT, 6), halt(),
@@ -275,6 +339,9 @@ TEST_P(ApuHandTimed, BankStallUntilTheMpuHandsOverData) {
   drv.hand_over_program();
   drv.start(0);
   CycleRecord rec;
+  apu.step(rec);  // the start's fetch cycle
+  EXPECT_FALSE(rec.issued);
+  EXPECT_EQ(rec.stall, N);
   for (int i = 0; i < 10; ++i) {
     apu.step(rec);
     EXPECT_EQ(rec.stall, Stall::Bank);
@@ -286,16 +353,16 @@ TEST_P(ApuHandTimed, BankStallUntilTheMpuHandsOverData) {
   }
   drv.hand_over_data();
   EXPECT_TRUE(apu.data_ready());
-  apu.step(rec);  // cycle 10: SWAPD issues
+  apu.step(rec);  // cycle 11: SWAPD issues
   EXPECT_TRUE(rec.issued);
   EXPECT_EQ(rec.dsel, 0);  // the select in effect during the swap cycle
   EXPECT_FALSE(apu.data_ready());
   if (const Iss* s = iss(&apu)) {
     EXPECT_EQ(s->dsel(), 1);
   }
-  apu.step(rec);  // cycle 11: LD F1 <- [5] of bank 1
+  apu.step(rec);  // cycle 12: LD F1 <- [5] of bank 1
   EXPECT_EQ(rec.dsel, 1);
-  apu.step(rec);  // cycle 12: ST [6] <- F1; F1 visible
+  apu.step(rec);  // cycle 13: ST [6] <- F1; F1 visible
   EXPECT_EQ(rec.commits, (Commits{{K::FReg, 1, 0x123456}, {K::Mem, 6, 0x123456}}));
   for (int i = 0; i < 3; ++i) {
     apu.step(rec);
@@ -308,7 +375,7 @@ TEST_P(ApuHandTimed, BankStallUntilTheMpuHandsOverData) {
   drv.hand_over_data();
   EXPECT_EQ(drv.run_until_done(100), 2u);  // SWAPD, HALT
   EXPECT_EQ(drv.read_results(5, 2), (std::vector<std::uint32_t>{0x123456, 0x123456}));
-  EXPECT_EQ(apu.cycle(), 10u + 3 + 3 + 2 + ApuDriver::kSettleCycles);
+  EXPECT_EQ(apu.cycle(), 1u + 10 + 3 + 3 + 2 + ApuDriver::kSettleCycles);  // the fetch first
 }
 
 TEST_P(ApuHandTimed, ProgramBankHandOverContinuesInTheNewBank) {
@@ -528,9 +595,9 @@ TEST_P(ApuHandTimed, PcPast1023Faults) {
     } catch (const ApuError& e) {
       EXPECT_EQ(e.kind(), ApuError::Kind::Fault);
       EXPECT_EQ(e.fault(), Fault::PcOverflow);
-      EXPECT_EQ(e.cycle(), 2u);
+      EXPECT_EQ(e.cycle(), 3u);  // 0 fetch, 1 JMP, 2 LI, 3 BZ
       EXPECT_EQ(e.pc(), 1023);
-      EXPECT_NE(std::string(e.what()).find("pc-overflow at cycle 2, pc 0x3ff"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("pc-overflow at cycle 3, pc 0x3ff"), std::string::npos) << e.what();
     }
   }
   // Cycle by cycle.
@@ -540,9 +607,9 @@ TEST_P(ApuHandTimed, PcPast1023Faults) {
   drv.hand_over_program();
   drv.start(0);
   CycleRecord rec;
-  for (int i = 0; i < 3; ++i) apu.step(rec);
+  for (int i = 0; i < 4; ++i) apu.step(rec);
   EXPECT_EQ(apu.fault(), Fault::PcOverflow);
-  EXPECT_EQ(rec.cycle, 2u);
+  EXPECT_EQ(rec.cycle, 3u);
   EXPECT_EQ(rec.pc, 1023);
   EXPECT_FALSE(rec.issued);
   // CALL at 1023 would push 1024: also a PC overflow; a taken branch is fine.
@@ -551,13 +618,15 @@ TEST_P(ApuHandTimed, PcPast1023Faults) {
   drv.load_program(prog);
   drv.hand_over_program();
   drv.start(1023);
+  apu.step(rec);  // fetch
+  EXPECT_EQ(apu.fault(), Fault::None);
   apu.step(rec);
   EXPECT_EQ(apu.fault(), Fault::PcOverflow);
   prog[1023] = seq(SeqOp::Bnz, 1, 5).encode();
   drv.load_program(prog);
   drv.hand_over_program();
   drv.start(1023);
-  EXPECT_EQ(drv.run_until_done(10), 2u);
+  EXPECT_EQ(drv.run_until_done(10), 3u);  // fetch, BNZ, HALT
 }
 
 TEST_P(ApuHandTimed, StartAfterHaltKeepsStateAndEmptiesTheStack) {
@@ -576,8 +645,37 @@ TEST_P(ApuHandTimed, StartAfterHaltKeepsStateAndEmptiesTheStack) {
   EXPECT_EQ(r.apu->fault(), Fault::None);
   r.go(2000);
   EXPECT_EQ(r.apu->fault(), Fault::PcOverflow);
-  EXPECT_EQ(r.recs.size() - before, 1020u);
+  EXPECT_EQ(r.recs.size() - before, 1021u);  // the fetch cycle, words 4..1023
   EXPECT_EQ(r.recs.back().pc, 1023);
+}
+
+TEST_P(ApuHandTimed, StartFetchesOnceThenBranchesCostNoCycle) {
+  // LIF F1 | HALT at 0 (record 0, cycle 1). start(2): cycle 2 fetches word 2
+  // and records the LIF's write; then JMP 5, CALL 8, RET (to 6), HALT issue
+  // in consecutive cycles: the next word's address is known a cycle ahead.
+  std::vector<MicroWord> prog(9);
+  prog[0] = lif(1, 0x3F00) | halt();
+  prog[2] = seq(SeqOp::Jmp, 0, 5);
+  prog[5] = seq(SeqOp::Call, 0, 8);
+  prog[6] = halt();
+  prog[8] = seq(SeqOp::Ret);
+  auto r = program(prog);
+  r.go();
+  ASSERT_EQ(r.apu->state(), RunState::Halted);
+  r.apu->start(2);
+  const CycleRecord& fetch = r.step();
+  EXPECT_EQ(fetch.cycle, 2u);
+  EXPECT_FALSE(fetch.issued);
+  EXPECT_EQ(fetch.stall, N);
+  EXPECT_EQ(fetch.pc, 2);
+  EXPECT_EQ(fetch.commits, (Commits{{K::FReg, 1, kOne}}));
+  EXPECT_EQ(r.apu->state(), RunState::Running);
+  const std::size_t first = r.recs.size();
+  r.go();
+  ASSERT_EQ(r.apu->state(), RunState::Halted);
+  EXPECT_EQ(r.recs.size() - first, 4u);
+  EXPECT_EQ(r.pcs(), (std::vector<int>{0, -1, 2, 5, 8, 6}));
+  EXPECT_EQ(r.apu->cycle(), 7u);
 }
 
 TEST_P(ApuHandTimed, CycleLimitThrowsWithTheStall) {
@@ -587,12 +685,12 @@ TEST_P(ApuHandTimed, CycleLimitThrowsWithTheStall) {
     FAIL() << "no limit";
   } catch (const ApuError& e) {
     EXPECT_EQ(e.kind(), ApuError::Kind::CycleLimit);
-    EXPECT_EQ(e.cycle(), 49u);
+    EXPECT_EQ(e.cycle(), 50u);  // cycle 0 was the program's fetch
     EXPECT_NE(std::string(e.what()).find("stalled: bank"), std::string::npos) << e.what();
   }
   // To name the stall, the driver steps a copy of the ISS, but any other
   // engine itself, once (a stuck APU stays stuck).
-  EXPECT_EQ(r.apu->cycle(), iss(r.apu) ? 50u : 51u);
+  EXPECT_EQ(r.apu->cycle(), iss(r.apu) ? 51u : 52u);
 }
 
 TEST_P(ApuHandTimed, MpuHookHandsOverDuringTheRun) {
@@ -603,8 +701,10 @@ TEST_P(ApuHandTimed, MpuHookHandsOverDuringTheRun) {
     ++calls;
     if (!drv.data_ready() && r.apu->cycle() >= 20) drv.hand_over_data();
   }, 10);
-  EXPECT_EQ(cycles, 32u);  // hand-overs at cycles 20 and 30, HALT at 31
-  EXPECT_EQ(calls, 4);     // at cycles 0, 10, 20, 30
+  // Cycle 0 was the program's fetch: the run clocks 1..31, the hook at 10,
+  // 20 and 30, hand-overs at 20 and 30, HALT at 31.
+  EXPECT_EQ(cycles, 31u);
+  EXPECT_EQ(calls, 3);
 }
 
 TEST_P(ApuHandTimed, StepAndRunAgreeOnCounters) {

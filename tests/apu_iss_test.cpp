@@ -30,7 +30,8 @@ TEST(ApuProfile, CountsUnitsStallsAndHotWords) {
   drv.start(0);
   Profile prof([&drv](int bank, std::uint16_t pc) { return drv.program_word(bank, pc); });
   drv.set_observer([&](const CycleRecord& r) { prof.add(r); });
-  EXPECT_EQ(drv.run_until_done(100), 7u);  // raw at 3, drain at 5 (SIN done at 5, ADD at 6)
+  // fetch at 0 (not profiled), raw at 4, drain at 6 (SIN done at 6, ADD at 7)
+  EXPECT_EQ(drv.run_until_done(100), 8u);
   EXPECT_EQ(prof.cycles(), 7u);
   EXPECT_EQ(prof.issued(), 5u);
   EXPECT_EQ(prof.unit_ops(0), 1u);

@@ -37,13 +37,16 @@ TEST(ApuRtl, MpuPortsOfTheCoreFillAndReadTheIdleBanks) {
   top.mpu2apu_start_pc = 0;
   top.eval();
   EXPECT_EQ(top.apu2mpu_psel, 1);
-  EXPECT_TRUE(top.dbg_issue);  // the SWAPD issues in the start cycle
+  EXPECT_FALSE(top.dbg_issue);  // the start's cycle fetches word 0
+  EXPECT_EQ(top.dbg_pc, 0);
+  core.edge();
+  EXPECT_TRUE(top.dbg_issue);  // the SWAPD issues in the next
   core.edge();
   EXPECT_EQ(top.apu2mpu_dsel, 1);
   core.write_data(7, 0x123456);  // the MPU owns bank 0 now: the APU does not see this
-  // (that port write was APU cycle 1, the LD.) The second SWAPD (cycle 5)
+  // (that port write was APU cycle 2, the LD.) The second SWAPD (cycle 6)
   // waits for a hand-over; presented in that cycle, it lets it issue there.
-  int cycles = 2, bank_stalls = 0;
+  int cycles = 3, bank_stalls = 0;
   for (; cycles < 50 && top.apu2mpu_run_state == 1; ++cycles) {
     if (top.dbg_stall_reason == static_cast<int>(Stall::Bank)) {
       ++bank_stalls;
@@ -55,11 +58,47 @@ TEST(ApuRtl, MpuPortsOfTheCoreFillAndReadTheIdleBanks) {
     core.edge();
   }
   EXPECT_EQ(top.apu2mpu_run_state, 2);  // halted
-  EXPECT_EQ(cycles, 7);                 // 7 words, no stall left
+  EXPECT_EQ(cycles, 8);                 // the fetch, 7 words, no stall left
   EXPECT_EQ(bank_stalls, 1);
   EXPECT_EQ(top.apu2mpu_dsel, 0);
   EXPECT_EQ(core.read_data(8), 0x410000u);  // 2 * 2, stored in bank 1, handed back
   EXPECT_EQ(core.read_data(7), kTwo);
+  EXPECT_FALSE(top.dbg_unit_mismatch);
+}
+
+TEST(ApuRtl, StallCauseSignalsNameTheSlotAndTheUnit) {
+  // dbg_raw_* / dbg_waw_* say which slot of the stalled word waits and for
+  // whose result: bit order of docs/apu-rtl.md ("Scoreboard").
+  CorePorts core;
+  Vapu_core& top = core.top;
+  // 0 LIF F1  1 MUL F3  2 ADD F4 = F1 + F3: raw on A b (read port 3), the
+  // multiplier's tag  3 SIN F5  4 ST F9 | RECIP F5: waw on F d (destination
+  // 2), the function unit's tag; no raw.
+  const auto prog = encode({lif(1, 0x3F00), mul(3, 1, 1), addu(AddOp::Add, 4, 1, 3), func(FuncOp::Sin, 5, 1),
+                            mem(MemOp::St, 9, 0, 0) | func(FuncOp::Recip, 5, 1), halt()});
+  for (std::size_t i = 0; i < prog.size(); ++i) core.write_program(static_cast<std::uint16_t>(i), prog[i]);
+  top.mpu2apu_hand_over_program = 1;
+  core.edge();
+  top.mpu2apu_start = top.mpu2apu_start_new_program = 1;
+  top.mpu2apu_start_pc = 0;
+  top.eval();
+  std::vector<int> raw_src, raw_unit, waw_dst, waw_unit, stall;
+  for (int c = 0; c < 12 && top.apu2mpu_run_state == static_cast<int>(RunState::Running); ++c) {
+    stall.push_back(top.dbg_stall_reason);
+    raw_src.push_back(top.dbg_raw_src);
+    raw_unit.push_back(top.dbg_raw_unit);
+    waw_dst.push_back(top.dbg_waw_dst);
+    waw_unit.push_back(top.dbg_waw_unit);
+    core.edge();
+  }
+  const int R = static_cast<int>(Stall::Raw), W = static_cast<int>(Stall::Waw), D = static_cast<int>(Stall::Drain);
+  // cycles: 0 fetch, 1 LIF, 2 MUL, 3 raw, 4 ADD, 5 SIN, 6 waw, 7 ST|RECIP,
+  // 8 drain, 9 HALT
+  EXPECT_EQ(stall, (std::vector<int>{0, 0, 0, R, 0, 0, W, 0, D, 0}));
+  EXPECT_EQ(raw_src, (std::vector<int>{0, 0, 0, 1 << 3, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(raw_unit, (std::vector<int>{0, 0, 0, 1 << 0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(waw_dst, (std::vector<int>{0, 0, 0, 0, 0, 0, 1 << 2, 0, 0, 0}));
+  EXPECT_EQ(waw_unit, (std::vector<int>{0, 0, 0, 0, 0, 0, 1 << 2, 0, 0, 0}));
   EXPECT_FALSE(top.dbg_unit_mismatch);
 }
 

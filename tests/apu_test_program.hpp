@@ -83,6 +83,15 @@ struct EngineProgram {
     drv->load_program(encode(prog));
     drv->hand_over_program();
     drv->start(0);
+    // The start's fetch cycle(s) (docs/apu-isa.md "Timing"): the program RAM
+    // reads the word at 0; nothing issues. recs[0] is the first word's cycle.
+    for (int i = 0; i < kStartFetchCycles; ++i) {
+      CycleRecord rec;
+      apu->step(rec);
+      EXPECT_FALSE(rec.issued);
+      EXPECT_EQ(rec.stall, Stall::None);
+      EXPECT_EQ(rec.pc, 0);
+    }
   }
   // Steps while running (at most `limit` cycles), then `extra` more.
   EngineProgram& go(int limit = 1000, int extra = 0) {

@@ -29,7 +29,7 @@ import re
 import sys
 
 HW_BASE = {"hw/platform", "hw/apu", "apu_rtl/rom", "apu_rtl/isa"}
-HW_ALL = {"hw/platform", "hw/apu", "hw/hdlc", "hw/image_bus", "hw/dc", "hw/fm", "hw/rc", "hw/nc", "hw/mc1"}
+HW_ALL = {"hw/platform", "hw/apu", "hw/apu_tlm", "hw/hdlc", "hw/image_bus", "hw/dc", "hw/fm", "hw/rc", "hw/nc", "hw/mc1"}
 RTL = {"apu_rtl", "apu_rtl/rom", "apu_rtl/isa"}
 HOST_LIBS = {"host/common", "host/scene", "host/apuasm", "host/imgcmp", "host/refrender"}
 
@@ -54,6 +54,8 @@ ALLOWED = {
     "hw/fm": {"hw/platform", "hw/image_bus"},
     "hw/rc": HW_BASE | {"hw/hdlc"},
     "hw/nc": HW_BASE | {"hw/hdlc", "hw/image_bus"},
+    # The APU as an sc_module for a user's test bench, on the engine it is handed.
+    "hw/apu_tlm": HW_BASE,
     # The machine: every unit, wired.
     "hw/mc1": HW_ALL,
     # Plain data and tools that know no machine.
@@ -74,6 +76,10 @@ ALLOWED = {
     # Fuzz harnesses: the libraries they drive, the FP24 vector reader of tb.
     "fuzz": HW_ALL | RTL | {"firmware", "tb"} | HOST_LIBS,
     "tools": None,
+    # The Python module: the FP24 model and units, the APU on both engines, the assembler.
+    "python": HW_BASE | RTL | {"tb", "host/apuasm"},
+    # Consumers of the installed package (they include <mc1/...>, not the tree).
+    "examples": None,
     "": None,
 }
 

@@ -25,29 +25,29 @@ DecodedWord DecodedWord::from(const Encoded& e) {
   const MicroWord& w = d.w;
   if (w.m.en) {
     d.src |= bit(w.m.a) | bit(w.m.b);
-    d.dst |= bit(w.m.d);
+    d.dst_at[kMulLatency] |= bit(w.m.d);
   }
   if (w.a.en) {
     if (is_reserved(w.a.op)) {
       d.kind |= kReserved;
     } else {
       d.src |= bit(w.a.a) | (two_operand(w.a.op) ? bit(w.a.b) : 0);
-      if (w.a.op != AddOp::Cmp) d.dst |= bit(w.a.d);
+      if (w.a.op != AddOp::Cmp) d.dst_at[latency(w.a.op)] |= bit(w.a.d);
     }
   }
   if (w.f.en) {
     d.src |= bit(w.f.a);
-    d.dst |= bit(w.f.d);
+    d.dst_at[latency(w.f.op)] |= bit(w.f.d);
   }
   switch (w.d.op) {
-    case MemOp::Ld: d.dst |= bit(w.d.f); break;
+    case MemOp::Ld: d.dst_at[latency(w.d.op)] |= bit(w.d.f); break;
     case MemOp::St: d.src |= bit(w.d.f); break;
     case MemOp::None: break;
     case MemOp::Reserved: d.kind |= kReserved; break;
   }
   switch (w.i.op) {
     case IntOp::Movaf:
-    case IntOp::Lif: d.dst |= bit(w.i.d); break;
+    case IntOp::Lif: d.dst_at[latency(w.i.op)] |= bit(w.i.d); break;
     case IntOp::Movfa: d.src |= bit(w.i.imm); break;
     case IntOp::Reserved: d.kind |= kReserved; break;
     default: break;
@@ -77,6 +77,7 @@ void Iss::reset() {
   state_ = RunState::Idle;
   fault_ = Fault::None;
   cycle_ = 0;
+  fetching_ = 0;
   const DecodedWord zero = DecodedWord::from(Encoded{});
   for (int b = 0; b < 2; ++b) {
     program_[b].fill(Encoded{});
@@ -111,6 +112,7 @@ void Iss::start(std::uint16_t pc) {
   fault_ = Fault::None;
   pc_ = pc % kProgramWords;
   state_ = RunState::Running;
+  fetching_ = kStartFetchCycles;
 }
 
 MC1_HOT void Iss::push_f(int latency, std::uint8_t index, std::uint32_t value) {
@@ -185,11 +187,16 @@ MC1_HOT Stall Iss::stall_reason(const DecodedWord& dw) const {
     if (!ready) return Stall::Bank;
   }
   // This cycle's bucket is applied and its mask cleared: every mask left
-  // belongs to a write that becomes visible after this cycle.
-  std::uint64_t in_flight = 0;
-  for (const Bucket& b : ring_) in_flight |= b.fmask;
-  if (dw.src & in_flight) return Stall::Raw;
-  if (dw.dst & in_flight) return Stall::Waw;
+  // belongs to a write that becomes visible after this cycle. late = the
+  // registers with a write visible at cycle_ + k or later, k going down: a
+  // write of latency k collides with (or would be overtaken by) those.
+  std::uint64_t late = 0, waw = 0;
+  for (int k = kRing - 1; k >= 1; --k) {
+    late |= ring_[(cycle_ + k) % kRing].fmask;
+    if (k <= kMaxLatency) waw |= dw.dst_at[k] & late;
+  }
+  if (dw.src & late) return Stall::Raw;
+  if (waw) return Stall::Waw;
   if ((k & DecodedWord::kCcBranch) && cmp_done_ > cycle_) return Stall::Cc;
   if ((k & DecodedWord::kHalt) && fp_done_ > cycle_) return Stall::Drain;
   return Stall::None;
@@ -350,7 +357,9 @@ void Iss::clock(CycleRecord* rec) {
     rec->commits.clear();
   }
   take_due<kRecord>(rec, cc, flags);
-  if (state_ == RunState::Running) {
+  if (fetching_ > 0) {
+    --fetching_;  // the program RAM reads the word at pc: nothing issues
+  } else if (state_ == RunState::Running) {
     const DecodedWord& dw = decoded_[psel_][pc_];
     const Stall s = stall_reason(dw);
     if (s != Stall::None) {

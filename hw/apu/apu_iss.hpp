@@ -33,7 +33,9 @@ struct DecodedWord {
   };
   MicroWord w;
   std::uint64_t src = 0;  // F registers read (raw)
-  std::uint64_t dst = 0;  // F registers written (waw)
+  // F registers written, by the latency of the write (waw): a write with
+  // latency L must land after every write already in flight to its register.
+  std::array<std::uint64_t, kMaxLatency + 1> dst_at{};
   std::uint8_t kind = 0;
 
   static DecodedWord from(const Encoded& e);
@@ -129,6 +131,7 @@ class Iss final : public ApuEngine {
   RunState state_ = RunState::Idle;
   Fault fault_ = Fault::None;
   std::uint64_t cycle_ = 0;
+  int fetching_ = 0;  // cycles left in which a start fetches its first word
   std::array<std::array<Encoded, kProgramWords>, 2> program_{};
   std::array<std::array<DecodedWord, kProgramWords>, 2> decoded_{};
   std::array<std::array<std::uint32_t, kDataWords>, 2> data_{};

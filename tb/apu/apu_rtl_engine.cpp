@@ -12,8 +12,8 @@ namespace mc1::apu {
 
 namespace {
 
-constexpr int kFCompletionPorts = 4;  // mul, add, func RECIP/SQRT, func SIN/COS
-constexpr int kFCommitPorts = 6;      // the completions; LD, MOVAF/LIF of t - 1
+constexpr int kFCompletionPorts = 5;  // mul, add, func RECIP/SQRT, func SIN/COS, LD (from the RAM)
+constexpr int kFCommitPorts = 6;      // the completions; MOVAF/LIF of t - 1
 
 // Bits [pos + width - 1 : pos] of a wide Verilator port.
 template <typename Wide>
@@ -52,6 +52,11 @@ RtlEngine::RtlEngine(const char* fst_path) : ctx_(std::make_unique<VerilatedCont
 }
 
 RtlEngine::~RtlEngine() {
+  // Verilator 5.006 erases the model's scopes from the thread's current
+  // context (Verilated::threadContextp()), not the model's own: with several
+  // engines, that may be one already destroyed (a hang on its freed mutex,
+  // seen in examples/apu_tb.cpp). Make it ours while top_ goes.
+  Verilated::threadContextp(ctx_.get());
   if (fst_) fst_->close();
   top_->final();
 }

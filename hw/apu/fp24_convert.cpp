@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-namespace mc1::render {
+namespace mc1::fp24 {
 
 std::uint32_t fp24_from_double(double x) {
   std::uint64_t u;
@@ -47,4 +47,4 @@ double fp24_to_double(std::uint32_t bits) {
   return x;
 }
 
-}  // namespace mc1::render
+}  // namespace mc1::fp24

@@ -1,0 +1,70 @@
+// One FP24 unit's destination tags, stage by stage, as apu_interlock sees
+// them (docs/apu-rtl.md "Scoreboard"). Stage k (1 .. DEPTH) holds the op
+// issued k cycles ago. An op of latency L (LAT0, or LAT1 when its `kind` bit
+// is set: SIN/COS in the function unit) is
+//   - in flight in stages 1 .. L-1: its result is visible L - k cycles later
+//     (`rem`), so readers and some writers of its register wait;
+//   - completing in stage L: the unit's out_* carry its result, which the F
+//     register file writes (and bypasses) in this cycle;
+// and leaves the pipe after stage L. One issue per unit and cycle, so each
+// stage holds at most one op. The unit's own pipeline must have the same
+// depths; apu_core compares the two every cycle (dbg_unit_mismatch).
+//
+// Ports are flat vectors, stage k at [(k-1)*W +: W].
+module apu_tagpipe #(
+    parameter int ADDR_W = 6,
+    parameter int LAT0   = 2,
+    parameter int LAT1   = 2,
+    parameter int REM_W  = 4,
+    parameter int DEPTH  = (LAT0 > LAT1) ? LAT0 : LAT1  // derived: leave it
+) (
+    input  logic                      clk,
+    input  logic                      rst_n,
+    input  logic                      issue,
+    input  logic [ADDR_W-1:0]         issue_d,
+    input  logic                      issue_kind,
+    output logic [DEPTH-1:0]          fl,        // stage k in flight
+    output logic [DEPTH*ADDR_W-1:0]   fl_d,
+    output logic [DEPTH-1:0]          fl_kind,
+    output logic [DEPTH*REM_W-1:0]    fl_rem,    // cycles until its result is visible
+    output logic                      wb0_valid, // a kind-0 op completes
+    output logic [ADDR_W-1:0]         wb0_d,
+    output logic                      wb1_valid, // a kind-1 op completes
+    output logic [ADDR_W-1:0]         wb1_d
+);
+  logic [DEPTH-1:0]        v;     // stage k holds an op (in flight or completing)
+  logic [DEPTH*ADDR_W-1:0] d;
+  logic [DEPTH-1:0]        kind;
+  logic [DEPTH-1:0]        last;  // stage k is the op's completion stage
+
+  always_comb begin
+    for (int k = 1; k <= DEPTH; k++) begin
+      last[k-1] = (k == (kind[k-1] ? LAT1 : LAT0));
+      fl[k-1]   = v[k-1] && (k < (kind[k-1] ? LAT1 : LAT0));
+      fl_rem[(k-1)*REM_W +: REM_W] = REM_W'((kind[k-1] ? LAT1 : LAT0) - k);
+    end
+  end
+  assign fl_d    = d;
+  assign fl_kind = kind;
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) begin
+      v <= '0;
+    end else begin
+      v[0] <= issue;
+      for (int k = 2; k <= DEPTH; k++) v[k-1] <= v[k-2] && !last[k-2];
+    end
+    d[ADDR_W-1:0] <= issue_d;
+    kind[0]       <= issue_kind;
+    for (int k = 2; k <= DEPTH; k++) begin
+      d[(k-1)*ADDR_W +: ADDR_W] <= d[(k-2)*ADDR_W +: ADDR_W];
+      kind[k-1]                 <= kind[k-2];
+    end
+  end
+
+  assign wb0_valid = v[LAT0-1] && !kind[LAT0-1];
+  assign wb0_d     = d[(LAT0-1)*ADDR_W +: ADDR_W];
+  assign wb1_valid = v[LAT1-1] && kind[LAT1-1];
+  assign wb1_d     = d[(LAT1-1)*ADDR_W +: ADDR_W];
+
+endmodule
