@@ -24,6 +24,7 @@
 #include "fp24.hpp"
 #include "fp24_golden.hpp"
 #include "fp24_oracle.hpp"
+#include "fp24_regress_merge.hpp"
 #include "fp24_rtl.hpp"
 #include "fp24_vectors.hpp"
 #include "json.hpp"
@@ -45,7 +46,11 @@ constexpr const char* kDescription =
     "--vectors FILE runs a user's file instead: `op a [b]` lines, or golden\n"
     "`op a [b] result flags` lines (as fp24-run --check reads them), each on\n"
     "the RTL, the model and the oracle, and golden lines also against their\n"
-    "expected result; failures name FILE:LINE.";
+    "expected result; failures name FILE:LINE.\n"
+    "--shard K/N runs the K-th of N disjoint slices of the same run (each\n"
+    "vector set of each op cut in N contiguous ranges); --merge REPORT.json...\n"
+    "combines the --json reports of all N shards into the report of the whole\n"
+    "run (docs/fp24-verification.md, tools/slurm/).";
 
 constexpr std::uint32_t kChunk = 1u << 16;  // vectors per job
 constexpr std::uint64_t kLongRandom = 1000000000;
@@ -55,6 +60,10 @@ struct Options {
   bool rtl = true;
   bool oracle = true;
   bool long_run = false;
+  bool structured = true;          // --no-structured clears
+  bool exhaustive_pairs = false;   // two-operand ops on all 2^48 pairs
+  std::uint64_t shard = 1, shards = 1;  // --shard K/N
+  std::vector<std::string> merge;  // --merge REPORT.json...
   std::uint64_t random = 10000000;
   std::uint64_t seed = 1;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
@@ -85,7 +94,7 @@ std::vector<Op> parse_ops(const std::string& list) {
   return ops;
 }
 
-void add_options(CLI::App& app, Options& o, std::string& ops) {
+void add_options(CLI::App& app, Options& o, std::string& ops, std::string& shard_text) {
   app.add_option("--ops", ops, "comma-separated ops to run (default: all 12)")->type_name("LIST");
   app.add_flag("--no-rtl{false}", o.rtl, "skip the verilated RTL");
   app.add_flag("--no-oracle{false}", o.oracle, "skip the MPFR oracle");
@@ -98,6 +107,16 @@ void add_options(CLI::App& app, Options& o, std::string& ops) {
   app.add_flag("--long", o.long_run,
                "add the long sweep: mul on all 2^32 significand pairs at\n"
                "exponents (63, 63), and random pairs raised to >= 10^9");
+  app.add_flag("--no-structured{false}", o.structured, "two-operand ops: skip the structured set");
+  app.add_flag("--exhaustive-pairs", o.exhaustive_pairs,
+               "two-operand ops on all 2^48 operand pairs instead of the\n"
+               "structured and random sets (run it as shards: --shard)");
+  app.add_option("--shard", shard_text, "run slice K of N (1 <= K <= N); the N slices together\n"
+                                        "cover the unsharded run exactly once")
+      ->type_name("K/N");
+  app.add_option("--merge", o.merge, "merge the --json reports of shards 1..N of one run (nothing is run)")
+      ->type_name("REPORT.json...")
+      ->check(cli::input_file());
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")
       ->transform(cli::unsigned_in(1, 1024));
   app.add_option("--show", o.show, "failing vectors listed per op and kind")
@@ -108,6 +127,17 @@ void add_options(CLI::App& app, Options& o, std::string& ops) {
   app.add_option("--vectors", o.vectors, "run the vectors (or golden lines) of FILE instead of the built-in sets")
       ->type_name("FILE")
       ->check(cli::input_file());
+}
+
+// "K/N" with 1 <= K <= N < 2^32.
+void parse_shard(const std::string& text, Options& o) {
+  unsigned long long k = 0, n = 0;
+  char end = 0;
+  if (std::sscanf(text.c_str(), "%llu/%llu%c", &k, &n, &end) != 2 || text.find_first_not_of("0123456789/") != text.npos ||
+      n == 0 || k == 0 || k > n || n >= (1ull << 32))
+    throw cli::UsageError("--shard: '" + text + "' is not K/N with 1 <= K <= N < 2^32");
+  o.shard = k;
+  o.shards = n;
 }
 
 // The --vectors file, every line checked before anything runs; the ops it
@@ -174,7 +204,7 @@ void random_pair(std::uint64_t seed, Op op, std::uint64_t index, Bits* a, Bits* 
   *b = (r & (kSignBit | 0xFFFF)) | Bits(eb) << 16;
 }
 
-enum class Source { Exhaustive, Structured, Random, SigSweep, File };
+enum class Source { Exhaustive, Structured, Random, SigSweep, AllPairs, File };
 
 struct Job {
   Op op;
@@ -197,30 +227,63 @@ struct VectorSet {
         case Source::Structured: a[i] = structured[k / n]; b[i] = structured[k % n]; break;
         case Source::Random: random_pair(seed, j.op, k, &a[i], &b[i]); break;
         case Source::SigSweep: a[i] = 0x3F0000 | Bits(k >> 16); b[i] = 0x3F0000 | Bits(k & 0xFFFF); break;
+        case Source::AllPairs: a[i] = Bits(k >> 24); b[i] = Bits(k) & 0xFFFFFF; break;
         case Source::File: a[i] = file[int(j.op)][k]->vector.a; b[i] = file[int(j.op)][k]->vector.b; break;
       }
     }
   }
 };
 
-void add_jobs(std::vector<Job>* jobs, Op op, Source source, std::uint64_t total) {
-  for (std::uint64_t first = 0; first < total; first += kChunk)
-    jobs->push_back({op, source, first, std::uint32_t(std::min<std::uint64_t>(kChunk, total - first))});
-}
+// A range of one op's vectors from one source. The jobs (kChunk vectors
+// each) are made from the segments as the threads take them, since an
+// exhaustive-pairs run has 2^32 of them.
+struct Segment {
+  Op op;
+  Source source;
+  std::uint64_t first, count;
+  std::uint64_t first_job;  // jobs of the segments before
+};
 
-std::vector<Job> plan(const Options& o, const VectorSet& set) {
-  std::vector<Job> jobs;
+struct Plan {
+  std::vector<Segment> segments;
+  std::uint64_t jobs = 0, vectors = 0;
+
+  // Shard K/N of a set of `total` vectors: [total(K-1)/N, total K/N), so the
+  // N shards cover it exactly once, and each shard gets its share of every
+  // op and source (their costs differ a hundredfold).
+  void add(const Options& o, Op op, Source source, std::uint64_t total) {
+    using u128 = unsigned __int128;
+    const std::uint64_t first = std::uint64_t(u128(total) * (o.shard - 1) / o.shards);
+    const std::uint64_t end = std::uint64_t(u128(total) * o.shard / o.shards);
+    if (end == first) return;
+    segments.push_back({op, source, first, end - first, jobs});
+    jobs += (end - first + kChunk - 1) / kChunk;
+    vectors += end - first;
+  }
+
+  Job job(std::uint64_t k) const {
+    const auto later = std::upper_bound(segments.begin(), segments.end(), k,
+                                        [](std::uint64_t n, const Segment& s) { return n < s.first_job; });
+    const Segment& s = *(later - 1);
+    const std::uint64_t first = s.first + (k - s.first_job) * kChunk;
+    return {s.op, s.source, first, std::uint32_t(std::min<std::uint64_t>(kChunk, s.first + s.count - first))};
+  }
+};
+
+Plan plan(const Options& o, const VectorSet& set) {
+  Plan p;
   for (Op op : o.ops) {
-    if (!o.vectors.empty()) add_jobs(&jobs, op, Source::File, set.file[int(op)].size());
-    else if (op == Op::Float) add_jobs(&jobs, op, Source::Exhaustive, 1u << 16);
-    else if (info(op).operands == 1) add_jobs(&jobs, op, Source::Exhaustive, 1u << 24);
+    if (!o.vectors.empty()) p.add(o, op, Source::File, set.file[int(op)].size());
+    else if (op == Op::Float) p.add(o, op, Source::Exhaustive, 1u << 16);
+    else if (info(op).operands == 1) p.add(o, op, Source::Exhaustive, 1u << 24);
+    else if (o.exhaustive_pairs) p.add(o, op, Source::AllPairs, std::uint64_t(1) << 48);
     else {
-      add_jobs(&jobs, op, Source::Structured, std::uint64_t(set.structured.size()) * set.structured.size());
-      add_jobs(&jobs, op, Source::Random, o.random);
-      if (o.long_run && op == Op::Mul) add_jobs(&jobs, op, Source::SigSweep, std::uint64_t(1) << 32);
+      if (o.structured) p.add(o, op, Source::Structured, std::uint64_t(set.structured.size()) * set.structured.size());
+      p.add(o, op, Source::Random, o.random);
+      if (o.long_run && op == Op::Mul) p.add(o, op, Source::SigSweep, std::uint64_t(1) << 32);
     }
   }
-  return jobs;
+  return p;
 }
 
 // ---- results ---------------------------------------------------------------------
@@ -383,22 +446,22 @@ Run run_all(const Options& o) {
   VectorSet set;
   set.seed = o.seed;
   for (const Golden& g : o.user) set.file[int(g.vector.op)].push_back(&g);
-  const std::vector<Job> jobs = plan(o, set);
-  std::uint64_t total = 0;
-  for (const Job& j : jobs) total += j.count;
+  const Plan jobs = plan(o, set);
+  const std::uint64_t total = jobs.vectors;
 
   Run run;
   std::mutex merge;
-  std::atomic<std::size_t> next{0};
+  std::atomic<std::uint64_t> next{0};
   std::atomic<std::uint64_t> done{0};
   std::atomic<unsigned> running{o.threads};
   auto work = [&] {
     Worker w(o, set);
-    for (std::size_t k; (k = next.fetch_add(1)) < jobs.size();) {
-      const Stats s = w.run(jobs[k]);
+    for (std::uint64_t k; (k = next.fetch_add(1)) < jobs.jobs;) {
+      const Job job = jobs.job(k);
+      const Stats s = w.run(job);
       std::lock_guard<std::mutex> lock(merge);
-      run.per_op[int(jobs[k].op)].merge(s, o.show);
-      done += jobs[k].count;
+      run.per_op[int(job.op)].merge(s, o.show);
+      done += job.count;
     }
     --running;
   };
@@ -448,12 +511,16 @@ std::string text_report(const Options& o, const Run& run) {
   std::ostringstream t;
   char buf[256];
   if (o.vectors.empty())
-    t << "fp24-regress: seed " << o.seed << ", " << o.random << " random pairs per two-operand op"
+    t << "fp24-regress: seed " << o.seed << ", "
+      << (o.exhaustive_pairs ? "all 2^48 pairs" : std::to_string(o.random) + " random pairs")
+      << " per two-operand op" << (o.structured || o.exhaustive_pairs ? "" : ", no structured set")
       << (o.long_run ? ", long sweep" : "");
   else
     t << "fp24-regress: " << o.vectors << ", " << o.user.size() << " vectors";
   t << ", engines model" << (o.rtl ? " rtl" : "") << (o.oracle ? " oracle" : "")
-    << ", " << o.threads << " threads\n";
+    << ", " << o.threads << " threads";
+  if (o.shards > 1) t << ", shard " << o.shard << "/" << o.shards;
+  t << "\n";
   std::snprintf(buf, sizeof buf, "%-6s %12s %12s %15s %10s %11s %9s %9s %13s\n", "op", "vectors", "rtl!=model",
                 "model!=oracle", "not-CR", "unfaithful", "max-ulp", "cpu-s", "model!=golden");
   t << buf;
@@ -521,6 +588,9 @@ std::string json_report(const Options& o, const Run& run) {
                   ",\n  \"seed\": " + std::to_string(o.seed) +
                   ",\n  \"random_pairs\": " + std::to_string(o.random) +
                   ",\n  \"long\": " + (o.long_run ? "true" : "false") +
+                  ",\n  \"structured\": " + (o.structured ? "true" : "false") +
+                  ",\n  \"exhaustive_pairs\": " + (o.exhaustive_pairs ? "true" : "false") +
+                  ",\n  \"shard\": " + quote(std::to_string(o.shard) + "/" + std::to_string(o.shards)) +
                   ",\n  \"engines\": [\"model\"" + (o.rtl ? ", \"rtl\"" : "") + (o.oracle ? ", \"oracle\"" : "") +
                   "],\n  \"threads\": " + std::to_string(o.threads) +
                   ",\n  \"wall_seconds\": " + json_number(run.wall_seconds) +
@@ -558,12 +628,14 @@ int main(int argc, char** argv) {
                   "Exit status: 0 all match; 1 a mismatch, or a report that could not be written;\n"
                   "2 usage error (a report file that cannot be opened is one).");
   Options o;
-  std::string ops;
-  add_options(app, o, ops);
+  std::string ops, shard;
+  add_options(app, o, ops, shard);
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
+  if (!o.merge.empty()) return merge_reports(app, o.merge, o.json, o.text);
   std::unique_ptr<std::ofstream> text_file, json_file;
   try {
     o.ops = app.count("--ops") ? parse_ops(ops) : all_ops();
+    if (!shard.empty()) parse_shard(shard, o);
     if (!o.vectors.empty()) read_user_vectors(o, app.count("--ops") != 0);
     text_file = open_report(o.text);
     json_file = open_report(o.json);

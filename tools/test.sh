@@ -3,6 +3,8 @@
 #   tools/test.sh [CTEST-ARGS]   the Release build in build/ (default: -LE long)
 #   tools/test.sh --asan         ASan + UBSan build in build-asan/, default suite, leaks checked
 #   tools/test.sh --fuzz         libFuzzer harnesses (clang) in build-fuzz/, the fuzz label
+#   tools/test.sh --cluster      the cluster label: a local single-node SLURM (root;
+#                                installs slurm-wlm and munge; docs/platform.md)
 set -eu
 cd "$(dirname "$0")/.."
 case "${1:-}" in
@@ -14,6 +16,11 @@ case "${1:-}" in
     exec ctest --preset "$preset" -j "$(nproc)"
     ;;
 esac
+if [ "${1:-}" = --cluster ]; then
+  tools/setup.sh slurm-wlm munge
+  shift
+  set -- -L cluster "$@"
+fi
 tools/build.sh
 if [ "$#" -eq 0 ]; then set -- -LE long; fi
 cd build && ctest --output-on-failure -j "$(nproc)" "$@"

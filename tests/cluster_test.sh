@@ -1,0 +1,41 @@
+#!/bin/sh
+# The `cluster` CTest label (not in the default run): a single-node SLURM on
+# localhost (tools/slurm/local-cluster.sh: munge key, slurm.conf, slurmctld
+# and slurmd in a temporary directory), a 4-shard fp24-regress sweep as a job
+# array with its merge job after it (tools/slurm/fp24-sweep.sh --wait), the
+# merged report compared with the unsharded run's; a sweep whose shards fail
+# exits non-zero with no merged report; the daemons stopped.
+#   tests/cluster_test.sh FP24_REGRESS SOURCE_DIR
+set -eu
+regress=$1 src=$2
+# Exit 77 (CTest: skipped) where a local SLURM cannot run at all.
+if [ "$(id -u)" -ne 0 ]; then echo "cluster_test: skipped: slurmd needs root" >&2; exit 77; fi
+for p in munged mungekey slurmctld slurmd sbatch; do
+  command -v "$p" >/dev/null || [ -x "/usr/sbin/$p" ] ||
+    { echo "cluster_test: skipped: no $p (tools/setup.sh slurm-wlm munge)" >&2; exit 77; }
+done
+dir=$(mktemp -d /tmp/mc1-cluster.XXXXXX)
+cleanup() { "$src/tools/slurm/local-cluster.sh" stop "$dir/slurm"; rm -rf "$dir"; }
+trap cleanup EXIT
+eval "$("$src/tools/slurm/local-cluster.sh" start "$dir/slurm")"
+export SLURM_CONF
+
+args="--ops float,neg,add,mul --no-structured --random 200000 --seed 7"
+# shellcheck disable=SC2086
+"$src/tools/slurm/fp24-sweep.sh" --wait 4 "$dir/out" "$regress" $args >"$dir/merge-job"
+for k in 1 2 3 4; do
+  [ -s "$dir/out/shard-$k.json" ] || { echo "cluster_test: shard $k wrote no report" >&2; exit 1; }
+done
+grep -q '"shard": "all/4"' "$dir/out/merged.json" || { echo "cluster_test: merged.json is not all/4" >&2; exit 1; }
+# shellcheck disable=SC2086
+nice "$regress" $args --threads 2 --json "$dir/whole.json" >/dev/null
+cmake -DA="$dir/whole.json" -DB="$dir/out/merged.json" -P "$src/tb/fp24_report_compare.cmake"
+cat "$dir/out/merged.txt"
+
+# A shard that fails (a usage error: no report) cancels the merge, and the
+# sweep says so.
+if "$src/tools/slurm/fp24-sweep.sh" --wait 2 "$dir/bad" "$regress" --ops fma >/dev/null 2>"$dir/bad.err"; then
+  echo "cluster_test: a sweep of failing shards exited 0" >&2; exit 1
+fi
+grep -q "no merged report: a shard failed" "$dir/bad.err" || { cat "$dir/bad.err" >&2; exit 1; }
+grep -q "unknown op 'fma'" "$dir/bad/shard-1.log"
