@@ -99,7 +99,8 @@ module apu_interlock #(
              || (fu_s2_in_flight && fu_s2_d == r);
   endfunction
 
-  always_comb begin
+  // always @*: this block calls a function (see fp24_func_argnorm.sv).
+  always @* begin
     raw_hazard = 1'b0;
     for (int i = 0; i < N_SRC; i++) raw_hazard |= src_en[i] && in_flight(src_addr[i*ADDR_W +: ADDR_W]);
     waw_hazard = 1'b0;

@@ -24,7 +24,8 @@ module fp24_func_reduce #(
   logic [63:0]      acc;   // column sum of the 17 x 32-bit partial products
   logic [125:0]     frac;
 
-  always_comb begin
+  // always @*: this block calls a function (see fp24_func_argnorm.sv).
+  always @* begin
     window   = '0;
     v        = '0;
     acc      = '0;

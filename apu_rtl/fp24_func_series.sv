@@ -17,7 +17,8 @@ module fp24_func_series #(
 
   logic [63:0] h, t, s;
 
-  always_comb begin
+  // always @*: this block calls a function (see fp24_func_argnorm.sv).
+  always @* begin
     h   = '0;
     t   = '0;
     s   = '0;
