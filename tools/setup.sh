@@ -2,7 +2,7 @@
 # Installs the Debian packages the project needs, when they are missing.
 #   tools/setup.sh [EXTRA-PACKAGE...]   (tools/test.sh --fuzz adds clang)
 set -eu
-PKGS="build-essential cmake pkg-config libsystemc-dev verilator libglm-dev libgtest-dev libmpfr-dev libgmp-dev zlib1g-dev libpng-dev libcli11-dev python3 nlohmann-json3-dev $*"
+PKGS="build-essential cmake pkg-config libsystemc-dev verilator libglm-dev libgtest-dev libmpfr-dev libgmp-dev zlib1g-dev libpng-dev libcli11-dev python3 nlohmann-json3-dev yosys iverilog nextpnr-ice40 $*"
 missing=""
 for p in $PKGS; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
