@@ -15,7 +15,7 @@ file(GLOB units ${rtl}/fp24_*.sv)
 list(REMOVE_ITEM units ${packages})
 set(vvp_file ${WORK}/fp24_icarus.vvp)
 execute_process(COMMAND ${IVERILOG} -g2012 -I${GENERATED} -s fp24_icarus_tb -o ${vvp_file}
-                        ${SOURCE_DIR}/tb/fp24_icarus_tb.sv ${packages} ${units}
+                        ${GENERATED}/apu_pkg.sv ${packages} ${SOURCE_DIR}/tb/fp24_icarus_tb.sv ${units}
   RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
 if(NOT rc EQUAL 0 OR err MATCHES "error")
   message(FATAL_ERROR "iverilog -g2012 failed (exit ${rc}):\n${out}${err}")

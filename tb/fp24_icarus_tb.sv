@@ -3,7 +3,8 @@
 // same RTL the verilated models are built from.
 //
 //   iverilog -g2012 -I build/generated -s fp24_icarus_tb -o fp24_icarus.vvp \
-//            tb/fp24_icarus_tb.sv apu_rtl/fp24_func_pkg.sv apu_rtl/fp24_*.sv
+//            build/generated/apu_pkg.sv apu_rtl/fp24_func_pkg.sv \
+//            tb/fp24_icarus_tb.sv apu_rtl/fp24_*.sv    (packages first)
 //   vvp fp24_icarus.vvp +vectors=IN +results=OUT
 //
 // IN: `op a [b]` lines (hex operands; blank and `#` lines skipped), as
@@ -15,7 +16,11 @@
 // naming IN:line, $fatal (exit status 1).
 module fp24_icarus_tb;
   localparam int MAX_VEC = 1 << 20;
-  localparam int LAT_MUL = 2, LAT_ADD = 2, LAT_FUNC = 2, LAT_TRIG = 3;
+  // the latencies of the instruction-set table (apu_rtl/isa/apu_isa.tbl)
+  localparam int LAT_MUL = apu_pkg::LAT_MUL, LAT_ADD = apu_pkg::LAT_ADD;
+  localparam int LAT_FUNC = apu_pkg::LAT_FUNC, LAT_TRIG = apu_pkg::LAT_TRIG;
+  localparam int LAT_MAX = (LAT_FUNC > LAT_TRIG) ? LAT_FUNC : LAT_TRIG;
+  localparam int RING = 8;  // > every latency
   // unit of a vector (in `unit`), and the op code on the unit's in_op
   localparam logic [1:0] U_MUL = 2'd0, U_ADD = 2'd1, U_FUNC = 2'd2;
 
@@ -111,16 +116,16 @@ module fp24_icarus_tb;
 
   always #5 clk = !clk;
 
-  // issued[c % 4]: the vector issued in cycle c (-1: none); results come back
-  // at most LAT_TRIG cycles later.
-  int issued [4];
+  // issued[c % RING]: the vector issued in cycle c (-1: none); results come
+  // back at most LAT_MAX cycles later.
+  int issued [RING];
   int cycle = 0;
 
   // A completing result belongs to the vector issued L cycles ago on that port.
   task automatic take(input int lat, input logic [1:0] u, input bit trig,
                       input logic [23:0] r, input logic [4:0] f);
     int idx;
-    idx = issued[(cycle - lat) & 3];
+    idx = issued[(cycle - lat) % RING];
     if (cycle < lat || idx < 0 || unit[idx] != u || (u == U_FUNC && code[idx][1] != trig))
       $fatal(1, "fp24_icarus_tb: cycle %0d: a result no vector issued %0d cycles ago expects", cycle, lat);
     res[idx] = r;
@@ -133,11 +138,12 @@ module fp24_icarus_tb;
     int    fd;
     if (!$value$plusargs("vectors=%s", in_path) || !$value$plusargs("results=%s", out_path))
       $fatal(1, "usage: vvp fp24_icarus.vvp +vectors=IN +results=OUT");
+    if (LAT_MAX >= RING || LAT_MUL >= RING || LAT_ADD >= RING) $fatal(1, "fp24_icarus_tb: a latency >= RING");
     read_vectors(in_path);
-    for (int i = 0; i < 4; i++) issued[i] = -1;
+    for (int i = 0; i < RING; i++) issued[i] = -1;
     repeat (2) @(posedge clk);
     rst_n = 1'b1;
-    for (int v = 0; v < n_vec + LAT_TRIG; v++) begin
+    for (int v = 0; v < n_vec + LAT_MAX; v++) begin
       // drive the vector of this cycle just after the edge
       @(negedge clk);
       mul_in_valid  = (v < n_vec) && unit[v] == U_MUL;
@@ -149,7 +155,7 @@ module fp24_icarus_tb;
         in_a       = va[v];
         in_b       = vb[v];
       end
-      issued[cycle & 3] = (v < n_vec) ? v : -1;
+      issued[cycle % RING] = (v < n_vec) ? v : -1;
       // outputs of this cycle (registered: stable since the last edge)
       if (mul_out_valid) take(LAT_MUL, U_MUL, 1'b0, mul_out_result, mul_out_flags);
       if (add_out_valid) take(LAT_ADD, U_ADD, 1'b0, add_out_result, add_out_flags);

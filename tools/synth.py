@@ -159,7 +159,7 @@ def ice40(gen, top, work, report):
         text = f.read()
     fmax = re.findall(r"Max frequency for clock\s+'[^']*':\s+([\d.]+) MHz", text)
     if rc != 0 or not fmax:
-        res.update(fits=False, reason=f"nextpnr-ice40 failed (log {log})")
+        raise CheckFailed(f"{top}: nextpnr-ice40 failed or gave no Fmax (exit {rc}, log {log})")
     else:
         # the last figure is the one after routing
         lc = re.search(r"ICESTORM_LC:\s+(\d+)/", text)
