@@ -128,7 +128,8 @@ module fp24_func #(
   logic       is_cos, use_cos, y_sign;
   logic [W:0] hard;  // {hit, result}
 
-  always_comb begin
+  // always @*: this block calls a function (see fp24_func_argnorm.sv).
+  always @* begin
     is_cos  = s1_op == fp24_func_pkg::OP_COS;
     quarter = red_quadrant + {1'b0, is_cos};
     use_cos = quarter[0];

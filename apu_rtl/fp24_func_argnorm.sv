@@ -21,7 +21,10 @@ module fp24_func_argnorm #(
   logic [6:0]        lz;
   logic [SEXP_W-1:0] shift;
 
-  always_comb begin
+  // always @*, not always_comb: Icarus 11 makes an always_comb block sensitive
+  // to the variables of the functions it calls, so blocks that call one
+  // function wake each other forever (docs/fp24-rtl.md "Second simulator").
+  always @* begin
     hi    = '0;
     lo    = '0;
     lz    = '0;

@@ -23,8 +23,10 @@ module fp24_func_reduce #(
   logic [WIN_W-1:0] window, v;
   logic [63:0]      acc;   // column sum of the 17 x 32-bit partial products
   logic [125:0]     frac;
+  int i;  // the loop's, set on every path: Yosys reads a for-declared one under `if` as a latch
 
-  always_comb begin
+  // always @*: this block calls a function (see fp24_func_argnorm.sv).
+  always @* begin
     window   = '0;
     v        = '0;
     acc      = '0;
@@ -32,10 +34,11 @@ module fp24_func_reduce #(
     z_neg    = 1'b0;
     quadrant = '0;
     rmag     = '0;
+    i = 0;
     if (en) begin
       window = fp24_func_pkg::rom_two_over_pi(exp - WIN_BASE);
       // m * window mod 2^128, one 32-bit column at a time.
-      for (int i = 0; i < WIN_W / 32; i++) begin
+      for (i = 0; i < WIN_W / 32; i++) begin
         acc = {32'd0, acc[63:32]} + {{(32 - FRAC_W - 1) {1'b0}}, m} * {32'd0, window[32*i+:32]};
         v[32*i+:32] = acc[31:0];
       end

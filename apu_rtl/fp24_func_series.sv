@@ -16,16 +16,19 @@ module fp24_func_series #(
 );
 
   logic [63:0] h, t, s;
+  int k;  // the loop's, set on every path: Yosys reads a for-declared one under `if` as a latch
 
-  always_comb begin
+  // always @*: this block calls a function (see fp24_func_argnorm.sv).
+  always @* begin
     h   = '0;
     t   = '0;
     s   = '0;
     sig = '0;
     exp = '0;
+    k = 0;
     if (en) begin
     h = fp24_func_pkg::rom_coef(use_cos, 3'(TERMS - 1));
-    for (int k = TERMS - 2; k >= 0; k--) h = fp24_func_pkg::rom_coef(use_cos, 3'(k)) - fp24_func_pkg::mulhi64(u, h);
+    for (k = TERMS - 2; k >= 0; k--) h = fp24_func_pkg::rom_coef(use_cos, 3'(k)) - fp24_func_pkg::mulhi64(u, h);
     t = fp24_func_pkg::mulhi64(u, h);
     s = z_sig - fp24_func_pkg::mulhi64(z_sig, t);
     if (use_cos) begin

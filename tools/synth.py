@@ -1,0 +1,266 @@
+#!/usr/bin/env python3
+"""Open-flow synthesis report of the APU RTL (docs/apu-rtl.md "Synthesis").
+
+    synth.py [--quick] [--units U,U,...] [--no-ice40] BUILD_DIR
+
+Reads the same sources Verilator does (apu_rtl/*.sv and BUILD_DIR/generated/
+apu_pkg.sv, fp24_rom.svh) with Debian's Yosys 0.23 and, per unit:
+  - checks: hierarchy, proc, `check -assert`, no latch;
+  - generic `synth` (memories kept as memories): cells, flip-flops, inferred
+    memories, and per pipeline stage the cells, flip-flops and logic depth in
+    gate levels (tools/synth_depth.py), cross-checked with `ltp -noff`;
+  - `synth_ice40` and, where the result fits an HX8K, nextpnr-ice40 Fmax.
+Writes BUILD_DIR/reports/synth.txt and synth.json (work files in
+BUILD_DIR/reports/synth/).
+--quick runs the checks only (the default test suite's form) and writes
+nothing but the work files.
+Exit 0; 1 when a check fails (an error, a latch, a problem `check` found);
+2 on a usage error or a missing tool.
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import synth_depth  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RTL = os.path.join(ROOT, "apu_rtl")
+UNITS = ["fp24_mul", "fp24_add", "fp24_func", "apu_core"]
+# iCE40HX8K (ct256 package): 7680 logic cells, 32 x 4 kbit block RAM.
+HX8K = {"name": "iCE40HX8K-CT256", "nextpnr": ["--hx8k", "--package", "ct256"],
+        "luts": 7680, "ffs": 7680, "bram": 32, "bram_bits": 32 * 4096}
+LATCH_TYPES = "t:$dlatch t:$adlatch t:$dlatchsr t:$_DLATCH_* t:$_DLATCHSR_*"
+
+
+class CheckFailed(Exception):
+    pass
+
+
+def sources(gen):
+    """Packages first (Yosys resolves pkg::name at read time), then the rest."""
+    pkgs = [os.path.join(gen, "apu_pkg.sv")]
+    rest = []
+    for f in sorted(os.listdir(RTL)):
+        if f.endswith(".sv"):
+            (pkgs if f.endswith("_pkg.sv") else rest).append(os.path.join(RTL, f))
+    return pkgs + rest
+
+
+def yosys(script, log, what):
+    """Runs a Yosys script; a failure raises CheckFailed naming the log."""
+    with open(log, "w") as f:
+        rc = subprocess.run(["yosys", "-q", "-l", log + ".full", "-p", script],
+                            stdout=f, stderr=subprocess.STDOUT).returncode
+    if rc != 0:
+        with open(log) as f:
+            tail = f.read().strip().splitlines()[-5:]
+        raise CheckFailed(f"{what}: yosys failed (log {log}.full):\n  " + "\n  ".join(tail))
+    with open(log + ".full") as f:
+        return f.read()
+
+
+def read_cmd(gen, top):
+    return f"read_verilog -sv -I{gen} {' '.join(sources(gen))}; hierarchy -check -top {top}"
+
+
+def check_unit(gen, top, work):
+    """Elaborates, runs proc and check: returns the number of latches (must be 0)."""
+    log = yosys(f"{read_cmd(gen, top)}; proc; flatten; opt_clean; check -assert;"
+                f" tee -o {work}/{top}.latches.txt select -count {LATCH_TYPES}",
+                f"{work}/{top}.check.log", f"{top}: read/proc/check")
+    with open(f"{work}/{top}.latches.txt") as f:
+        m = re.search(r"(\d+) objects", f.read())
+    latches = int(m.group(1)) if m else -1
+    inferred = len(re.findall(r"^Latch inferred", log, re.M))
+    if latches != 0 or inferred != 0:
+        raise CheckFailed(f"{top}: {max(latches, inferred)} latch(es) (log {work}/{top}.check.log.full)")
+    return 0
+
+
+def int_param(v):
+    return int(v, 2) if isinstance(v, str) else int(v)
+
+
+def generic(gen, top, work):
+    """Generic synthesis, memories kept: counts and stages of the gate netlist."""
+    net = f"{work}/{top}.gates.json"
+    # synth's own script, `fine:` without memory_map: a memory stays one
+    # $mem_v2 cell (reported with its bits) instead of becoming flip-flops.
+    log = yosys(f"{read_cmd(gen, top)}; synth -flatten -top {top} -run coarse:fine;"
+                f" opt -fast -full; opt -full; techmap; opt -fast; abc -fast; opt -fast;"
+                f" hierarchy -check; check -assert; write_json {net}; ltp -noff",
+                f"{work}/{top}.synth.log", f"{top}: synth")
+    with open(net) as f:
+        mod = json.load(f)["modules"][top]
+    memories, n_ff, n_cells = [], 0, 0
+    for name, c in mod["cells"].items():
+        t = c["type"]
+        if t.startswith("$mem"):
+            p = c["parameters"]
+            width, size = int_param(p["WIDTH"]), int_param(p["SIZE"])
+            memories.append({"name": memory_name(c, name), "width": width, "words": size, "bits": width * size,
+                             "read_ports": int_param(p["RD_PORTS"]), "write_ports": int_param(p["WR_PORTS"]),
+                             "sync_read": int_param(p["RD_CLK_ENABLE"]) != 0})
+            continue
+        n_cells += 1
+        if synth_depth.is_ff(t):
+            n_ff += len(c["connections"].get("Q", [1]))
+    stages = synth_depth.analyse(mod)
+    m = re.search(r"Longest topological path in \S+ \(length=(\d+)\)", log)
+    # Two counts of one quantity: a disagreement is a bug in synth_depth.py.
+    if m is None or int(m.group(1)) != stages["ltp"]:
+        raise CheckFailed(f"{top}: depth {stages['ltp']} but `ltp -noff` says "
+                          f"{m.group(1) if m else 'nothing'} (log {work}/{top}.synth.log.full)")
+    return {"cells": n_cells, "flip_flops": n_ff, "memories": memories,
+            "memory_bits": sum(x["bits"] for x in memories),
+            "stages": stages["stages"], "loop": stages["loop"], "to_outputs": stages["outputs"],
+            "depth": stages["ltp"], "ltp_noff": int(m.group(1)) if m else None}
+
+
+def memory_name(cell, name):
+    """A memory's source name: the memory's MEMID parameter without its backslash."""
+    memid = cell["parameters"].get("MEMID", name)
+    return memid.lstrip("\\")
+
+
+def ice40(gen, top, work, report):
+    """synth_ice40, then nextpnr-ice40 on an HX8K when the netlist fits it."""
+    if report["memory_bits"] > HX8K["bram_bits"] or any(not m["sync_read"] for m in report["memories"]):
+        big = report["memory_bits"] > HX8K["bram_bits"]
+        why = (f"{report['memory_bits']} memory bits, the HX8K has {HX8K['bram_bits']} of block RAM"
+               if big else "an asynchronously read memory cannot be block RAM")
+        return {"part": HX8K["name"], "fits": False, "reason": why}
+    net = f"{work}/{top}.ice40.json"
+    yosys(f"{read_cmd(gen, top)}; synth_ice40 -top {top} -json {net}", f"{work}/{top}.ice40.log",
+          f"{top}: synth_ice40")
+    with open(net) as f:
+        cells = json.load(f)["modules"][top]["cells"].values()
+    count = {}
+    for c in cells:
+        count[c["type"]] = count.get(c["type"], 0) + 1
+    luts = count.get("SB_LUT4", 0)
+    ffs = sum(n for t, n in count.items() if t.startswith("SB_DFF"))
+    bram = count.get("SB_RAM40_4K", 0)
+    res = {"part": HX8K["name"], "luts": luts, "flip_flops": ffs, "carries": count.get("SB_CARRY", 0),
+           "bram": bram}
+    if luts > HX8K["luts"] or ffs > HX8K["ffs"] or bram > HX8K["bram"]:
+        res.update(fits=False, reason=f"{luts} LUTs, {ffs} FFs, {bram} BRAMs; the HX8K has "
+                                      f"{HX8K['luts']} logic cells and {HX8K['bram']} BRAMs")
+        return res
+    log = f"{work}/{top}.nextpnr.log"
+    with open(log, "w") as f:
+        rc = subprocess.run(["nextpnr-ice40", *HX8K["nextpnr"], "--json", net, "--seed", "1",
+                             "--freq", "1"], stdout=f, stderr=subprocess.STDOUT).returncode
+    with open(log) as f:
+        text = f.read()
+    fmax = re.findall(r"Max frequency for clock\s+'[^']*':\s+([\d.]+) MHz", text)
+    if rc != 0 or not fmax:
+        raise CheckFailed(f"{top}: nextpnr-ice40 failed or gave no Fmax (exit {rc}, log {log})")
+    else:
+        # the last figure is the one after routing
+        lc = re.search(r"ICESTORM_LC:\s+(\d+)/", text)
+        res.update(fits=True, fmax_mhz=float(fmax[-1]), logic_cells=int(lc.group(1)) if lc else None)
+    return res
+
+
+def text_report(units):
+    out = ["APU RTL, open-flow synthesis (tools/synth.sh; method: docs/apu-rtl.md \"Synthesis\")",
+           "Yosys 0.23 generic `synth -flatten`, memories kept; depth = gate levels, every gate one level.",
+           ""]
+    out.append(f"{'unit':<10} {'stage':<8} {'cells':>8} {'FFs':>7} {'depth':>6}")
+    for name, u in units.items():
+        g = u["generic"]
+        out.append(f"{name:<10} {'all':<8} {g['cells']:>8} {g['flip_flops']:>7} {g['depth']:>6}"
+                   f"   (ltp -noff {g['ltp_noff']}; latches {u['latches']})")
+        for s in g["stages"]:
+            out.append(f"{'':<10} {'s' + str(s['rank']):<8} {s['cells']:>8} {s['flip_flops']:>7} {s['depth']:>6}")
+        if g["loop"]:
+            l_ = g["loop"]
+            out.append(f"{'':<10} {'loop':<8} {l_['cells']:>8} {l_['flip_flops']:>7} {l_['depth']:>6}"
+                       "   (registers that feed themselves)")
+        if g["to_outputs"]:
+            out.append(f"{'':<10} {'outputs':<8} {'':>8} {'':>7} {g['to_outputs']:>6}")
+        for m in g["memories"]:
+            out.append(f"{'':<10} memory {m['name']}: {m['words']} x {m['width']} = {m['bits']} bits, "
+                       f"{m['read_ports']} read ({'sync' if m['sync_read'] else 'async'}), "
+                       f"{m['write_ports']} write")
+    out += ["", f"iCE40 ({HX8K['name']}, nextpnr-ice40 --hx8k --package ct256 --seed 1)"]
+    for name, u in units.items():
+        i = u.get("ice40")
+        if i is None:
+            continue
+        if i.get("fits"):
+            out.append(f"{name:<10} {i['luts']:>6} LUTs {i['flip_flops']:>6} FFs {i['bram']:>3} BRAM"
+                       f" {i['logic_cells']:>6} LCs   Fmax {i['fmax_mhz']:.1f} MHz")
+        else:
+            size = f"{i['luts']:>6} LUTs {i['flip_flops']:>6} FFs {i['bram']:>3} BRAM   " if "luts" in i else ""
+            out.append(f"{name:<10} {size}does not fit: {i['reason']}")
+    return "\n".join(out) + "\n"
+
+
+def main(argv):
+    args = argv[1:]
+    quick = "--quick" in args
+    do_ice40 = "--no-ice40" not in args
+    units = UNITS
+    rest = []
+    i = 0
+    while i < len(args):
+        a = args[i]
+        if a == "--units" and i + 1 < len(args):
+            units = args[i + 1].split(",")
+            i += 1
+        elif a not in ("--quick", "--no-ice40"):
+            rest.append(a)
+        i += 1
+    if len(rest) != 1 or any(u not in UNITS for u in units):
+        print(__doc__.split("\n\n")[1], file=sys.stderr)
+        print(f"synth.py: units are {','.join(UNITS)}", file=sys.stderr)
+        return 2
+    build = os.path.abspath(rest[0])
+    gen = os.path.join(build, "generated")
+    for f in ("apu_pkg.sv", "fp24_rom.svh"):
+        if not os.path.exists(os.path.join(gen, f)):
+            print(f"synth.py: {gen}/{f} is missing: configure and build {build} first", file=sys.stderr)
+            return 2
+    tools = ["yosys"] + (["nextpnr-ice40"] if do_ice40 and not quick else [])
+    for t in tools:
+        if shutil.which(t) is None:
+            print(f"synth.py: {t} not found (tools/setup.sh installs it)", file=sys.stderr)
+            return 2
+    reports = os.path.join(build, "reports")
+    work = os.path.join(reports, "synth")
+    os.makedirs(work, exist_ok=True)
+    result = {}
+    try:
+        for u in units:
+            r = {"latches": check_unit(gen, u, work)}
+            print(f"synth: {u}: read, proc, check: ok, 0 latches", flush=True)
+            if not quick:
+                r["generic"] = generic(gen, u, work)
+                g = r["generic"]
+                print(f"synth: {u}: {g['cells']} cells, {g['flip_flops']} FFs, depth {g['depth']}", flush=True)
+                if do_ice40:
+                    r["ice40"] = ice40(gen, u, work, g)
+                    fm = r["ice40"].get("fmax_mhz")
+                    print(f"synth: {u}: iCE40 " + (f"Fmax {fm:.1f} MHz" if fm else "does not fit"), flush=True)
+            result[u] = r
+    except CheckFailed as e:
+        print(f"synth: FAILED: {e}", file=sys.stderr)
+        return 1
+    if quick:
+        return 0
+    with open(os.path.join(reports, "synth.json"), "w") as f:
+        json.dump({"tool": "yosys 0.23", "units": result}, f, indent=1)
+    with open(os.path.join(reports, "synth.txt"), "w") as f:
+        f.write(text_report(result))
+    print(f"synth: wrote {reports}/synth.txt and synth.json")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
