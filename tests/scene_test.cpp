@@ -112,6 +112,17 @@ TEST(SceneStandard, Smooth) {
   EXPECT_EQ(s.primitive_count(), 561u);
 }
 
+TEST(SceneStandard, Csg) {
+  Scene c = load_scene(scenes_dir() + "/csg.json");
+  EXPECT_EQ(c.count(PrimitiveKind::quad), 2u);
+  EXPECT_EQ(c.count(PrimitiveKind::ellipsoid), 6u);
+  EXPECT_EQ(c.count(PrimitiveKind::quadric), 3u);
+  const Combine want[] = {Combine::union_, Combine::intersection, Combine::difference, Combine::difference,
+                          Combine::intersection};
+  ASSERT_EQ(c.objects.size(), 5u);
+  for (std::size_t o = 0; o < 5; ++o) EXPECT_EQ(c.objects[o].combine, want[o]) << o;
+}
+
 TEST(SceneStandard, Tiny) {
   Scene s = load_scene(scenes_dir() + "/tiny.json");
   EXPECT_EQ(s.primitive_count(), 3u);
@@ -235,6 +246,30 @@ TEST(SceneErrors, DegenerateGeometry) {
   EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"quadric\", \"coefficients\": [1, 1, 1, 0, 0, 0, 0, 0, 0, "
                                             "-1], \"box\": {\"min\": [-1, 1, -1], \"max\": [1, 1, 1]}}"))),
             "t.json:9: objects[0].primitives[0].box: min must be below max on every axis");
+}
+
+TEST(SceneCsg, CombineAndItsErrors) {
+  const std::string two =
+      "{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1}, "
+      "{\"type\": \"sphere\", \"centre\": [1, 0, 0], \"radius\": 1}";
+  auto solid = [&](const std::string& kind, const std::string& combine, const std::string& prims) {
+    return scene_text("{\"kind\": \"" + kind + "\", \"combine\": \"" + combine +
+                      "\", \"material\": \"m\", \"primitives\": [" + prims + "]}");
+  };
+  Scene s = parse_scene(solid("solid", "difference", two), "t.json", "");
+  EXPECT_EQ(s.objects[0].combine, Combine::difference);
+  EXPECT_TRUE(hides_outside(s.objects[0], 0));
+  EXPECT_FALSE(hides_outside(s.objects[0], 1));
+  EXPECT_TRUE(flips_normal(s.objects[0], 1));
+  EXPECT_EQ(parse_scene(solid("solid", "union", two), "t.json", "").objects[0].combine, Combine::union_);
+  EXPECT_EQ(error_of(solid("solid", "and", two)),
+            "t.json:8: objects[0].combine: expected \"union\", \"intersection\" or \"difference\"");
+  EXPECT_EQ(error_of(solid("surface", "intersection", two)),
+            "t.json:8: objects[0].combine: intersection and difference combine solids only");
+  EXPECT_EQ(error_of(solid("solid", "intersection", "{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1}")),
+            "t.json:8: objects[0].combine: intersection and difference need at least two primitives");
+  EXPECT_EQ(error_of(solid("solid", "intersection", two + ", " + kTriangle)),
+            "t.json:8: objects[0].combine: intersection and difference take regions only (ellipsoid, sphere, quadric)");
 }
 
 TEST(SceneErrors, MeshFile) {

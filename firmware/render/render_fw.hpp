@@ -152,6 +152,7 @@ class RenderFirmware {
     int pixel = 0;   // index in the block
     int depth = 0;   // 0: eye ray
     int from = -1;   // primitive the ray leaves (R_FROM): shadow and secondary rays
+    std::uint32_t limit = 0;  // the solid rule's re-cast: t limit (0: C_BIG); a shadow ray's to its light
   };
   // s1's eye rays of a block, row-major, with their nearest hits: r_scan's
   // Z-buffer over the block's triangles, then r_cast (RK_EYE_SCAN) against its
@@ -290,6 +291,10 @@ class RenderFirmware {
     std::map<std::pair<int, int>, int> list_of;  // (group, object * lights + light) -> index in lists
   };
   ShadowGroups shadow_groups(const std::vector<Ray>& rays);
+  // The shadow probes left unblocked, cast again as given rays against the
+  // intersections' and differences' regions of their lists (csg_lists), the
+  // solid rule applied: a visible crossing below the limit blocks.
+  void combined_shadows(std::vector<Ray>& probes, const std::vector<std::vector<int>>& csg_lists);
 
   // ---- output (render_output.cpp)
   std::vector<Rgb8> sum(const std::vector<std::vector<std::array<std::uint32_t, 3>>>& contrib);
@@ -303,6 +308,8 @@ class RenderFirmware {
   std::vector<Box> object_tri_box_;         // per object: the union of its triangles' prim_box_
   std::vector<std::vector<int>> shadow_objects_;  // [object * lights + light]
   std::vector<std::vector<int>> solid_regions_;   // [object]: build_solid_regions
+  std::vector<char> prim_combined_;  // per primitive: of an intersection or difference (build_solid_regions)
+  bool any_combined_ = false;        // some object is an intersection or difference
   // Candidate lists of primitives: [0] the block's eye rays (s1), [1] every
   // primitive in file order. s2 (shadows) and s4 (secondary_candidates)
   // make their own per group of rays.

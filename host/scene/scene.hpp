@@ -92,6 +92,12 @@ struct Primitive {
 
 enum class ObjectKind { solid, surface };
 
+// How a solid's primitives' regions combine (docs/scene-format.md "Objects"):
+// union (the default: any polygons and regions), or, of regions only, the
+// intersection of all (the paper's AND) or the difference of the first and
+// the union of the others.
+enum class Combine { union_, intersection, difference };
+
 // An object: a bounding box, its primitives and its material (fig. 2).
 // solid = union of the primitives' regions (polygons bound it, normals outward);
 // surface = a shell of the primitives' surfaces.
@@ -99,10 +105,24 @@ struct Object {
   std::string name;
   ObjectKind kind = ObjectKind::surface;
   int material = 0;  // index into Scene::materials
+  Combine combine = Combine::union_;  // solids only
   std::vector<Primitive> primitives;
   glm::dvec3 box_min{0.0};  // union of the primitives' boxes
   glm::dvec3 box_max{0.0};
 };
+
+// The classification rule of a solid's surfaces, one region k of object o at a
+// time (docs/scene-format.md "Objects"): a crossing of primitive j's surface
+// is hidden when some other region k holds the point on the side that hides:
+// strictly inside for a region of a union or a subtrahend of a difference,
+// strictly outside for every region of an intersection and for the minuend
+// of a difference.
+inline bool hides_outside(const Object& o, int k) {
+  return o.combine == Combine::intersection || (o.combine == Combine::difference && k == 0);
+}
+// A subtrahend's surface bounds the difference from its inside: the solid's
+// outward normal is the subtrahend's inward one.
+inline bool flips_normal(const Object& o, int k) { return o.combine == Combine::difference && k > 0; }
 
 struct RenderSettings {
   int max_depth = 5;             // levels of ks/kt secondary rays below the eye ray

@@ -326,7 +326,7 @@ class Loader {
   }
 
   Object object(const Value& v, const std::string& path, const std::vector<Material>& materials) {
-    expect_object(v, path, {"name", "kind", "material", "primitives"});
+    expect_object(v, path, {"name", "kind", "combine", "material", "primitives"});
     Object o;
     if (const Value* n = v.find("name")) o.name = text(*n, join(path, "name"));
     const Value& kind = required(v, path, "kind");
@@ -343,6 +343,7 @@ class Loader {
     for (std::size_t i = 0; i < prims.items.size(); ++i)
       primitive(prims.items[i], index(join(path, "primitives"), i), o.primitives);
     if (o.primitives.empty()) fail(prims, join(path, "primitives"), "object has no primitives");
+    if (const Value* c = v.find("combine")) combine(*c, join(path, "combine"), o);
     o.box_min = o.primitives[0].box_min;
     o.box_max = o.primitives[0].box_max;
     for (const auto& p : o.primitives) {
@@ -350,6 +351,20 @@ class Loader {
       o.box_max = glm::max(o.box_max, p.box_max);
     }
     return o;
+  }
+
+  // "combine": union (default), or for a solid of regions only intersection
+  // or difference, of at least two of them.
+  void combine(const Value& v, const std::string& path, Object& o) const {
+    const std::string c = text(v, path);
+    if (c == "union") return;
+    if (c == "intersection") o.combine = Combine::intersection;
+    else if (c == "difference") o.combine = Combine::difference;
+    else fail(v, path, "expected \"union\", \"intersection\" or \"difference\"");
+    if (o.kind != ObjectKind::solid) fail(v, path, "intersection and difference combine solids only");
+    if (o.primitives.size() < 2) fail(v, path, "intersection and difference need at least two primitives");
+    if (!std::all_of(o.primitives.begin(), o.primitives.end(), [](const Primitive& p) { return p.is_region(); }))
+      fail(v, path, "intersection and difference take regions only (ellipsoid, sphere, quadric)");
   }
 
   void primitive(const Value& v, const std::string& path, std::vector<Primitive>& out) {
