@@ -246,6 +246,25 @@ TEST(RefCsg, ShadowRaysMeetOnlyTheCombinedSurface) {
   EXPECT_FALSE(Renderer(bite).shadowed({1.5, -3, 0}, {{1.5, 3, 0}, {1, 1, 1}}));  // the subtrahend alone
 }
 
+TEST(RefRevolution, ConeAndCylinderFrustums) {
+  // A profile (0, 0) - (1, 1) - (1, 2) about the z axis through the origin:
+  // a cone x^2 + y^2 = z^2 below z = 1, a cylinder of radius 1 above.
+  scene::Scene s = one_pixel("\"colour\": [1, 1, 1], \"ko\": 1",
+                             "{\"type\": \"revolution\", \"axis\": \"z\", \"base\": [0, 0, 0], "
+                             "\"profile\": [[0, 0], [1, 1], [1, 2]]}",
+                             "solid");
+  ASSERT_EQ(s.objects[0].primitives.size(), 2u);
+  refrender::Hit hit;
+  ASSERT_TRUE(Renderer(s).nearest_hit({{-5, 0, 0.5}, {1, 0, 0}}, hit));  // the cone at radius 0.5
+  EXPECT_NEAR(hit.t, 4.5, 1e-12);
+  expect_colour(hit.normal, glm::normalize(glm::dvec3(-1, 0, -1)));
+  ASSERT_TRUE(Renderer(s).nearest_hit({{-5, 0, 1.5}, {1, 0, 0}}, hit));  // the cylinder
+  EXPECT_NEAR(hit.t, 4.0, 1e-12);
+  EXPECT_EQ(hit.primitive, 1);
+  expect_colour(hit.normal, {-1, 0, 0});
+  EXPECT_FALSE(Renderer(s).nearest_hit({{-5, 0, 2.5}, {1, 0, 0}}, hit));  // above the profile
+}
+
 TEST(ImgcmpPsnr, IdenticalIsInfinite) {
   imgcmp::Image a(4, 4);
   EXPECT_TRUE(std::isinf(imgcmp::psnr(a, a)));

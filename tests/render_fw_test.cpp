@@ -426,8 +426,9 @@ TEST(RenderScenes, SmoothWithin35dBOfTheReference) { EXPECT_GE(standard_scene_ps
 TEST(RenderScenes, TeapotWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("teapot", 32, 24), 35.0); }
 TEST(RenderScenes, TeapotAt64x48Within35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("teapot", 64, 48), 35.0); }
 
-// Section 7's CSG scene (docs/renderer.md "CSG").
+// Section 7's scenes (docs/renderer.md "CSG and solids of revolution").
 TEST(RenderScenes, CsgWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("csg", 64, 48), 35.0); }
+TEST(RenderScenes, LatheWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("lathe", 64, 48), 35.0); }
 
 // CSG on eye and shadow rays: csg.json at 64x48 as one block, s1 with the
 // solid rule (r_inside's CSG_OUT regions hide hits outside them), then s2

@@ -163,6 +163,11 @@ enum class Basis { bezier, bspline };
 void tessellate_patch(const BicubicNet& net, Basis basis, int level,
                       std::vector<Primitive>& out);
 
+// Solid of revolution: the quadric frustum of one profile segment (radius,
+// height) p0 - p1 (p1.y > p0.y, radii >= 0, not both 0) about the line
+// through `base` along world axis `axis` (0 x, 1 y, 2 z); heights from base.
+Primitive revolved_segment(int axis, const glm::dvec3& base, const glm::dvec2& p0, const glm::dvec2& p1);
+
 // The loader's derived data, shared with tests and tools.
 void finish_polygon(Primitive& p);  // plane normal and box from the vertices
 void finish_box(Primitive& p);      // box of an ellipsoid or polygon

@@ -377,6 +377,8 @@ class Loader {
       add(ellipsoid(v, path, t == "sphere"), v, path, out);
     else if (t == "quadric")
       add(quadric(v, path), v, path, out);
+    else if (t == "revolution")
+      revolution(v, path, out);
     else if (t == "bezier_patch")
       bezier_patch(v, path, out);
     else if (t == "bspline_patch")
@@ -483,6 +485,36 @@ class Loader {
     for (int i = 0; i < 3; ++i)
       if (!(p.box_min[i] < p.box_max[i])) fail(box, bpath, "min must be below max on every axis");
     return p;
+  }
+
+  // A profile of [radius, height] points revolved about an axis: one
+  // quadric frustum per segment (revolved_segment).
+  void revolution(const Value& v, const std::string& path, std::vector<Primitive>& out) {
+    expect_object(v, path, {"type", "axis", "base", "profile"});
+    const Value& av = required(v, path, "axis");
+    const std::string axis = text(av, join(path, "axis"));
+    if (axis != "x" && axis != "y" && axis != "z") fail(av, join(path, "axis"), "expected \"x\", \"y\" or \"z\"");
+    const glm::dvec3 base = vec3(required(v, path, "base"), join(path, "base"));
+    const Value& pv = required(v, path, "profile");
+    const std::string ppath = join(path, "profile");
+    if (pv.type != Type::array || pv.items.size() < 2) fail(pv, ppath, "expected at least 2 [radius, height] points");
+    std::vector<glm::dvec2> pts;
+    for (std::size_t i = 0; i < pv.items.size(); ++i) {
+      const Value& q = pv.items[i];
+      if (q.type != Type::array || q.items.size() != 2) fail(q, index(ppath, i), "expected [radius, height]");
+      pts.emplace_back(non_negative(q.items[0], index(index(ppath, i), 0)), fp24(q.items[1], index(index(ppath, i), 1)));
+      if (i == 0) continue;
+      if (!(pts[i].y > pts[i - 1].y)) fail(q, index(ppath, i), "heights must increase along the profile");
+      if (pts[i].x == 0 && pts[i - 1].x == 0) fail(q, index(ppath, i), "a segment on the axis (both radii 0)");
+    }
+    const std::size_t before = out.size();
+    for (std::size_t i = 1; i < pts.size(); ++i) {
+      Primitive p = revolved_segment(axis[0] - 'x', base, pts[i - 1], pts[i]);
+      for (double a : p.coefficients)
+        if (!in_fp24_range(a)) fail(pv.items[i], index(ppath, i), "a coefficient of its quadric, " + shortest(a) + ", outside FP24's range");
+      out.push_back(p);
+    }
+    count_ids(v, path, out, before);
   }
 
   int level(const Value& v, const std::string& path) const {
