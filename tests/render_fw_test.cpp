@@ -477,6 +477,56 @@ TEST(RenderCsg, EyeHitsAndShadowFlagsMatchTheReference) {
   EXPECT_LE(other_flags, 3);      // measured 1
 }
 
+// The section 7 primitives' cost on the APU (docs/renderer.md "Timing"):
+// 32 eye rays across a row, cast against one candidate less the same cast
+// against none, per ray; the solid rule over eye hits on the lens.
+std::uint64_t cast_cycles(Rig& rig, int row, int first_col, const std::vector<int>& list,
+                          std::vector<RenderFirmware::Ray>* out = nullptr) {
+  std::vector<RenderFirmware::Ray> rays(kRaysPerBatch);
+  for (int k = 0; k < kRaysPerBatch; ++k) {
+    rays[k].rec[R_KIND] = RK_EYE;
+    rays[k].rec[R_ARG] = static_cast<std::uint32_t>(first_col + k);
+    rays[k].rec[R_ARG2] = static_cast<std::uint32_t>(row);
+    rays[k].rec[R_ID] = kNoHit;
+  }
+  rig.fw.reset_stats();
+  rig.fw.cast(rays, {list}, Step::HiddenSurface);
+  if (out) *out = rays;
+  return rig.fw.stats().step[static_cast<int>(Step::HiddenSurface)].apu_cycles;
+}
+
+TEST(RenderCost, CyclesPerRayOfTheSection7Primitives) {
+  Rig lathe;
+  const scene::Scene sl = load_standard_scene(lathe, "lathe", 64, 48);
+  const int pawn = lathe.fw.view().objects.at(2).first_prim + 3;  // its shaft, (0.3, 0.35) - (0.2, 0.8)
+  const std::uint64_t none = cast_cycles(lathe, 25, 16, {});
+  std::vector<RenderFirmware::Ray> rays;
+  const std::uint64_t frustum = cast_cycles(lathe, 25, 16, {pawn}, &rays) - none;
+  int hits = 0;
+  for (const auto& r : rays) hits += r.rec[R_ID] == static_cast<std::uint32_t>(pawn);
+  Rig csg;
+  load_standard_scene(csg, "csg", 64, 48);
+  const auto& lens = csg.fw.view().objects.at(1);
+  const std::vector<int> both{lens.first_prim, lens.first_prim + 1};
+  const std::uint64_t sphere = cast_cycles(csg, 22, 0, {lens.first_prim}) - cast_cycles(csg, 22, 0, {});
+  std::vector<RenderFirmware::Ray> eye;
+  cast_cycles(csg, 22, 0, both, &eye);
+  csg.fw.reset_stats();
+  csg.fw.solid_rule(eye, {both}, Step::HiddenSurface);
+  const std::uint64_t rule = csg.fw.stats().step[static_cast<int>(Step::HiddenSurface)].apu_cycles;
+  int on_lens = 0;
+  for (const auto& r : eye) on_lens += r.rec[R_ID] != kNoHit;
+  std::printf("per ray: a frustum %.1f cycles (%d of 32 hit it), a sphere %.1f; the lens's solid rule %.1f "
+              "(%llu hidden hits, %d rays end on the lens)\n",
+              frustum / 32.0, hits, sphere / 32.0, rule / 32.0,
+              static_cast<unsigned long long>(csg.fw.stats().hidden_hits), on_lens);
+  EXPECT_GT(hits, 0);
+  EXPECT_GT(frustum, 32u * 20);  // a quadric's root pair and box test: tens of cycles
+  EXPECT_LT(frustum, 32u * 200);
+  EXPECT_GT(on_lens, 0);
+  EXPECT_GT(csg.fw.stats().hidden_hits, 0u);
+}
+
 // Step 2 (r_box): block lists hold only the objects whose projected box
 // meets the block, and s1's candidates only the triangles whose projection
 // does; both are conservative: every eye ray's hit (all primitives, one
