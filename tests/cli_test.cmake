@@ -109,7 +109,9 @@ elseif(PROGRAM STREQUAL "mc1-ref")
 elseif(PROGRAM STREQUAL "mc1-psnr")
   # Two PNGs made by mc1-ref (the tests run it first: FIXTURES).
   file(WRITE ${WORK_DIR}/bad.png "not a PNG\n")
-  expect(same RC 0 OUT "^PSNR inf dB" ARGS tiny8.png tiny8.png --min 40)
+  expect(same RC 0 OUT "^PSNR inf dB.*clusters 0 \\(error > 32: 0 pixels\\)" ARGS tiny8.png tiny8.png --min 40 --max-cluster 0)
+  expect(threshold_too_big RC 2 ERR "--threshold: '255' is out of range \\[0, 254\\]"
+         ARGS tiny8.png tiny8.png --threshold 255)
   expect(one_file RC 2 ERR "FILES" ARGS tiny8.png)
   expect(missing RC 2 ERR "FILES: none.png: No such file" ARGS tiny8.png none.png)
   expect(directory RC 2 ERR "FILES: ${docs}: is a directory" ARGS tiny8.png ${docs})

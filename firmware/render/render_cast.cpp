@@ -103,8 +103,29 @@ void RenderFirmware::fill_cast(const std::vector<Ray>& rays, const std::vector<s
     write(at, rec.data(), R_SLOT + 1, step);
     const std::uint32_t tail[2] = {ray.from < 0 ? kNoHit : static_cast<std::uint32_t>(ray.from), rec[R_TMIN]};
     write(static_cast<std::uint16_t>(at + R_FROM), tail, 2, step);
+    write_plane_left(ray, c == 0, at, step);
   }
   write_count(p.n, step);
+}
+
+// A ray leaving a triangle gets that triangle's plane (R_FPN, R_FP0) on its
+// first pass: r_cast moves its origin off the plane, to the side the ray
+// goes, by the bound of the origin's distance error, and writes the origin
+// back, so a later pass (R_FOFF = 0) starts from the moved origin.
+void RenderFirmware::write_plane_left(const Ray& ray, bool first_pass, std::uint16_t at, Step step) {
+  std::uint32_t w[R_FOFF - R_FPN + 1] = {};
+  bool plane = false;
+  if (first_pass && ray.from >= 0 && ray.from < static_cast<int>(view_.prims.size())) {
+    const auto& prim = view_.prims[static_cast<std::size_t>(ray.from)];
+    plane = prim[P_TYPE] == PT_TRIANGLE || prim[P_TYPE] == PT_PSEUDO;
+    if (plane) {
+      std::copy(prim.begin() + P_N, prim.begin() + P_N + 3, w + (R_FPN - R_FPN));
+      std::copy(prim.begin() + P_P0, prim.begin() + P_P0 + 3, w + (R_FP0 - R_FPN));
+      w[R_FOFF - R_FPN] = 1;
+    }
+  }
+  if (plane) write(static_cast<std::uint16_t>(at + R_FPN), w, R_FOFF - R_FPN + 1, step);
+  else write(static_cast<std::uint16_t>(at + R_FOFF), w + (R_FOFF - R_FPN), 1, step);
 }
 
 void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, Step step) {

@@ -271,6 +271,7 @@ class RenderFirmware {
   // returns their lengths.
   std::vector<int> write_lists(std::size_t keys, const std::function<std::vector<std::uint32_t>(std::size_t)>& slots_of,
                                Step step);
+  void write_plane_left(const Ray& ray, bool first_pass, std::uint16_t at, Step step);
   void fill_cast(const std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, const BatchPlan& p,
                  std::size_t c, const std::vector<int>& slots, Step step);
 

@@ -36,6 +36,19 @@ int max_abs_diff(const Image& a, const Image& b);
 // Per sample min(255, scale * |a - b|).
 Image difference(const Image& a, const Image& b, int scale);
 
+// A defect: an 8-connected cluster of pixels where some channel differs by more
+// than a threshold. PSNR averages a few wrong pixels away; a cluster of them is
+// a visible streak or blotch, not rounding noise.
+struct Cluster {
+  int pixels = 0;
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // bounding box, inclusive
+};
+struct Defects {
+  int wrong_pixels = 0;               // pixels with a channel error > threshold
+  std::vector<Cluster> clusters;      // largest first (ties: top-left first)
+};
+Defects defects(const Image& a, const Image& b, int threshold);
+
 }  // namespace mc1::imgcmp
 
 // The PNG files of an Image (read_png, write_png, ...) come with it.
