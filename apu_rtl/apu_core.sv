@@ -21,62 +21,75 @@
 // cycle (FP completions now, LD/MOVAF/LIF and A writes of the previous word)
 // and this cycle's store, CC and FLAGS changes.
 module apu_core
-  import apu_pkg::*;
 (
-    input  logic                    clk,
-    input  logic                    rst_n,
+    input  logic                              clk,
+    input  logic                              rst_n,
     // ---- MPU side: the banks the APU does not use, hand-over, start --------
-    input  logic                    mpu2apu_pmem_we,
-    input  logic [PC_W-1:0]         mpu2apu_pmem_addr,
-    input  logic [WORD_W-1:0]       mpu2apu_pmem_wdata,
-    input  logic                    mpu2apu_dmem_we,
-    input  logic [DADDR_W-1:0]      mpu2apu_dmem_addr,
-    input  logic [FP_W-1:0]         mpu2apu_dmem_wdata,
-    output logic [FP_W-1:0]         apu2mpu_dmem_rdata,
-    input  logic                    mpu2apu_hand_over_program,
-    input  logic                    mpu2apu_hand_over_data,
-    input  logic                    mpu2apu_start,
-    input  logic [PC_W-1:0]         mpu2apu_start_pc,
-    input  logic                    mpu2apu_start_new_program,  // start takes the handed-over bank
-    output logic                    apu2mpu_program_ready,
-    output logic                    apu2mpu_data_ready,
-    output logic                    apu2mpu_psel,
-    output logic                    apu2mpu_dsel,
-    output run_e                    apu2mpu_run_state,
-    output fault_e                  apu2mpu_fault,
-    output logic [CC_W-1:0]         apu2mpu_cc,
-    output logic [FLAGS_W-1:0]      apu2mpu_flags,
+    input  logic                              mpu2apu_pmem_we,
+    input  logic [apu_pkg::PC_W-1:0]          mpu2apu_pmem_addr,
+    input  logic [apu_pkg::WORD_W-1:0]        mpu2apu_pmem_wdata,
+    input  logic                              mpu2apu_dmem_we,
+    input  logic [apu_pkg::DADDR_W-1:0]       mpu2apu_dmem_addr,
+    input  logic [apu_pkg::FP_W-1:0]          mpu2apu_dmem_wdata,
+    output logic [apu_pkg::FP_W-1:0]          apu2mpu_dmem_rdata,
+    input  logic                              mpu2apu_hand_over_program,
+    input  logic                              mpu2apu_hand_over_data,
+    input  logic                              mpu2apu_start,
+    input  logic [apu_pkg::PC_W-1:0]          mpu2apu_start_pc,
+    input  logic                              mpu2apu_start_new_program,  // start takes the handed-over bank
+    output logic                              apu2mpu_program_ready,
+    output logic                              apu2mpu_data_ready,
+    output logic                              apu2mpu_psel,
+    output logic                              apu2mpu_dsel,
+    output apu_pkg::run_e                     apu2mpu_run_state,
+    output apu_pkg::fault_e                   apu2mpu_fault,
+    output logic [apu_pkg::CC_W-1:0]          apu2mpu_cc,
+    output logic [apu_pkg::FLAGS_W-1:0]       apu2mpu_flags,
     // ---- debug: what this cycle does (read before the clock edge) ----------
-    output logic [PC_W-1:0]         dbg_pc,
-    output logic                    dbg_issue,
-    output stall_e                  dbg_stall_reason,
+    output logic [apu_pkg::PC_W-1:0]          dbg_pc,
+    output logic                              dbg_issue,
+    output apu_pkg::stall_e                   dbg_stall_reason,
     // F register writes visible from this cycle on: completions (mul, add,
-    // func RECIP/SQRT, func SIN/COS) and the previous word's LD, MOVAF/LIF
-    output logic [5:0]              dbg_fc_en,
-    output logic [5:0][5:0]         dbg_fc_idx,
-    output logic [5:0][23:0]        dbg_fc_val,
+    // func RECIP/SQRT, func SIN/COS) and the previous word's LD, MOVAF/LIF;
+    // write i at [i*6 +: 6] / [i*24 +: 24] (flat: Yosys 0.23 takes no
+    // multi-dimensional port)
+    output logic [5:0]                        dbg_fc_en,
+    output logic [6*6-1:0]                    dbg_fc_idx,
+    output logic [6*24-1:0]                   dbg_fc_val,
     // A register writes of the previous word: I slot, DBNZ
-    output logic [1:0]              dbg_ac_en,
-    output logic [1:0][3:0]         dbg_ac_idx,
-    output logic [1:0][15:0]        dbg_ac_val,
+    output logic [1:0]                        dbg_ac_en,
+    output logic [2*4-1:0]                    dbg_ac_idx,
+    output logic [2*16-1:0]                   dbg_ac_val,
     // data-memory write (ST)
-    output logic                    dbg_mc_en,
-    output logic [DADDR_W-1:0]      dbg_mc_addr,
-    output logic [FP_W-1:0]         dbg_mc_val,
+    output logic                              dbg_mc_en,
+    output logic [apu_pkg::DADDR_W-1:0]       dbg_mc_addr,
+    output logic [apu_pkg::FP_W-1:0]          dbg_mc_val,
     // CC (each CMP completion) and FLAGS (when it changes): new values
-    output logic                    dbg_cc_en,
-    output logic [CC_W-1:0]         dbg_cc_val,
-    output logic                    dbg_flags_en,
-    output logic [FLAGS_W-1:0]      dbg_flags_val,
+    output logic                              dbg_cc_en,
+    output logic [apu_pkg::CC_W-1:0]          dbg_cc_val,
+    output logic                              dbg_flags_en,
+    output logic [apu_pkg::FLAGS_W-1:0]       dbg_flags_val,
     // sticky: a unit's out_valid disagreed with the interlock's mirror
-    output logic                    dbg_unit_mismatch
+    output logic                              dbg_unit_mismatch
 );
+
+  // The package's sizes under their own names (Yosys 0.23 takes no `import`).
+  localparam int FP_W = apu_pkg::FP_W;
+  localparam int INT_W = apu_pkg::INT_W;
+  localparam int FREG_AW = apu_pkg::FREG_AW;
+  localparam int AREG_AW = apu_pkg::AREG_AW;
+  localparam int PC_W = apu_pkg::PC_W;
+  localparam int DADDR_W = apu_pkg::DADDR_W;
+  localparam int WORD_W = apu_pkg::WORD_W;
+  localparam int CALL_DEPTH = apu_pkg::CALL_DEPTH;
+  localparam int FLAGS_W = apu_pkg::FLAGS_W;
+  localparam int CC_W = apu_pkg::CC_W;
 
   // =========================================================================
   // Architectural state
   // =========================================================================
-  run_e               run_state_q;
-  fault_e             fault_q;
+  apu_pkg::run_e      run_state_q;
+  apu_pkg::fault_e    fault_q;
   logic [PC_W-1:0]    pc_q;
   logic               psel_q, dsel_q;
   logic               program_ready_q, data_ready_q;
@@ -99,8 +112,8 @@ module apu_core
   logic          psel;            // program bank of this cycle
   logic [PC_W-1:0] pc;            // address of the word of this cycle
 
-  assign start_req     = mpu2apu_start && (run_state_q != RUN_RUNNING);
-  assign running       = (run_state_q == RUN_RUNNING) || start_req;
+  assign start_req     = mpu2apu_start && (run_state_q != apu_pkg::RUN_RUNNING);
+  assign running       = (run_state_q == apu_pkg::RUN_RUNNING) || start_req;
   assign start_swaps   = start_req && mpu2apu_start_new_program;
   assign program_ready = (program_ready_q && !start_swaps) || mpu2apu_hand_over_program;
   assign data_ready    = data_ready_q || mpu2apu_hand_over_data;
@@ -110,8 +123,8 @@ module apu_core
   // =========================================================================
   // Fetch and decode
   // =========================================================================
-  logic [WORD_W-1:0] fetch_word;
-  microword_t        w;
+  logic [WORD_W-1:0]   fetch_word;
+  apu_pkg::microword_t w;
 
   // The sequencer only fetches; the MPU only writes program words.
   apu_banks #(.DATA_W(WORD_W), .ADDR_W(PC_W)) u_pmem (
@@ -129,19 +142,19 @@ module apu_core
       .mpu_wdata(mpu2apu_pmem_wdata)
   );
 
-  assign w = microword_t'(fetch_word);
+  assign w = fetch_word;  // same width; Yosys 0.23 takes no cast to a package's type
 
   // A reserved slot takes part in no hazard (Clarification 6); FLOAT, FIX,
   // NEG and ABS read `a` only (Clarification 4).
   logic add_ok, add_is_cmp, add_reads_b, is_ld, is_st, i_writes_f, i_writes_a, is_bcc;
-  assign add_ok      = w.a_en && (w.a_op != A_RSVD);
-  assign add_is_cmp  = (w.a_op == A_CMP);
-  assign add_reads_b = (w.a_op == A_ADD) || (w.a_op == A_SUB) || (w.a_op == A_CMP);
-  assign is_ld      = (w.d_op == D_LD);
-  assign is_st      = (w.d_op == D_ST);
-  assign i_writes_f = (w.i_op == I_MOVAF) || (w.i_op == I_LIF);
-  assign i_writes_a = ((w.i_op >= I_LI) && (w.i_op <= I_XOR)) || (w.i_op == I_MOVFA);
-  assign is_bcc     = (w.s_op == S_BCC) || (w.s_op == S_BNCC);
+  assign add_ok      = w.a_en && (w.a_op != apu_pkg::A_RSVD);
+  assign add_is_cmp  = (w.a_op == apu_pkg::A_CMP);
+  assign add_reads_b = (w.a_op == apu_pkg::A_ADD) || (w.a_op == apu_pkg::A_SUB) || (w.a_op == apu_pkg::A_CMP);
+  assign is_ld      = (w.d_op == apu_pkg::D_LD);
+  assign is_st      = (w.d_op == apu_pkg::D_ST);
+  assign i_writes_f = (w.i_op == apu_pkg::I_MOVAF) || (w.i_op == apu_pkg::I_LIF);
+  assign i_writes_a = ((w.i_op >= apu_pkg::I_LI) && (w.i_op <= apu_pkg::I_XOR)) || (w.i_op == apu_pkg::I_MOVFA);
+  assign is_bcc     = (w.s_op == apu_pkg::S_BCC) || (w.s_op == apu_pkg::S_BNCC);
 
   // F operands of the word, one register-file read port each.
   localparam int RD_MA = 0, RD_MB = 1, RD_AA = 2, RD_AB = 3, RD_FA = 4, RD_ST = 5,
@@ -150,9 +163,9 @@ module apu_core
   localparam int DS_M = 0, DS_A = 1, DS_F = 2, DS_LD = 3, DS_I = 4, N_DS = 5;
 
   logic [FREG_AW-1:0] src_addr [N_RD];
-  logic               src_en   [N_RD];
+  logic [N_RD-1:0]    src_en;
   logic [FREG_AW-1:0] dst_addr [N_DS];
-  logic               dst_en   [N_DS];
+  logic [N_DS-1:0]    dst_en;
   logic [FP_W-1:0]    fop      [N_RD];
 
   always_comb begin
@@ -162,12 +175,21 @@ module apu_core
     src_addr[RD_AB]    = w.a_b;          src_en[RD_AB]    = add_ok && add_reads_b;
     src_addr[RD_FA]    = w.f_a;          src_en[RD_FA]    = w.f_en;
     src_addr[RD_ST]    = w.d_f;          src_en[RD_ST]    = is_st;
-    src_addr[RD_MOVFA] = w.i_imm[5:0];   src_en[RD_MOVFA] = (w.i_op == I_MOVFA);
+    src_addr[RD_MOVFA] = w.i_imm[5:0];   src_en[RD_MOVFA] = (w.i_op == apu_pkg::I_MOVFA);
     dst_addr[DS_M]     = w.m_d;          dst_en[DS_M]     = w.m_en;
     dst_addr[DS_A]     = w.a_d;          dst_en[DS_A]     = add_ok && !add_is_cmp;
     dst_addr[DS_F]     = w.f_d;          dst_en[DS_F]     = w.f_en;
     dst_addr[DS_LD]    = w.d_f;          dst_en[DS_LD]    = is_ld;
     dst_addr[DS_I]     = w.i_d;          dst_en[DS_I]     = i_writes_f;
+  end
+
+  // The same as flat vectors, entry i at [i*FREG_AW +: FREG_AW] (the port
+  // convention of apu_regfile and apu_interlock).
+  logic [N_RD*FREG_AW-1:0] f_rd_addr_v;
+  logic [N_DS*FREG_AW-1:0] dst_addr_v;
+  always_comb begin
+    for (int i = 0; i < N_RD; i++) f_rd_addr_v[i*FREG_AW +: FREG_AW] = src_addr[i];
+    for (int i = 0; i < N_DS; i++) dst_addr_v[i*FREG_AW +: FREG_AW] = dst_addr[i];
   end
 
   // A operands: I s, I t, D base, S r.
@@ -193,7 +215,7 @@ module apu_core
   assign mul_issue = issue && w.m_en;
   assign add_issue = issue && w.a_en;
   assign fu_issue  = issue && w.f_en;
-  assign fu_trig   = (w.f_op == F_SIN) || (w.f_op == F_COS);
+  assign fu_trig   = (w.f_op == apu_pkg::F_SIN) || (w.f_op == apu_pkg::F_COS);
 
   fp24_mul u_mul (
       .clk       (clk),
@@ -248,9 +270,9 @@ module apu_core
       .fu_issue        (fu_issue),
       .fu_d            (w.f_d),
       .fu_trig         (fu_trig),
-      .src_addr        (src_addr),
+      .src_addr        (f_rd_addr_v),
       .src_en          (src_en),
-      .dst_addr        (dst_addr),
+      .dst_addr        (dst_addr_v),
       .dst_en          (dst_en),
       .raw_hazard      (raw_hazard),
       .waw_hazard      (waw_hazard),
@@ -270,60 +292,60 @@ module apu_core
   // =========================================================================
   // Stall: the first reason of docs/apu-isa.md's list that holds
   // =========================================================================
-  logic   stall_bank, stall_raw, stall_waw, stall_cc, stall_drain;
-  logic   stall;
-  stall_e stall_reason;
+  logic            stall_bank, stall_raw, stall_waw, stall_cc, stall_drain;
+  logic            stall;
+  apu_pkg::stall_e stall_reason;
 
 
-  assign stall_bank   = ((w.s_op == S_SWAPD) && !data_ready)
-                     || ((w.s_op == S_SWAPP) && !program_ready);
+  assign stall_bank   = ((w.s_op == apu_pkg::S_SWAPD) && !data_ready)
+                     || ((w.s_op == apu_pkg::S_SWAPP) && !program_ready);
   assign stall_raw    = raw_hazard;
   assign stall_waw    = waw_hazard;
   assign stall_cc     = is_bcc && cmp_in_flight;
-  assign stall_drain  = (w.s_op == S_HALT) && pipes_busy;
+  assign stall_drain  = (w.s_op == apu_pkg::S_HALT) && pipes_busy;
 
   always_comb begin
-    if (!running)             stall_reason = STALL_NONE;
-    else if (stall_bank)      stall_reason = STALL_BANK;
-    else if (stall_raw)       stall_reason = STALL_RAW;
-    else if (stall_waw)       stall_reason = STALL_WAW;
-    else if (stall_cc)        stall_reason = STALL_CC;
-    else if (stall_drain)     stall_reason = STALL_DRAIN;
-    else                      stall_reason = STALL_NONE;
+    if (!running)             stall_reason = apu_pkg::STALL_NONE;
+    else if (stall_bank)      stall_reason = apu_pkg::STALL_BANK;
+    else if (stall_raw)       stall_reason = apu_pkg::STALL_RAW;
+    else if (stall_waw)       stall_reason = apu_pkg::STALL_WAW;
+    else if (stall_cc)        stall_reason = apu_pkg::STALL_CC;
+    else if (stall_drain)     stall_reason = apu_pkg::STALL_DRAIN;
+    else                      stall_reason = apu_pkg::STALL_NONE;
   end
-  assign stall = (stall_reason != STALL_NONE);
+  assign stall = (stall_reason != apu_pkg::STALL_NONE);
 
   // =========================================================================
   // Faults: checked when the word would issue (a stalled word faults only once
   // its stall is over); the faulting word has no effect (Clarification 6)
   // =========================================================================
-  logic          reserved_op, addr_fault, pc_overflow, call_overflow, call_underflow;
-  logic [PC_W:0] pc_next;         // one bit more: continuing at 1024 is a fault
-  logic [15:0]   mem_addr;
-  logic          cs_empty, cs_full;
-  fault_e        fault_code;
+  logic            reserved_op, addr_fault, pc_overflow, call_overflow, call_underflow;
+  logic [PC_W:0]   pc_next;         // one bit more: continuing at 1024 is a fault
+  logic [15:0]     mem_addr;
+  logic            cs_empty, cs_full;
+  apu_pkg::fault_e fault_code;
 
-  assign reserved_op = (w.a_en && (w.a_op == A_RSVD)) || (w.d_op == D_RSVD)
-                    || (w.i_op == I_RSVD) || (w.s_op > S_HALT);
+  assign reserved_op = (w.a_en && (w.a_op == apu_pkg::A_RSVD)) || (w.d_op == apu_pkg::D_RSVD)
+                    || (w.i_op == apu_pkg::I_RSVD) || (w.s_op > apu_pkg::S_HALT);
   assign mem_addr    = aop[AR_BASE] + {{8{w.d_disp[7]}}, w.d_disp};
   assign addr_fault  = (is_ld || is_st) && (mem_addr[15:DADDR_W] != '0);
   // The word at 1023 may not continue at 1024, nor CALL from there (its
   // return address would be 1024).
-  assign pc_overflow    = pc_next[PC_W] || ((w.s_op == S_CALL) && (pc == '1));
-  assign call_overflow  = (w.s_op == S_CALL) && cs_full;
-  assign call_underflow = (w.s_op == S_RET) && cs_empty;
+  assign pc_overflow    = pc_next[PC_W] || ((w.s_op == apu_pkg::S_CALL) && (pc == '1));
+  assign call_overflow  = (w.s_op == apu_pkg::S_CALL) && cs_full;
+  assign call_underflow = (w.s_op == apu_pkg::S_RET) && cs_empty;
 
   always_comb begin
-    if (!running || stall)   fault_code = FAULT_NONE;
-    else if (reserved_op)    fault_code = FAULT_RESERVED_OP;
-    else if (addr_fault)     fault_code = FAULT_DATA_ADDRESS;
-    else if (pc_overflow)    fault_code = FAULT_PC_OVERFLOW;
-    else if (call_overflow)  fault_code = FAULT_CALL_OVERFLOW;
-    else if (call_underflow) fault_code = FAULT_CALL_UNDERFLOW;
-    else                     fault_code = FAULT_NONE;
+    if (!running || stall)   fault_code = apu_pkg::FAULT_NONE;
+    else if (reserved_op)    fault_code = apu_pkg::FAULT_RESERVED_OP;
+    else if (addr_fault)     fault_code = apu_pkg::FAULT_DATA_ADDRESS;
+    else if (pc_overflow)    fault_code = apu_pkg::FAULT_PC_OVERFLOW;
+    else if (call_overflow)  fault_code = apu_pkg::FAULT_CALL_OVERFLOW;
+    else if (call_underflow) fault_code = apu_pkg::FAULT_CALL_UNDERFLOW;
+    else                     fault_code = apu_pkg::FAULT_NONE;
   end
 
-  assign issue = running && !stall && (fault_code == FAULT_NONE);
+  assign issue = running && !stall && (fault_code == apu_pkg::FAULT_NONE);
 
   // =========================================================================
   // Register files and data memory
@@ -346,21 +368,17 @@ module apu_core
     wb_en[3] = fu_trig_wb_valid;             wb_addr[3] = fu_trig_wb_d;  wb_data[3] = fu_trig_result;
     wi_en[0] = issue && is_ld;               wi_addr[0] = w.d_f;         wi_data[0] = dmem_rdata;
     wi_en[1] = issue && i_writes_f;          wi_addr[1] = w.i_d;
-    wi_data[1] = (w.i_op == I_MOVAF) ? {8'h00, aop[AR_S]} : {w.i_imm, 8'h00};
+    wi_data[1] = (w.i_op == apu_pkg::I_MOVAF) ? {8'h00, aop[AR_S]} : {w.i_imm, 8'h00};
   end
 
   // *_v: a register file's ports as flat vectors, port i at [i*W +: W]
   // (apu_regfile). F write ports: the completions first (write-first), then
   // the issue writes.
-  logic [N_RD*FREG_AW-1:0]     f_rd_addr_v;
   logic [N_RD*FP_W-1:0]        f_rd_data_v;
   logic [N_WB+1:0]             f_wr_en_v;
   logic [(N_WB+2)*FREG_AW-1:0] f_wr_addr_v;
   logic [(N_WB+2)*FP_W-1:0]    f_wr_data_v;
 
-  always_comb begin
-    for (int i = 0; i < N_RD; i++) f_rd_addr_v[i*FREG_AW +: FREG_AW] = src_addr[i];
-  end
   always_comb begin
     for (int i = 0; i < N_RD; i++) fop[i] = f_rd_data_v[i*FP_W +: FP_W];
   end
@@ -405,18 +423,18 @@ module apu_core
   logic [INT_W-1:0] alu_result;
   always_comb begin
     unique case (w.i_op)
-      I_LI:    alu_result = w.i_imm;
-      I_ADDI:  alu_result = aop[AR_S] + w.i_imm;
-      I_ADD:   alu_result = aop[AR_S] + aop[AR_T];
-      I_SUB:   alu_result = aop[AR_S] - aop[AR_T];
-      I_MULI:  alu_result = aop[AR_S] * w.i_imm;
-      I_SHL:   alu_result = aop[AR_S] << w.i_imm[3:0];
-      I_SHR:   alu_result = aop[AR_S] >> w.i_imm[3:0];
-      I_SRA:   alu_result = $signed(aop[AR_S]) >>> w.i_imm[3:0];
-      I_ANDI:  alu_result = aop[AR_S] & w.i_imm;
-      I_ORI:   alu_result = aop[AR_S] | w.i_imm;
-      I_XOR:   alu_result = aop[AR_S] ^ aop[AR_T];
-      I_MOVFA: alu_result = fop[RD_MOVFA][INT_W-1:0];
+      apu_pkg::I_LI:    alu_result = w.i_imm;
+      apu_pkg::I_ADDI:  alu_result = aop[AR_S] + w.i_imm;
+      apu_pkg::I_ADD:   alu_result = aop[AR_S] + aop[AR_T];
+      apu_pkg::I_SUB:   alu_result = aop[AR_S] - aop[AR_T];
+      apu_pkg::I_MULI:  alu_result = aop[AR_S] * w.i_imm;
+      apu_pkg::I_SHL:   alu_result = aop[AR_S] << w.i_imm[3:0];
+      apu_pkg::I_SHR:   alu_result = aop[AR_S] >> w.i_imm[3:0];
+      apu_pkg::I_SRA:   alu_result = $signed(aop[AR_S]) >>> w.i_imm[3:0];
+      apu_pkg::I_ANDI:  alu_result = aop[AR_S] & w.i_imm;
+      apu_pkg::I_ORI:   alu_result = aop[AR_S] | w.i_imm;
+      apu_pkg::I_XOR:   alu_result = aop[AR_S] ^ aop[AR_T];
+      apu_pkg::I_MOVFA: alu_result = fop[RD_MOVFA][INT_W-1:0];
       default: alu_result = '0;
     endcase
   end
@@ -429,7 +447,7 @@ module apu_core
   logic [INT_W-1:0]   awr_data [2];
   always_comb begin
     awr_en[0] = issue && i_writes_a;         awr_addr[0] = w.i_d[AREG_AW-1:0]; awr_data[0] = alu_result;
-    awr_en[1] = issue && (w.s_op == S_DBNZ); awr_addr[1] = w.s_r;              awr_data[1] = dbnz_value;
+    awr_en[1] = issue && (w.s_op == apu_pkg::S_DBNZ); awr_addr[1] = w.s_r;              awr_data[1] = dbnz_value;
   end
 
   // A write ports: the I slot, DBNZ (issue writes, no bypass).
@@ -483,18 +501,18 @@ module apu_core
 
   always_comb begin
     unique case (w.s_op)
-      S_JMP, S_CALL, S_SWAPP: taken = 1'b1;
-      S_BCC:   taken = (cc_now & w.s_r) != '0;
-      S_BNCC:  taken = (cc_now & w.s_r) == '0;
-      S_DBNZ:  taken = dbnz_value != '0;
-      S_BZ:    taken = aop[AR_R] == '0;
-      S_BNZ:   taken = aop[AR_R] != '0;
-      S_BLTZ:  taken = aop[AR_R][INT_W-1];
+      apu_pkg::S_JMP, apu_pkg::S_CALL, apu_pkg::S_SWAPP: taken = 1'b1;
+      apu_pkg::S_BCC:   taken = (cc_now & w.s_r) != '0;
+      apu_pkg::S_BNCC:  taken = (cc_now & w.s_r) == '0;
+      apu_pkg::S_DBNZ:  taken = dbnz_value != '0;
+      apu_pkg::S_BZ:    taken = aop[AR_R] == '0;
+      apu_pkg::S_BNZ:   taken = aop[AR_R] != '0;
+      apu_pkg::S_BLTZ:  taken = aop[AR_R][INT_W-1];
       default: taken = 1'b0;
     endcase
-    if (w.s_op == S_RET && !cs_empty) pc_next = {1'b0, cs_top};
+    if (w.s_op == apu_pkg::S_RET && !cs_empty) pc_next = {1'b0, cs_top};
     else if (taken)                   pc_next = {1'b0, w.s_target};
-    else if (w.s_op == S_HALT)        pc_next = {1'b0, pc};
+    else if (w.s_op == apu_pkg::S_HALT)        pc_next = {1'b0, pc};
     else                              pc_next = {1'b0, pc} + 1'b1;
   end
 
@@ -502,18 +520,18 @@ module apu_core
       .clk      (clk),
       .rst_n    (rst_n),
       .clear    (start_req),
-      .push     (issue && (w.s_op == S_CALL)),
+      .push     (issue && (w.s_op == apu_pkg::S_CALL)),
       .push_addr(pc + 1'b1),  // 1023 cannot CALL (pc_overflow)
-      .pop      (issue && (w.s_op == S_RET)),
+      .pop      (issue && (w.s_op == apu_pkg::S_RET)),
       .top      (cs_top),
       .empty    (cs_empty),
       .full     (cs_full)
   );
 
   logic fault_now, swapd, swapp;
-  assign fault_now = (fault_code != FAULT_NONE);
-  assign swapd     = issue && (w.s_op == S_SWAPD);
-  assign swapp     = issue && (w.s_op == S_SWAPP);
+  assign fault_now = (fault_code != apu_pkg::FAULT_NONE);
+  assign swapd     = issue && (w.s_op == apu_pkg::S_SWAPD);
+  assign swapp     = issue && (w.s_op == apu_pkg::S_SWAPP);
 
   // FLAGS: sticky OR of the flags of every op completing this cycle.
   logic [FLAGS_W-1:0] flags_next;
@@ -530,8 +548,8 @@ module apu_core
 
   always_ff @(posedge clk) begin
     if (!rst_n) begin
-      run_state_q     <= RUN_IDLE;
-      fault_q         <= FAULT_NONE;
+      run_state_q     <= apu_pkg::RUN_IDLE;
+      fault_q         <= apu_pkg::FAULT_NONE;
       pc_q            <= '0;
       psel_q          <= 1'b0;
       dsel_q          <= 1'b0;
@@ -543,12 +561,12 @@ module apu_core
     end else begin
       if (running) begin
         if (fault_now) begin
-          run_state_q <= RUN_FAULTED;
+          run_state_q <= apu_pkg::RUN_FAULTED;
           fault_q     <= fault_code;
           pc_q        <= pc;
         end else begin
-          run_state_q <= (issue && (w.s_op == S_HALT)) ? RUN_HALTED : RUN_RUNNING;
-          if (start_req) fault_q <= FAULT_NONE;
+          run_state_q <= (issue && (w.s_op == apu_pkg::S_HALT)) ? apu_pkg::RUN_HALTED : apu_pkg::RUN_RUNNING;
+          if (start_req) fault_q <= apu_pkg::FAULT_NONE;
           pc_q <= issue ? pc_next[PC_W-1:0] : pc;
         end
       end
@@ -570,8 +588,8 @@ module apu_core
   assign apu2mpu_psel          = psel;
   assign apu2mpu_dsel          = dsel_q;
   // A start presented now already counts: the APU runs from this cycle on.
-  assign apu2mpu_run_state     = start_req ? RUN_RUNNING : run_state_q;
-  assign apu2mpu_fault         = start_req ? FAULT_NONE : fault_q;
+  assign apu2mpu_run_state     = start_req ? apu_pkg::RUN_RUNNING : run_state_q;
+  assign apu2mpu_fault         = start_req ? apu_pkg::FAULT_NONE : fault_q;
   // CC and FLAGS as the word of this cycle sees them (a completing CMP's
   // condition, this cycle's flags included): the state "between two steps".
   assign apu2mpu_cc            = cc_now;
@@ -612,16 +630,16 @@ module apu_core
   always_comb begin
     for (int i = 0; i < N_WB; i++) begin
       dbg_fc_en[i]  = wb_en[i];
-      dbg_fc_idx[i] = wb_addr[i];
-      dbg_fc_val[i] = wb_data[i];
+      dbg_fc_idx[i*FREG_AW +: FREG_AW] = wb_addr[i];
+      dbg_fc_val[i*FP_W +: FP_W]       = wb_data[i];
     end
     for (int i = 0; i < 2; i++) begin
       dbg_fc_en[N_WB + i]  = rt_fi_en[i];
-      dbg_fc_idx[N_WB + i] = rt_fi_idx[i];
-      dbg_fc_val[N_WB + i] = rt_fi_val[i];
-      dbg_ac_en[i]  = rt_a_en[i];
-      dbg_ac_idx[i] = rt_a_idx[i];
-      dbg_ac_val[i] = rt_a_val[i];
+      dbg_fc_idx[(N_WB + i)*FREG_AW +: FREG_AW] = rt_fi_idx[i];
+      dbg_fc_val[(N_WB + i)*FP_W +: FP_W]       = rt_fi_val[i];
+      dbg_ac_en[i]                        = rt_a_en[i];
+      dbg_ac_idx[i*AREG_AW +: AREG_AW]    = rt_a_idx[i];
+      dbg_ac_val[i*INT_W +: INT_W]        = rt_a_val[i];
     end
   end
 

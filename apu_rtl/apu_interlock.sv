@@ -23,11 +23,12 @@ module apu_interlock #(
     input  logic              fu_issue,
     input  logic [ADDR_W-1:0] fu_d,
     input  logic              fu_trig,
-    // the word at PC: its F sources and destinations
-    input  logic [ADDR_W-1:0] src_addr [N_SRC],
-    input  logic              src_en   [N_SRC],
-    input  logic [ADDR_W-1:0] dst_addr [N_DST],
-    input  logic              dst_en   [N_DST],
+    // the word at PC: its F sources and destinations, flat vectors with
+    // entry i at [i*ADDR_W +: ADDR_W] / [i] (apu_regfile's port convention)
+    input  logic [N_SRC*ADDR_W-1:0] src_addr,
+    input  logic [N_SRC-1:0]        src_en,
+    input  logic [N_DST*ADDR_W-1:0] dst_addr,
+    input  logic [N_DST-1:0]        dst_en,
     output logic              raw_hazard,
     output logic              waw_hazard,
     output logic              cmp_in_flight,
@@ -100,9 +101,9 @@ module apu_interlock #(
 
   always_comb begin
     raw_hazard = 1'b0;
-    for (int i = 0; i < N_SRC; i++) raw_hazard |= src_en[i] && in_flight(src_addr[i]);
+    for (int i = 0; i < N_SRC; i++) raw_hazard |= src_en[i] && in_flight(src_addr[i*ADDR_W +: ADDR_W]);
     waw_hazard = 1'b0;
-    for (int i = 0; i < N_DST; i++) waw_hazard |= dst_en[i] && in_flight(dst_addr[i]);
+    for (int i = 0; i < N_DST; i++) waw_hazard |= dst_en[i] && in_flight(dst_addr[i*ADDR_W +: ADDR_W]);
   end
 
   assign cmp_in_flight = add_s1_valid && add_s1_cmp;

@@ -38,7 +38,6 @@ module fp24_func #(
     output logic [EXP_W+FRAC_W:0] out_trig_result,
     output logic [4:0]            out_trig_flags
 );
-  import fp24_func_pkg::*;
 
   localparam int W      = EXP_W + FRAC_W + 1;
   localparam int SIG_W  = FRAC_W + 1;
@@ -90,23 +89,23 @@ module fp24_func #(
   logic [4:0]   spec_flags;
 
   always_comb begin
-    spec        = x_zero || x_inf || x_nan || (s1_op == OP_SQRT && x_sign);
+    spec        = x_zero || x_inf || x_nan || (s1_op == fp24_func_pkg::OP_SQRT && x_sign);
     spec_flags  = F_NONE;
     spec_result = NAN;
     if (!x_nan) begin
       unique case (s1_op)
-        OP_RECIP: begin  // 1/+-0 = +-inf DZ, 1/+-inf = +-0
+        fp24_func_pkg::OP_RECIP: begin  // 1/+-0 = +-inf DZ, 1/+-inf = +-0
           spec_result = x_zero ? {x_sign, EXP_ONES, {FRAC_W{1'b0}}} : {x_sign, {(W - 1) {1'b0}}};
           spec_flags  = x_zero ? F_DZ : F_NONE;
         end
-        OP_SQRT: begin   // sqrt(+-0) = +-0, sqrt(+inf) = +inf, sqrt(< 0) invalid
+        fp24_func_pkg::OP_SQRT: begin   // sqrt(+-0) = +-0, sqrt(+inf) = +inf, sqrt(< 0) invalid
           if (x_zero) spec_result = {x_sign, {(W - 1) {1'b0}}};
           else if (!x_sign) spec_result = {1'b0, EXP_ONES, {FRAC_W{1'b0}}};
           else spec_flags = F_NV;
         end
         default: begin   // sin +-0 = +-0, cos 0 = 1, +-inf invalid
           if (x_inf) spec_flags = F_NV;
-          else spec_result = (s1_op == OP_SIN) ? {x_sign, {(W - 1) {1'b0}}} : ONE;
+          else spec_result = (s1_op == fp24_func_pkg::OP_SIN) ? {x_sign, {(W - 1) {1'b0}}} : ONE;
         end
       endcase
     end
@@ -121,9 +120,9 @@ module fp24_func #(
   logic           recip_sticky, sqrt_sticky;
 
   fp24_func_recip #(.SIG_W(SIG_W)) u_recip (
-      .en(s1_valid && s1_op == OP_RECIP), .m(x_sig), .q(recip_q), .sticky(recip_sticky));
+      .en(s1_valid && s1_op == fp24_func_pkg::OP_RECIP), .m(x_sig), .q(recip_q), .sticky(recip_sticky));
   fp24_func_sqrt #(.SIG_W(SIG_W)) u_sqrt (
-      .en(s1_valid && s1_op == OP_SQRT), .m(x_sig), .odd(x_eunb[0]), .root(sqrt_root), .sticky(sqrt_sticky));
+      .en(s1_valid && s1_op == fp24_func_pkg::OP_SQRT), .m(x_sig), .odd(x_eunb[0]), .root(sqrt_root), .sticky(sqrt_sticky));
 
   logic              rnd_guard, rnd_sticky;
   logic [SEXP_W-1:0] rnd_exp;
@@ -132,7 +131,7 @@ module fp24_func #(
   logic [4:0]        rnd_flags;
 
   always_comb begin
-    if (s1_op == OP_RECIP) begin
+    if (s1_op == fp24_func_pkg::OP_RECIP) begin
       rnd_frac   = (x_frac == '0) ? '0 : recip_q[FRAC_W:1];
       rnd_guard  = (x_frac != '0) && recip_q[0];
       rnd_sticky = (x_frac != '0) && recip_sticky;
@@ -177,11 +176,11 @@ module fp24_func #(
   logic [W:0] hard;  // {hit, result}
 
   always_comb begin
-    is_cos  = s1_op == OP_COS;
+    is_cos  = s1_op == fp24_func_pkg::OP_COS;
     quarter = red_quadrant + {1'b0, is_cos};
     use_cos = quarter[0];
     y_sign  = quarter[1] ^ (!use_cos && red_zneg) ^ (!is_cos && x_sign);
-    hard    = s1_trig ? rom_hard_case({is_cos, s1_a}) : '0;
+    hard    = s1_trig ? fp24_func_pkg::rom_hard_case({is_cos, s1_a}) : '0;
   end
 
   // ---- stage 2 registers ----------------------------------------------------

@@ -16,7 +16,6 @@ module fp24_func_argnorm #(
     output logic [SEXP_W-1:0] z_exp,
     output logic [63:0]       u
 );
-  import fp24_func_pkg::*;
 
   logic [63:0]       hi, lo, r_sig, zr, sq;
   logic [6:0]        lz;
@@ -51,13 +50,13 @@ module fp24_func_argnorm #(
         if (hi[63] == 1'b0) begin hi = {hi[62:0], lo[63]}; lz = lz + 7'd1; end
         r_sig = hi;
         // |r| = r_sig * 2^((1 - lz) - 63); times pi/2 it lands in [2^62, 2^64).
-        zr    = mulhi64(r_sig, ROM_HALF_PI);
+        zr    = fp24_func_pkg::mulhi64(r_sig, fp24_func_pkg::ROM_HALF_PI);
         z_sig = zr[63] ? zr : {zr[62:0], 1'b0};
         z_exp = SEXP_W'(1) - SEXP_W'(lz) + SEXP_W'(zr[63]);
       end
       // z < 1, so z_exp <= -1 and the shift is >= 0.
       shift = -SEXP_W'(2) - (z_exp <<< 1);
-      sq    = mulhi64(z_sig, z_sig);
+      sq    = fp24_func_pkg::mulhi64(z_sig, z_sig);
       u     = (shift >= SEXP_W'(64)) ? 64'd0 : sq >> shift[5:0];
     end
   end

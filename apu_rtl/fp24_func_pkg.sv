@@ -19,7 +19,7 @@ package fp24_func_pkg;
     hl    = {32'd0, a[63:32]} * {32'd0, b[31:0]};
     hh    = {32'd0, a[63:32]} * {32'd0, b[63:32]};
     carry = 2'(({32'd0, ll_hi} + {32'd0, lh[31:0]} + {32'd0, hl[31:0]}) >> 32);
-    return hh + {32'd0, lh[63:32]} + {32'd0, hl[63:32]} + {62'd0, carry};
+    mulhi64 = hh + {32'd0, lh[63:32]} + {32'd0, hl[63:32]} + {62'd0, carry};
   endfunction
 
   // The generated ROMs (apu_rtl/rom/fp24_romgen.cpp writes build/generated/

@@ -15,7 +15,6 @@ module fp24_func_reduce #(
     output logic             z_neg,     // x * 2/pi was rounded up
     output logic [125:0]     rmag
 );
-  import fp24_func_pkg::*;
 
   localparam int WIN_W = 128;
   // Window index = E + 1 = biased exponent - (bias - 1).
@@ -34,7 +33,7 @@ module fp24_func_reduce #(
     quadrant = '0;
     rmag     = '0;
     if (en) begin
-      window = rom_two_over_pi(exp - WIN_BASE);
+      window = fp24_func_pkg::rom_two_over_pi(exp - WIN_BASE);
       // m * window mod 2^128, one 32-bit column at a time.
       for (int i = 0; i < WIN_W / 32; i++) begin
         acc = {32'd0, acc[63:32]} + {{(32 - FRAC_W - 1) {1'b0}}, m} * {32'd0, window[32*i+:32]};

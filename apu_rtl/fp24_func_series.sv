@@ -14,7 +14,6 @@ module fp24_func_series #(
     output logic [63:0]       sig,
     output logic [SEXP_W-1:0] exp
 );
-  import fp24_func_pkg::*;
 
   logic [63:0] h, t, s;
 
@@ -25,10 +24,10 @@ module fp24_func_series #(
     sig = '0;
     exp = '0;
     if (en) begin
-    h = rom_coef(use_cos, 3'(TERMS - 1));
-    for (int k = TERMS - 2; k >= 0; k--) h = rom_coef(use_cos, 3'(k)) - mulhi64(u, h);
-    t = mulhi64(u, h);
-    s = z_sig - mulhi64(z_sig, t);
+    h = fp24_func_pkg::rom_coef(use_cos, 3'(TERMS - 1));
+    for (int k = TERMS - 2; k >= 0; k--) h = fp24_func_pkg::rom_coef(use_cos, 3'(k)) - fp24_func_pkg::mulhi64(u, h);
+    t = fp24_func_pkg::mulhi64(u, h);
+    s = z_sig - fp24_func_pkg::mulhi64(z_sig, t);
     if (use_cos) begin
       // cos(z) = 1 - t in [0.70, 1]; t = 0 only for z < 2^-32: exactly 1.
       sig = (t == '0) ? {1'b1, 63'd0} : 64'd0 - t;

@@ -190,18 +190,20 @@ std::string cpp_rom(const Roms& r) {
 std::string sv_rom(const Roms& r) {
   std::ostringstream o;
   o << "// " << kBanner << "// Included inside module fp24_func.\n\n";
-  // A constant array rather than a case: Verilator indexes it, where a case
-  // becomes a decision tree that makes the SIN/COS simulation ~12% slower.
-  o << "// 128-bit windows of 2/pi; index = unbiased exponent - (" << trig::kReduceMinExp
-    << "), 0 past the last.\n"
-    << "localparam logic [127:0] ROM_TWO_OVER_PI [128] = '{\n";
-  for (int i = 0; i < 128; ++i) {
+  // One constant vector indexed by a part-select rather than a case:
+  // Verilator reads it as a constant, where a case becomes a decision tree
+  // that makes the SIN/COS simulation ~12% slower. Not an unpacked array:
+  // Yosys 0.23 takes no unpacked-array localparam (docs/fp24-rtl.md).
+  o << "// 128-bit windows of 2/pi, entry idx at [128*idx +: 128]; idx = unbiased\n"
+    << "// exponent - (" << trig::kReduceMinExp << "), 0 past the last.\n"
+    << "localparam logic [128*128-1:0] ROM_TWO_OVER_PI = {\n";
+  for (int i = 127; i >= 0; --i) {
     const Word128 w = i < trig::kWindowCount ? r.windows[i] : Word128{};
-    o << "    128'h" << hex(w.hi, 16) << "_" << hex(w.lo, 16) << (i < 127 ? ",\n" : "\n");
+    o << "    128'h" << hex(w.hi, 16) << "_" << hex(w.lo, 16) << (i > 0 ? ",\n" : "\n");
   }
   o << "};\n\n"
     << "function automatic logic [127:0] rom_two_over_pi(input logic [6:0] idx);\n"
-    << "  return ROM_TWO_OVER_PI[idx];\nendfunction\n\n";
+    << "  rom_two_over_pi = ROM_TWO_OVER_PI[128*idx+:128];\nendfunction\n\n";
   o << "localparam logic [63:0] ROM_HALF_PI = 64'h" << hex(r.half_pi, 16) << ";\n\n";
   o << "// Series coefficients 1/(2k+1)! (sin) and 1/(2k)! (cos), k = idx + 1, in 0.64.\n"
     << "function automatic logic [63:0] rom_coef(input logic use_cos, input logic [2:0] idx);\n"
