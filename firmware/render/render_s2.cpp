@@ -163,9 +163,12 @@ void RenderFirmware::combined_shadows(std::vector<Ray>& probes, const std::vecto
   for (std::size_t k = 0; k < probes.size(); ++k) {
     const Ray& p = probes[k];
     if (is_hit(p) || csg_lists[p.list].empty()) continue;
-    Ray r = p;  // r_cast wrote back D and the limit |L - O| - eps (R_T)
+    Ray r = p;  // r_cast wrote back O (moved off a triangle's plane), D and the limit |L - O| - eps (R_T)
     r.rec[R_KIND] = RK_GIVEN;
     r.limit = r.rec[R_T];
+    // The combined lists hold regions only: a triangle left needs no R_FROM,
+    // and its plane offset is in O already (not to be applied twice).
+    if (r.from >= 0 && is_triangle(view_.prims[static_cast<std::size_t>(r.from)][P_TYPE])) r.from = -1;
     again.push_back(r);
     owner.push_back(k);
   }
