@@ -24,7 +24,8 @@ static_assert(XT_E1 - XT_V0 == P_E1 - P_P0 && XT_E2 - XT_V0 == P_E2 - P_P0 && XT
               "r_xform's triangle results in the order of the primitive record");
 static_assert(XE_B - XE_A == P_B - P_A, "ellipsoid record");
 static_assert(image_words::kBMin - image_words::kQ == P_BMIN - P_Q &&
-                  image_words::kBMax - image_words::kQ == P_BMAX - P_Q,
+                  image_words::kBMax - image_words::kQ == P_BMAX - P_Q &&
+                  image_words::kQL - image_words::kQ == P_QL - P_Q,
               "quadric record");
 static_assert(XB_MAX - XB_MIN == 3, "view box min xyz, max xyz");
 
@@ -147,7 +148,7 @@ void add_prims(ViewScene& v, const SceneImage& img, const XformItems& x) {
       const auto& it = x.of(x.prim[i]);
       std::copy(it.begin() + XE_A, it.begin() + XE_B + 3, w.begin() + P_A);  // A, b
     } else {
-      std::copy(p.w.begin() + image_words::kQ, p.w.begin() + image_words::kBMax + 3, w.begin() + P_Q);  // a1..a10, box
+      std::copy(p.w.begin() + image_words::kQ, p.w.begin() + image_words::kQL + 4, w.begin() + P_Q);  // a1..a10, box, centred
     }
     v.prims.push_back(w);
     v.prim_object.push_back(p.object);

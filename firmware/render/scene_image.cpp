@@ -126,6 +126,7 @@ SceneImage make_scene_image(const scene::Scene& s) {
           for (int k = 0; k < 10; ++k) pi.w[kQ + k] = fp24_from_double(p.coefficients[k]);
           put(pi.w, kBMin, p.box_min);
           put(pi.w, kBMax, p.box_max);
+          for (int k = 0; k < 4; ++k) pi.w[kQL + k] = fp24_from_double(p.centred_linear[k]);
           break;
       }
       img.prims.push_back(pi);

@@ -38,7 +38,7 @@ namespace image_words {
 constexpr int kLightPos = 0, kLightI = 3, kLightWords = 6;  // position, intensity
 constexpr int kV0 = 0, kN = 9, kVN = 12, kTriWords = 21;    // triangle: v0 v1 v2, normal, 3 vertex normals
 constexpr int kEllA = 0, kEllB = 9;                         // ellipsoid: A row-major, centre b
-constexpr int kQ = 0, kBMin = 10, kBMax = 13;               // quadric: a1..a10, clip box
+constexpr int kQ = 0, kBMin = 10, kBMax = 13, kQL = 16;     // quadric: a1..a10, clip box, a7..a10 about its centre
 }  // namespace image_words
 
 // World-coordinate primitive as broadcast: polygons are split into triangles

@@ -81,6 +81,10 @@ struct Primitive {
   glm::dmat3 A{1.0};                         // ellipsoid; GLM is column-major: A[col][row]
   glm::dvec3 centre{0.0};                    // ellipsoid b
   std::array<double, 10> coefficients{};     // quadric a1..a10
+  // Quadric: a7..a10 of q(c + y) as a polynomial in y, c the clip box's centre
+  // (a1..a6 are the same): near the box its terms are small, so FP24 evaluates
+  // it without the cancellation of far-away world coordinates (loader-filled).
+  std::array<double, 4> centred_linear{};
   glm::dvec3 box_min{0.0};                   // quadric clip box; for every kind, the
   glm::dvec3 box_max{0.0};                   // primitive's bounding box (loader-filled)
 

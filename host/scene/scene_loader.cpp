@@ -467,6 +467,17 @@ class Loader {
     return p;
   }
 
+  // q(c + y) = y^T M y + (2 M c + g).y + q(c), c the box centre.
+  static void centre_quadric(Primitive& p) {
+    const auto& a = p.coefficients;
+    const glm::dvec3 c = 0.5 * (p.box_min + p.box_max);
+    p.centred_linear = {a[6] + 2 * a[0] * c.x + a[3] * c.y + a[4] * c.z,
+                        a[7] + 2 * a[1] * c.y + a[3] * c.x + a[5] * c.z,
+                        a[8] + 2 * a[2] * c.z + a[4] * c.x + a[5] * c.y,
+                        a[0] * c.x * c.x + a[1] * c.y * c.y + a[2] * c.z * c.z + a[3] * c.x * c.y +
+                            a[4] * c.x * c.z + a[5] * c.y * c.z + a[6] * c.x + a[7] * c.y + a[8] * c.z + a[9]};
+  }
+
   Primitive quadric(const Value& v, const std::string& path) const {
     expect_object(v, path, {"type", "coefficients", "box"});
     Primitive p;
@@ -484,6 +495,7 @@ class Loader {
     p.box_max = vec3(required(box, bpath, "max"), join(bpath, "max"));
     for (int i = 0; i < 3; ++i)
       if (!(p.box_min[i] < p.box_max[i])) fail(box, bpath, "min must be below max on every axis");
+    centre_quadric(p);
     return p;
   }
 
