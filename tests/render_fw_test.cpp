@@ -521,8 +521,8 @@ TEST(RenderCost, CyclesPerRayOfTheSection7Primitives) {
               frustum / 32.0, hits, sphere / 32.0, rule / 32.0,
               static_cast<unsigned long long>(csg.fw.stats().hidden_hits), on_lens);
   EXPECT_GT(hits, 0);
-  EXPECT_GT(frustum, 32u * 20);  // a quadric's root pair and box test: tens of cycles
-  EXPECT_LT(frustum, 32u * 200);
+  EXPECT_GT(frustum, 32u * 20);  // a quadric's root pair and box test with its error bound: 100-300 cycles
+  EXPECT_LT(frustum, 32u * 400);
   EXPECT_GT(on_lens, 0);
   EXPECT_GT(csg.fw.stats().hidden_hits, 0u);
 }

@@ -289,6 +289,9 @@ TEST(SceneRevolution, FrustumsOfTheProfile) {
   // (x - 2)^2 + (z + 1)^2 - (y - 1)^2 / 4
   const std::array<double, 10> want = {1, -0.25, 1, 0, 0, 0, -4, 0.5, 2, 4 + 1 - 0.25};
   for (int k = 0; k < 10; ++k) EXPECT_DOUBLE_EQ(cone.coefficients[k], want[k]) << "a" << k + 1;
+  // About the box centre (2, 3, -1): (x - 2)^2 + (z + 1)^2 - (1 + (y - 3) / 2)^2.
+  const std::array<double, 4> centred = {0, -1, 0, -1};
+  for (int k = 0; k < 4; ++k) EXPECT_DOUBLE_EQ(cone.centred_linear[k], centred[k]) << "centred a" << k + 7;
   EXPECT_EQ(cone.box_min, glm::dvec3(2 - 1.875, 2, -1 - 1.875));
   EXPECT_EQ(cone.box_max, glm::dvec3(2 + 1.875, 4, -1 + 1.875));
   EXPECT_EQ(prims[1].box_min.y, 4.0);

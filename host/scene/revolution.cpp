@@ -14,7 +14,9 @@ namespace mc1::scene {
 //   q = (x_i - b_i)^2 + (x_j - b_j)^2 - (c + s (x_k - b_k))^2 <= 0
 // (i, j the other two axes), expanded into a1..a10, and clipped to the slab
 // h0 <= x_k - b_k <= h1. The box's sides lie a quarter of the largest radius
-// outside the cone, so only its two slab faces cut the surface.
+// outside the cone, so only its two slab faces cut the surface. The NC's
+// form about the box's centre (Primitive::centred_linear) comes from the
+// axis frame directly.
 Primitive revolved_segment(int k, const glm::dvec3& base, const glm::dvec2& p0, const glm::dvec2& p1) {
   const double s = (p1.x - p0.x) / (p1.y - p0.y), c = p0.x - s * p0.y;
   const int i = (k + 1) % 3, j = (k + 2) % 3;
@@ -36,6 +38,12 @@ Primitive revolved_segment(int k, const glm::dvec3& base, const glm::dvec2& p0, 
   p.box_max[j] += side;
   p.box_min[k] += p0.y;
   p.box_max[k] += p1.y;
+  // About the box's centre (base + hm along the axis, hm the slab's middle
+  // height) the cone is y_i^2 + y_j^2 - (rm + s y_k)^2, rm = c + s hm the
+  // radius there: a7..a10 exactly, with no far-away coordinate in them.
+  const double rm = c + s * 0.5 * (p0.y + p1.y);
+  p.centred_linear = {0.0, 0.0, 0.0, -rm * rm};
+  p.centred_linear[k] = -2 * s * rm;
   return p;
 }
 

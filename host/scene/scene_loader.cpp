@@ -524,6 +524,8 @@ class Loader {
       Primitive p = revolved_segment(axis[0] - 'x', base, pts[i - 1], pts[i]);
       for (double a : p.coefficients)
         if (!in_fp24_range(a)) fail(pv.items[i], index(ppath, i), "a coefficient of its quadric, " + shortest(a) + ", outside FP24's range");
+      for (double a : p.centred_linear)
+        if (!in_fp24_range(a)) fail(pv.items[i], index(ppath, i), "a coefficient of its quadric, " + shortest(a) + ", outside FP24's range");
       out.push_back(p);
     }
     count_ids(v, path, out, before);
