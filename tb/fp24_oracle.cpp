@@ -7,8 +7,10 @@
 #include <mpfr.h>
 
 #include <cmath>
+#include <cctype>
 #include <cstdint>
 #include <limits>
+#include <string>
 
 namespace mc1::fp24::tb {
 namespace {
@@ -228,6 +230,29 @@ Oracle::Measured Oracle::measure(Op op, Bits a, Bits candidate) {
   // ulp(y) = 2^(k-16) for |y| in [2^k, 2^(k+1)), and mpfr_get_exp(y) = k + 1.
   mpfr_mul_2si(v_->diff, v_->diff, kFracBits + 1 - mpfr_get_exp(v_->wide), MPFR_RNDN);
   return {rounded, std::fabs(mpfr_get_d(v_->diff, MPFR_RNDN))};
+}
+
+std::optional<Result> from_decimal(std::string_view text) {
+  std::string t(text);
+  std::string lower;
+  for (char c : t) lower += char(std::tolower(static_cast<unsigned char>(c)));
+  if (lower == "nan" || lower == "+nan" || lower == "-nan") return Result{kCanonicalNaN, 0};
+  if (lower == "inf" || lower == "+inf" || lower == "infinity") return Result{kPosInf, 0};
+  if (lower == "-inf" || lower == "-infinity") return Result{kSignBit | kPosInf, 0};
+  if (t.empty() || t.find_first_not_of("+-.0123456789eE") != std::string::npos) return std::nullopt;
+  mpfr_t x;
+  mpfr_init2(x, kPrec);
+  char* end = nullptr;
+  const int ternary = mpfr_strtofr(x, t.c_str(), &end, 10, MPFR_RNDN);
+  std::optional<Result> r;
+  if (end == t.c_str() + t.size()) {
+    // Beyond even MPFR's exponent range: overflow or underflow all the same.
+    if (mpfr_inf_p(x)) r = Result{signed_inf(mpfr_signbit(x) != 0), kOF | kNX};
+    else if (mpfr_zero_p(x) && ternary != 0) r = Result{signed_zero(mpfr_signbit(x) != 0), kUF | kNX};
+    else r = encode(x, ternary);
+  }
+  mpfr_clear(x);
+  return r;
 }
 
 }  // namespace mc1::fp24::tb

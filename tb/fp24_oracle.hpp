@@ -6,6 +6,8 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <string_view>
 
 #include "fp24.hpp"
 
@@ -44,5 +46,11 @@ class Oracle {
 // Exact value of an FP24 encoding as a double (DAZ applied; NaN and inf map
 // to the double NaN/inf). Every FP24 value is exactly representable.
 double to_double(Bits a);
+
+// A decimal number ("1.5", "-2.5e-3", "inf", "nan") rounded to FP24 by the
+// spec's one rule (17 bits RNE, then overflow to inf / tininess after
+// rounding to zero), with the flags that rounding raises; nullopt if `text`
+// is not a number.
+std::optional<Result> from_decimal(std::string_view text);
 
 }  // namespace mc1::fp24::tb

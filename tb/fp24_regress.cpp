@@ -22,6 +22,7 @@
 
 #include "cmdline.hpp"
 #include "fp24.hpp"
+#include "fp24_golden.hpp"
 #include "fp24_oracle.hpp"
 #include "fp24_rtl.hpp"
 #include "fp24_vectors.hpp"
@@ -40,7 +41,11 @@ constexpr const char* kDescription =
     "all 2^16 integers, add sub mul cmp on a structured set (exponent table x\n"
     "significand patterns x signs, all pairs) plus random pairs; RTL vs model\n"
     "and model vs MPFR oracle. Exit status 0 only if everything matches and\n"
-    "SIN/COS are faithful.";
+    "SIN/COS are faithful.\n"
+    "--vectors FILE runs a user's file instead: `op a [b]` lines, or golden\n"
+    "`op a [b] result flags` lines (as fp24-run --check reads them), each on\n"
+    "the RTL, the model and the oracle, and golden lines also against their\n"
+    "expected result; failures name FILE:LINE.";
 
 constexpr std::uint32_t kChunk = 1u << 16;  // vectors per job
 constexpr std::uint64_t kLongRandom = 1000000000;
@@ -55,6 +60,8 @@ struct Options {
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   unsigned show = 5;
   std::string text, json;
+  std::string vectors;        // --vectors FILE
+  std::vector<Golden> user;   // its lines
 };
 
 // ---- command line ----------------------------------------------------------------
@@ -98,6 +105,24 @@ void add_options(CLI::App& app, Options& o, std::string& ops) {
       ->capture_default_str();
   app.add_option("--text", o.text, "also write the text report to FILE")->type_name("FILE");
   app.add_option("--json", o.json, "write the report as JSON to FILE")->type_name("FILE");
+  app.add_option("--vectors", o.vectors, "run the vectors (or golden lines) of FILE instead of the built-in sets")
+      ->type_name("FILE")
+      ->check(cli::input_file());
+}
+
+// The --vectors file, every line checked before anything runs; the ops it
+// uses (those of --ops only, if given) become the run's ops.
+void read_user_vectors(Options& o, bool ops_given) {
+  std::ifstream in(o.vectors);
+  if (!in) throw cli::UsageError("--vectors: " + o.vectors + ": cannot open");
+  o.user = read_golden(in, o.vectors, true);
+  if (in.bad()) throw cli::UsageError("--vectors: " + o.vectors + ": read error");
+  std::vector<Op> used;
+  for (Op op : o.ops)
+    for (const Golden& g : o.user)
+      if (g.vector.op == op && (used.empty() || used.back() != op)) used.push_back(op);
+  if (!ops_given && used.empty()) throw cli::UsageError("--vectors: " + o.vectors + ": no vectors");
+  o.ops = used;
 }
 
 // ---- vectors ---------------------------------------------------------------------
@@ -149,7 +174,7 @@ void random_pair(std::uint64_t seed, Op op, std::uint64_t index, Bits* a, Bits* 
   *b = (r & (kSignBit | 0xFFFF)) | Bits(eb) << 16;
 }
 
-enum class Source { Exhaustive, Structured, Random, SigSweep };
+enum class Source { Exhaustive, Structured, Random, SigSweep, File };
 
 struct Job {
   Op op;
@@ -161,6 +186,7 @@ struct Job {
 struct VectorSet {
   std::vector<Bits> structured = structured_values();
   std::uint64_t seed = 1;
+  std::vector<std::vector<const Golden*>> file = std::vector<std::vector<const Golden*>>(kOpCount);  // by op
 
   void fill(const Job& j, Bits* a, Bits* b) const {
     const std::uint64_t n = structured.size();
@@ -171,6 +197,7 @@ struct VectorSet {
         case Source::Structured: a[i] = structured[k / n]; b[i] = structured[k % n]; break;
         case Source::Random: random_pair(seed, j.op, k, &a[i], &b[i]); break;
         case Source::SigSweep: a[i] = 0x3F0000 | Bits(k >> 16); b[i] = 0x3F0000 | Bits(k & 0xFFFF); break;
+        case Source::File: a[i] = file[int(j.op)][k]->vector.a; b[i] = file[int(j.op)][k]->vector.b; break;
       }
     }
   }
@@ -184,7 +211,8 @@ void add_jobs(std::vector<Job>* jobs, Op op, Source source, std::uint64_t total)
 std::vector<Job> plan(const Options& o, const VectorSet& set) {
   std::vector<Job> jobs;
   for (Op op : o.ops) {
-    if (op == Op::Float) add_jobs(&jobs, op, Source::Exhaustive, 1u << 16);
+    if (!o.vectors.empty()) add_jobs(&jobs, op, Source::File, set.file[int(op)].size());
+    else if (op == Op::Float) add_jobs(&jobs, op, Source::Exhaustive, 1u << 16);
     else if (info(op).operands == 1) add_jobs(&jobs, op, Source::Exhaustive, 1u << 24);
     else {
       add_jobs(&jobs, op, Source::Structured, std::uint64_t(set.structured.size()) * set.structured.size());
@@ -197,9 +225,10 @@ std::vector<Job> plan(const Options& o, const VectorSet& set) {
 
 // ---- results ---------------------------------------------------------------------
 
-enum class Kind { RtlVsModel, ModelVsOracle, Unfaithful, NotCorrectlyRounded };
+enum class Kind { RtlVsModel, ModelVsOracle, Unfaithful, NotCorrectlyRounded, ModelVsGolden };
 const char* kind_name(Kind k) {
-  static const char* const kNames[] = {"rtl-vs-model", "model-vs-oracle", "unfaithful", "not-correctly-rounded"};
+  static const char* const kNames[] = {"rtl-vs-model", "model-vs-oracle", "unfaithful", "not-correctly-rounded",
+                                       "model-vs-golden"};
   return kNames[int(k)];
 }
 
@@ -207,8 +236,9 @@ struct Failure {
   Kind kind;
   Issue vector;
   Result got;       // rtl (rtl-vs-model) or model (the others)
-  Result expected;  // model (rtl-vs-model) or oracle
+  Result expected;  // model (rtl-vs-model), oracle, or the golden file's
   double ulp;       // SIN/COS: model error in ulps; else NaN
+  const Golden* line;  // --vectors: the file's line; else null
 };
 
 struct Stats {
@@ -217,6 +247,7 @@ struct Stats {
   std::uint64_t model_vs_oracle = 0;  // correctly rounded ops
   std::uint64_t not_cr = 0;           // SIN/COS
   std::uint64_t unfaithful = 0;       // SIN/COS: error >= 1 ulp or flags differ
+  std::uint64_t golden = 0;           // --vectors: model != the file's expected result
   double max_ulp = 0;
   double cpu_seconds = 0;
   std::vector<Failure> failures;
@@ -228,6 +259,7 @@ struct Stats {
     model_vs_oracle += s.model_vs_oracle;
     not_cr += s.not_cr;
     unfaithful += s.unfaithful;
+    golden += s.golden;
     max_ulp = std::max(max_ulp, s.max_ulp);
     cpu_seconds += s.cpu_seconds;
     for (const Failure& f : s.failures)
@@ -239,7 +271,9 @@ struct Stats {
     return unsigned(std::count_if(failures.begin(), failures.end(), [k](const Failure& f) { return f.kind == k; }));
   }
 
-  bool passed() const { return rtl_vs_model == 0 && model_vs_oracle == 0 && unfaithful == 0 && rtl_error.empty(); }
+  bool passed() const {
+    return rtl_vs_model == 0 && model_vs_oracle == 0 && unfaithful == 0 && golden == 0 && rtl_error.empty();
+  }
 };
 
 bool is_trig(Op op) { return op == Op::Sin || op == Op::Cos; }
@@ -259,13 +293,24 @@ class Worker {
     for (std::uint32_t i = 0; i < j.count; ++i) m_[i] = execute(j.op, a_[i], b_[i]);
     if (o_.rtl) check_rtl(j, &s);
     if (o_.oracle) check_oracle(j, &s);
+    if (j.source == Source::File) check_golden(j, &s);
     s.cpu_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return s;
   }
 
  private:
   void note(Stats* s, Kind kind, const Job& j, std::uint32_t i, Result got, Result expected, double ulp) {
-    if (s->count(kind) < o_.show) s->failures.push_back({kind, {j.op, a_[i], b_[i]}, got, expected, ulp});
+    const Golden* line = j.source == Source::File ? set_.file[int(j.op)][j.first + i] : nullptr;
+    if (s->count(kind) < o_.show) s->failures.push_back({kind, {j.op, a_[i], b_[i]}, got, expected, ulp, line});
+  }
+
+  void check_golden(const Job& j, Stats* s) {
+    for (std::uint32_t i = 0; i < j.count; ++i) {
+      const Golden& g = *set_.file[int(j.op)][j.first + i];
+      if (!g.has_expected || m_[i] == g.expected) continue;
+      ++s->golden;
+      note(s, Kind::ModelVsGolden, j, i, m_[i], g.expected, NAN);
+    }
   }
 
   void check_rtl(const Job& j, Stats* s) {
@@ -328,14 +373,16 @@ struct Run {
 };
 
 void show_progress(std::uint64_t done, std::uint64_t total, double seconds) {
-  std::fprintf(stderr, "\rfp24-regress: %5.1f%%  %llu / %llu vectors  %.0f s ", 100.0 * double(done) / double(total),
-               (unsigned long long)done, (unsigned long long)total, seconds);
+  const double fraction = total ? double(done) / double(total) : 1.0;
+  std::fprintf(stderr, "\rfp24-regress: %5.1f%%  %llu / %llu vectors  %s   ", 100.0 * fraction,
+               (unsigned long long)done, (unsigned long long)total, cli::progress_times(seconds, fraction).c_str());
   std::fflush(stderr);
 }
 
 Run run_all(const Options& o) {
   VectorSet set;
   set.seed = o.seed;
+  for (const Golden& g : o.user) set.file[int(g.vector.op)].push_back(&g);
   const std::vector<Job> jobs = plan(o, set);
   std::uint64_t total = 0;
   for (const Job& j : jobs) total += j.count;
@@ -379,9 +426,14 @@ bool passed(const Options& o, const Run& run) {
 
 std::string count_or_dash(bool applies, std::uint64_t n) { return applies ? std::to_string(n) : "-"; }
 
-std::string failure_line(const Failure& f) {
+std::string failure_line(const Options& o, const Failure& f) {
   const char* got = f.kind == Kind::RtlVsModel ? "rtl" : "model";
   const char* want = f.kind == Kind::RtlVsModel ? "model" : "oracle";
+  if (f.line) {  // a file's line, located and decoded as fp24-run --check prints it; "expected" is
+                 // the golden value, the model's (rtl-vs-model) or the oracle's
+    const Golden g{f.vector, f.expected, f.line->line, true};
+    return "  " + std::string(kind_name(f.kind)) + ": " + mismatch_line(o.vectors, g, got, f.got) + "\n";
+  }
   std::string line = "  " + std::string(kind_name(f.kind)) + ": " + format_vector(f.vector) + " -> " +
                      format_result(f.got) + " (" + got + ") / " + format_result(f.expected) + " (" + want + ")";
   if (!std::isnan(f.ulp)) {
@@ -395,22 +447,26 @@ std::string failure_line(const Failure& f) {
 std::string text_report(const Options& o, const Run& run) {
   std::ostringstream t;
   char buf[256];
-  t << "fp24-regress: seed " << o.seed << ", " << o.random << " random pairs per two-operand op"
-    << (o.long_run ? ", long sweep" : "") << ", engines model" << (o.rtl ? " rtl" : "") << (o.oracle ? " oracle" : "")
+  if (o.vectors.empty())
+    t << "fp24-regress: seed " << o.seed << ", " << o.random << " random pairs per two-operand op"
+      << (o.long_run ? ", long sweep" : "");
+  else
+    t << "fp24-regress: " << o.vectors << ", " << o.user.size() << " vectors";
+  t << ", engines model" << (o.rtl ? " rtl" : "") << (o.oracle ? " oracle" : "")
     << ", " << o.threads << " threads\n";
-  std::snprintf(buf, sizeof buf, "%-6s %12s %12s %15s %10s %11s %9s %9s\n", "op", "vectors", "rtl!=model",
-                "model!=oracle", "not-CR", "unfaithful", "max-ulp", "cpu-s");
+  std::snprintf(buf, sizeof buf, "%-6s %12s %12s %15s %10s %11s %9s %9s %13s\n", "op", "vectors", "rtl!=model",
+                "model!=oracle", "not-CR", "unfaithful", "max-ulp", "cpu-s", "model!=golden");
   t << buf;
   for (Op op : o.ops) {
     const Stats& s = run.per_op[int(op)];
     const bool trig = is_trig(op) && o.oracle;
     char ulp[16] = "-";
     if (trig) std::snprintf(ulp, sizeof ulp, "%.4f", s.max_ulp);
-    std::snprintf(buf, sizeof buf, "%-6s %12llu %12s %15s %10s %11s %9s %9.1f\n", info(op).name.data(),
+    std::snprintf(buf, sizeof buf, "%-6s %12llu %12s %15s %10s %11s %9s %9.1f %13s\n", info(op).name.data(),
                   (unsigned long long)s.vectors, count_or_dash(o.rtl, s.rtl_vs_model).c_str(),
                   count_or_dash(o.oracle && !is_trig(op), s.model_vs_oracle).c_str(),
                   count_or_dash(trig, s.not_cr).c_str(), count_or_dash(trig, s.unfaithful).c_str(), ulp,
-                  s.cpu_seconds);
+                  s.cpu_seconds, count_or_dash(!o.vectors.empty(), s.golden).c_str());
     t << buf;
   }
   for (Op op : o.ops) {
@@ -418,7 +474,7 @@ std::string text_report(const Options& o, const Run& run) {
     if (!s.rtl_error.empty()) t << info(op).name << ": RTL timing: " << s.rtl_error << "\n";
     if (s.failures.empty()) continue;
     t << info(op).name << ": first differing vectors (replay: echo '<vector>' | fp24-run --engine rtl|model|oracle)\n";
-    for (const Failure& f : s.failures) t << failure_line(f);
+    for (const Failure& f : s.failures) t << failure_line(o, f);
   }
   std::snprintf(buf, sizeof buf, "wall time %.1f s\n", run.wall_seconds);
   t << buf << (passed(o, run) ? "PASS" : "FAIL") << "\n";
@@ -437,7 +493,8 @@ std::string json_number(double v) {
 std::string json_failure(const Failure& f) {
   return "{\"kind\": " + quote(kind_name(f.kind)) + ", \"vector\": " + quote(format_vector(f.vector)) +
          ", \"got\": " + quote(format_result(f.got)) + ", \"expected\": " +
-         quote(format_result(f.expected)) + ", \"ulp_error\": " + json_number(f.ulp) + "}";
+         quote(format_result(f.expected)) + ", \"ulp_error\": " + json_number(f.ulp) +
+         ", \"line\": " + (f.line ? std::to_string(f.line->line) : std::string("null")) + "}";
 }
 
 std::string json_op(const Options& o, Op op, const Stats& s) {
@@ -449,6 +506,7 @@ std::string json_op(const Options& o, Op op, const Stats& s) {
                   ", \"model_vs_oracle\": " + opt(o.oracle && !is_trig(op), s.model_vs_oracle) +
                   ", \"not_correctly_rounded\": " + opt(trig, s.not_cr) +
                   ", \"unfaithful\": " + opt(trig, s.unfaithful) +
+                  ", \"model_vs_golden\": " + opt(!o.vectors.empty(), s.golden) +
                   ", \"max_ulp_error\": " + (trig ? json_number(s.max_ulp) : "null") +
                   ", \"cpu_seconds\": " + json_number(s.cpu_seconds) +
                   ", \"rtl_timing_error\": " + (s.rtl_error.empty() ? "null" : quote(s.rtl_error)) +
@@ -458,7 +516,9 @@ std::string json_op(const Options& o, Op op, const Stats& s) {
 }
 
 std::string json_report(const Options& o, const Run& run) {
-  std::string j = "{\n  \"program\": \"fp24-regress\",\n  \"seed\": " + std::to_string(o.seed) +
+  std::string j = "{\n  \"schema\": \"fp24-regress/1\",\n  \"program\": \"fp24-regress\",\n  \"vectors_file\": " +
+                  (o.vectors.empty() ? std::string("null") : quote(o.vectors)) +
+                  ",\n  \"seed\": " + std::to_string(o.seed) +
                   ",\n  \"random_pairs\": " + std::to_string(o.random) +
                   ",\n  \"long\": " + (o.long_run ? "true" : "false") +
                   ",\n  \"engines\": [\"model\"" + (o.rtl ? ", \"rtl\"" : "") + (o.oracle ? ", \"oracle\"" : "") +
@@ -504,8 +564,12 @@ int main(int argc, char** argv) {
   std::unique_ptr<std::ofstream> text_file, json_file;
   try {
     o.ops = app.count("--ops") ? parse_ops(ops) : all_ops();
+    if (!o.vectors.empty()) read_user_vectors(o, app.count("--ops") != 0);
     text_file = open_report(o.text);
     json_file = open_report(o.json);
+  } catch (const VectorError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return cli::kExitUsage;
   } catch (const cli::UsageError& e) {
     return cli::usage_error(app, e.what());
   }

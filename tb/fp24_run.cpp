@@ -1,15 +1,20 @@
 // fp24-run: the FP24 vector interface of docs/fp24.md over any engine.
 //   fp24-run --engine model|rtl|oracle [--trace FILE.fst] < vectors > results
-// Like TestFloat's testfloat_gen | testfloat_ver, two engines are compared by
-// feeding both the same vectors and diffing their outputs.
+//   fp24-run --check FILE|- [--engine model|rtl|oracle|all]
+// The first is TestFloat's testfloat_gen | testfloat_ver split in two; the
+// second checks a golden file (`op a [b] result flags` lines) and reports each
+// mismatch by file:line with its values decoded.
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "cmdline.hpp"
 #include "fp24.hpp"
+#include "fp24_golden.hpp"
 #include "fp24_oracle.hpp"
 #include "fp24_rtl.hpp"
 #include "fp24_vectors.hpp"
@@ -27,11 +32,22 @@ constexpr const char* kDescription =
     "vector, in order. Ops: add sub mul recip sqrt sin cos cmp float fix neg abs.\n"
     "Blank lines and lines starting with '#' are skipped and produce no output.\n"
     "All input is checked before anything is computed: a malformed line is\n"
-    "reported as <stdin>:LINE: ... on standard error, with exit status 2.";
+    "reported as <stdin>:LINE: ... on standard error, with exit status 2.\n"
+    "Flags (RESULT FLAGS's second field): NV 10 invalid, DZ 08 divide by zero,\n"
+    "OF 04 overflow, UF 02 underflow, NX 01 inexact. CMP's result: LT 1, EQ 2,\n"
+    "GT 4, UN 8. FIX's result: a 16-bit two's-complement integer.\n"
+    "--check FILE reads a golden file instead: `OP A [B] RESULT FLAGS` lines\n"
+    "(TestFloat style; any case of op, optional 0x, # comments), runs them on\n"
+    "--engine (default all: model, rtl and oracle) and prints one line per\n"
+    "mismatch, FILE:LINE: ENGINE: the vector, expected and got in hex, decimal\n"
+    "and flag names; then a summary by op and by flag. fp24-conv writes values\n"
+    "by hand. The oracle is correctly rounded: on SIN/COS it may differ from\n"
+    "the model and RTL, which are faithful (docs/fp24.md).";
 
 struct Options {
   std::string engine;
   std::string trace;
+  std::string check;  // a golden file, "-" for standard input
 };
 
 void add_options(CLI::App& app, Options& o) {
@@ -39,16 +55,30 @@ void add_options(CLI::App& app, Options& o) {
                  "model: the bit-accurate C++ model (hw/apu); rtl: the verilated RTL\n"
                  "(apu_rtl/fp24_units.sv; the three units run concurrently, each taking\n"
                  "its ops in input order); oracle: the MPFR oracle (tb/fp24_oracle.cpp)")
-      ->required()
-      ->check(CLI::IsMember({"model", "rtl", "oracle"}));
+      ->check(CLI::IsMember({"model", "rtl", "oracle", "all"}));
   app.add_option("--trace", o.trace, "rtl only: write an FST waveform of fp24_units to FILE")->type_name("FILE");
+  app.add_option("--check", o.check, "check the golden file FILE (- for standard input) on --engine\n"
+                                     "(model, rtl, oracle or all; default all)")
+      ->type_name("FILE|-");
 }
 
-std::vector<Result> compute(const Options& o, const std::vector<Issue>& vectors) {
+// The options that do not fit together, as a usage message; empty if fine.
+std::string conflicts(Options& o) {
+  if (o.check.empty()) {
+    if (o.engine.empty()) return "--engine is required";
+    if (o.engine == "all") return "--engine all needs --check";
+  } else if (o.engine.empty()) {
+    o.engine = "all";
+  }
+  if (!o.trace.empty() && o.engine != "rtl") return "--trace needs --engine rtl";
+  return "";
+}
+
+std::vector<Result> compute(const Options& o, const std::string& engine, const std::vector<Issue>& vectors) {
   std::vector<Result> results;
   results.reserve(vectors.size());
-  if (o.engine == "rtl") return RtlUnits(o.trace).run(vectors);
-  if (o.engine == "oracle") {
+  if (engine == "rtl") return RtlUnits(o.trace).run(vectors);
+  if (engine == "oracle") {
     Oracle oracle;
     for (const Issue& v : vectors) results.push_back(oracle.run(v.op, v.a, v.b));
   } else {
@@ -66,19 +96,63 @@ std::vector<Issue> read_stdin() {
   return vectors;
 }
 
+// The golden file named by --check; bad lines throw VectorError.
+std::vector<Golden> read_check_file(const std::string& path) {
+  if (path == "-") {
+    cli::require_stdin_not_directory();
+    std::vector<Golden> g = read_golden(std::cin, "<stdin>");
+    if (std::cin.bad()) throw cli::UsageError("<stdin>: read error");
+    return g;
+  }
+  std::ifstream in(path);
+  if (!in) throw cli::UsageError("--check: " + path + ": " + std::strerror(errno));
+  std::vector<Golden> g = read_golden(in, path);
+  if (in.bad()) throw cli::UsageError("--check: " + path + ": read error");
+  return g;
+}
+
+// Runs the golden vectors on each engine; prints the mismatches and the
+// summary. Returns the exit status.
+int check(const Options& o, const std::vector<Golden>& golden) {
+  const std::vector<std::string> engines =
+      o.engine == "all" ? std::vector<std::string>{"model", "rtl", "oracle"} : std::vector<std::string>{o.engine};
+  const std::string source = o.check == "-" ? "<stdin>" : o.check;
+  std::vector<Issue> vectors;
+  for (const Golden& g : golden) vectors.push_back(g.vector);
+  GoldenSummary summary(engines);
+  for (const Golden& g : golden) summary.checked(g.vector.op);
+  std::string out;
+  for (std::size_t e = 0; e < engines.size(); ++e) {
+    const std::vector<Result> got = compute(o, engines[e], vectors);
+    for (std::size_t i = 0; i < golden.size(); ++i) {
+      if (got[i] == golden[i].expected) continue;
+      summary.mismatch(e, golden[i], got[i]);
+      out += mismatch_line(source, golden[i], engines[e], got[i]) + "\n";
+    }
+  }
+  out += summary.text();
+  out += source + ": " + std::to_string(golden.size()) + " vectors, " + std::to_string(summary.mismatches()) +
+         " mismatches: " + (summary.mismatches() == 0 ? "PASS" : "FAIL") + "\n";
+  std::fwrite(out.data(), 1, out.size(), stdout);
+  return summary.mismatches() == 0 ? cli::kExitOk : cli::kExitFailed;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{kDescription, "fp24-run"};
-  cli::conventions(app, "Exit status: 0 done; 1 an RTL timing-contract violation; 2 usage or input error.");
+  cli::conventions(app, "Exit status: 0 done (--check: every vector agrees); 1 a --check mismatch or an\n"
+                        "RTL timing-contract violation; 2 usage or input error.");
   Options o;
   add_options(app, o);
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
-  if (!o.trace.empty() && o.engine != "rtl") return cli::usage_error(app, "--trace needs --engine rtl");
+  if (const std::string why = conflicts(o); !why.empty()) return cli::usage_error(app, why);
   std::ios::sync_with_stdio(false);
   std::vector<Issue> vectors;
+  std::vector<Golden> golden;
   try {
-    vectors = read_stdin();
+    if (o.check.empty()) vectors = read_stdin();
+    else golden = read_check_file(o.check);
   } catch (const VectorError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return cli::kExitUsage;
@@ -86,7 +160,8 @@ int main(int argc, char** argv) {
     return cli::usage_error(app, e.what());
   }
   try {
-    const std::vector<Result> results = compute(o, vectors);
+    if (!o.check.empty()) return check(o, golden);
+    const std::vector<Result> results = compute(o, o.engine, vectors);
     std::string out;
     out.reserve(results.size() * 10);
     for (const Result& r : results) out += format_result(r) + '\n';

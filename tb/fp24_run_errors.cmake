@@ -30,7 +30,7 @@ expect_error(trailing_comment "${ok}neg 1 # x\n"         "^<stdin>:4: extra oper
 # Command-line errors: "fp24-run: ..." on stderr, exit 2 (more in tests/cli_test.cmake).
 execute_process(COMMAND ${PROGRAM} --engine fpga INPUT_FILE ${WORK_DIR}/unknown_op.vec
   ERROR_VARIABLE err RESULT_VARIABLE rc)
-if(NOT rc EQUAL 2 OR NOT err MATCHES "^fp24-run: --engine: fpga not in {model,rtl,oracle}")
+if(NOT rc EQUAL 2 OR NOT err MATCHES "^fp24-run: --engine: fpga not in {model,rtl,oracle,all}")
   message(SEND_ERROR "case bad_engine: exit ${rc}, stderr '${err}'")
 endif()
 execute_process(COMMAND ${PROGRAM} --engine model --trace x.fst INPUT_FILE ${WORK_DIR}/unknown_op.vec

@@ -43,15 +43,38 @@ Bits parse_hex(std::string_view token, Bits max, const char* what, const std::st
   return Bits(v);
 }
 
-}  // namespace
+std::string lower(std::string_view text) {
+  std::string s(text);
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
 
-std::optional<Issue> parse_vector(std::string_view line, const std::string& source, long line_no) {
-  const std::vector<std::string_view> tokens = split(line);
-  if (tokens.empty() || tokens[0][0] == '#') return std::nullopt;
-  const std::optional<Op> op = op_from_name(tokens[0]);
+// `text` without a 0x/0X prefix: golden files may carry one.
+std::string_view strip_0x(std::string_view text) {
+  if (text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) return text.substr(2);
+  return text;
+}
+
+// The tokens before a `#` that starts a token (a golden file's trailing comment).
+std::vector<std::string_view> before_comment(std::vector<std::string_view> tokens) {
+  for (std::size_t i = 0; i < tokens.size(); ++i)
+    if (tokens[i][0] == '#') return {tokens.begin(), tokens.begin() + std::ptrdiff_t(i)};
+  return tokens;
+}
+
+// `op a [b]` and `trailing` more tokens (0: the vector interface, 2: a
+// golden line's result and flags); the operands of tokens[1..].
+Issue parse_issue(const std::vector<std::string_view>& tokens, bool golden, int trailing, const std::string& source,
+                  long line_no) {
+  const std::optional<Op> op = op_from_name(golden ? lower(tokens[0]) : std::string(tokens[0]));
   if (!op) fail(source, line_no, "unknown op '" + std::string(tokens[0]) + "'");
   const OpInfo& info = fp24::info(*op);
-  const int operands = int(tokens.size()) - 1;
+  const int operands = int(tokens.size()) - 1 - trailing;
+  if (golden && operands != info.operands) {
+    fail(source, line_no, std::string(info.name) + " wants " + std::to_string(info.operands) +
+                              " operand(s), a result and flags: " + std::to_string(1 + info.operands + 2) +
+                              " fields, got " + std::to_string(tokens.size()));
+  }
   if (operands < info.operands) {
     fail(source, line_no, std::string(info.name) + " needs " + std::to_string(info.operands) + " operand(s), got " +
                               std::to_string(operands));
@@ -60,10 +83,50 @@ std::optional<Issue> parse_vector(std::string_view line, const std::string& sour
     fail(source, line_no, "extra operand '" + std::string(tokens[1 + info.operands]) + "' after " +
                               std::string(info.name) + " (takes " + std::to_string(info.operands) + ")");
   }
+  auto hex = [&](std::string_view t, Bits max, const char* what) {
+    return parse_hex(golden ? strip_0x(t) : t, max, what, source, line_no);
+  };
   const Bits max_a = *op == Op::Float ? 0xFFFF : 0xFFFFFF;
-  Issue v{*op, parse_hex(tokens[1], max_a, "operand", source, line_no), 0};
-  if (info.operands == 2) v.b = parse_hex(tokens[2], 0xFFFFFF, "operand", source, line_no);
+  Issue v{*op, hex(tokens[1], max_a, "operand"), 0};
+  if (info.operands == 2) v.b = hex(tokens[2], 0xFFFFFF, "operand");
   return v;
+}
+
+}  // namespace
+
+Bits result_max(Op op) {
+  if (op == Op::Cmp) return 0xF;
+  if (op == Op::Fix) return 0xFFFF;
+  return 0xFFFFFF;
+}
+
+std::optional<Issue> parse_vector(std::string_view line, const std::string& source, long line_no) {
+  const std::vector<std::string_view> tokens = split(line);
+  if (tokens.empty() || tokens[0][0] == '#') return std::nullopt;
+  return parse_issue(tokens, false, 0, source, line_no);
+}
+
+std::optional<Golden> parse_golden(std::string_view line, const std::string& source, long line_no,
+                                   bool expected_optional) {
+  const std::vector<std::string_view> tokens = before_comment(split(line));
+  if (tokens.empty()) return std::nullopt;
+  const std::optional<Op> op = op_from_name(lower(tokens[0]));
+  const bool bare = expected_optional && op && int(tokens.size()) == 1 + info(*op).operands;
+  Golden g{parse_issue(tokens, true, bare ? 0 : 2, source, line_no), {0, 0}, line_no, !bare};
+  if (bare) return g;
+  const std::size_t n = tokens.size();
+  g.expected.value = parse_hex(strip_0x(tokens[n - 2]), result_max(g.vector.op), "result", source, line_no);
+  g.expected.flags = std::uint8_t(parse_hex(strip_0x(tokens[n - 1]), kFlagMask, "flags", source, line_no));
+  return g;
+}
+
+std::vector<Golden> read_golden(std::istream& in, const std::string& source, bool expected_optional) {
+  std::vector<Golden> vectors;
+  std::string line;
+  for (long line_no = 1; std::getline(in, line); ++line_no) {
+    if (std::optional<Golden> g = parse_golden(line, source, line_no, expected_optional)) vectors.push_back(*g);
+  }
+  return vectors;
 }
 
 std::vector<Issue> read_vectors(std::istream& in, const std::string& source) {

@@ -1,5 +1,6 @@
 // The vector interface of docs/fp24.md, shared by every engine's front end:
-// input lines `OP A [B]` (hex), output lines `RESULT FLAGS` (hex).
+// input lines `OP A [B]` (hex), output lines `RESULT FLAGS` (hex); and the
+// golden files of `fp24-run --check`: `OP A [B] RESULT FLAGS`.
 #pragma once
 
 #include <istream>
@@ -28,6 +29,31 @@ std::optional<Issue> parse_vector(std::string_view line, const std::string& sour
 
 // Reads every line of `in` (see parse_vector).
 std::vector<Issue> read_vectors(std::istream& in, const std::string& source);
+
+// The five flag bits of docs/fp24.md (NV DZ OF UF NX).
+constexpr Bits kFlagMask = 0x1F;
+
+// The largest result encoding of op: CMP a 4-bit condition, FIX a 16-bit
+// integer, the rest FP24.
+Bits result_max(Op op);
+
+// One line of a golden file, TestFloat style: `op a [b] result flags`.
+struct Golden {
+  Issue vector;
+  Result expected;
+  long line;
+  bool has_expected;  // false: a bare `op a [b]` (fp24-regress --vectors only)
+};
+
+// Parses a golden line: as parse_vector, but the op in any case, every hex
+// field with an optional 0x prefix, a `#` token ends the line, and the
+// result and flags follow the operands (both range-checked). With
+// expected_optional a bare `op a [b]` line is taken too (has_expected false).
+std::optional<Golden> parse_golden(std::string_view line, const std::string& source, long line_no,
+                                   bool expected_optional = false);
+
+// Reads every line of `in` (see parse_golden).
+std::vector<Golden> read_golden(std::istream& in, const std::string& source, bool expected_optional = false);
 
 // `op a [b]`, as parse_vector reads it (a: 4 hex digits for float, else 6).
 std::string format_vector(const Issue& v);

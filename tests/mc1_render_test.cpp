@@ -20,6 +20,7 @@
 #include "refrender.hpp"
 #include "render_kernels.hpp"
 #include "render_nc.hpp"
+#include "frame_steps.hpp"
 #include "report_writers.hpp"
 #include "sc_test_harness.hpp"
 #include "scene.hpp"
@@ -623,6 +624,27 @@ TEST_F(Mc1Render, StatisticsAndChart) {
   EXPECT_NE(g.find("scene downloaded"), std::string::npos);
   EXPECT_NE(g.find("block lists done"), std::string::npos);
   EXPECT_NE(g.find(">NC 4<"), std::string::npos);
+  // Fig. 3's steps: every NC went through the download, step 1 and s1; per
+  // NC the steps' busy time is its busy time (but for the Finish at the end).
+  for (const NcReport& n : r.ncs) {
+    const std::vector<StepTime> t = step_times(n);
+    ASSERT_EQ(t.size(), frame_steps().size());
+    EXPECT_GT(t[1].busy, 0u) << n.id;  // step 1
+    EXPECT_GT(t[3].busy, 0u) << n.id;  // s1
+    Picos busy = 0;
+    for (const StepTime& x : t) busy += x.busy;
+    EXPECT_LE(busy, n.busy);
+    EXPECT_GT(busy, n.busy * 99 / 100) << n.id;
+  }
+  EXPECT_NE(j.find("\"steps\": {\"download\": {\"busy_ps\": "), std::string::npos);
+  // One tooltip per block; the idle colour is drawn after the last blocks.
+  std::size_t tips = 0;
+  for (std::size_t p = g.find("<title>NC "); p != std::string::npos; p = g.find("<title>NC ", p + 1)) ++tips;
+  EXPECT_EQ(tips, static_cast<std::size_t>(r.blocks));
+  for (const FrameStep& st : frame_steps()) EXPECT_NE(g.find(std::string(">") + st.label + "<"), std::string::npos);
+  std::size_t idle = 0;
+  for (std::size_t p = g.find("fill=\"#eeeeee\""); p != std::string::npos; p = g.find("fill=\"#eeeeee\"", p + 1)) ++idle;
+  EXPECT_GT(idle, 1u);  // the legend's swatch and at least one row
 }
 
 // Every standard scene, small, against the double-precision reference.

@@ -35,6 +35,9 @@ class ApuLink {
   virtual void list_elements(std::uint64_t) {}
   virtual void sort_compares(std::uint64_t) {}
   virtual void apu_commands(std::uint64_t) {}
+  // The firmware starts work of another step of fig. 3 (step_name()), for
+  // the activity chart; costs no time.
+  virtual void enter_step(const char* /*name*/) {}
 };
 
 // Standalone: the MPU is infinitely fast; waiting clocks the APU.
@@ -142,6 +145,13 @@ class RenderFirmware {
   }
   // Step 3, s1..s4 for one block: RGB8 pixels, row-major.
   std::vector<Rgb8> render_block(const BlockList& list);
+  // Tells the link (ApuLink::enter_step) that work of step `s` begins, if
+  // it is not the step under way; the NC firmware's pixel output uses it.
+  void enter_step(Step s) {
+    if (step_ == static_cast<int>(s)) return;
+    step_ = static_cast<int>(s);
+    link_.enter_step(step_name(s));
+  }
 
   // s1's Z-buffer for triangles (r_scan): per pixel of `block`, row-major,
   // the w word (1 / distance along the pixel's unnormalised eye direction)
@@ -206,7 +216,12 @@ class RenderFirmware {
     std::vector<int> slot_prim;  // primitive cached in each PRIMS slot, -1 none
   };
   using Box = std::array<std::int32_t, 6>;  // min xyz, max xyz as order_key()s
-  StepCost& cost(Step s) { return stats_.step[static_cast<int>(s)]; }
+  // Every piece of work is booked to its step here, so this is also where
+  // the link learns that the step changed.
+  StepCost& cost(Step s) {
+    enter_step(s);
+    return stats_.step[static_cast<int>(s)];
+  }
 
   // ---- bank streaming (render_stream.cpp)
   const std::vector<apu::Encoded>& kernel(const std::string& name) const;
@@ -334,6 +349,7 @@ class RenderFirmware {
   std::vector<std::uint32_t> scene_words_;  // words C_D0 .. PRIMS - 1 of every bank
   std::array<Bank, 2> banks_;
   int mpu_bank_ = 0;  // which of banks_ the MPU owns (relative naming)
+  int step_ = -1;     // the step last told to the link (enter_step)
   std::string apu_prog_, mpu_prog_;
   std::unique_ptr<const KernelTable> kernels_;  // null: the library's copy
   RenderStats stats_;

@@ -75,6 +75,7 @@ void render_block(nc::NcPort& port, render::RenderFirmware& fw, const rc::BlockL
   bl.load = m.load;
   for (std::uint16_t o : m.objects) bl.objects.push_back(o);
   const std::vector<render::Rgb8> px = fw.render_block(bl);
+  fw.enter_step(render::Step::Output);  // the rows onto the image bus: fig. 3's pixel output
   if (px.size() != std::size_t{m.block.w} * m.block.h)
     throw std::logic_error(nc_name(port) + ": render_block gave " + std::to_string(px.size()) +
                            " pixels for a block of " + std::to_string(m.block.w) + "x" + std::to_string(m.block.h));

@@ -40,6 +40,7 @@ class NcApuLink final : public render::ApuLink {
   void list_elements(std::uint64_t n) override { port_.mpu_work(n * port_.timing().mpu_cycles_per_list_element); }
   void sort_compares(std::uint64_t n) override { port_.mpu_work(n * port_.timing().mpu_cycles_per_sort_compare); }
   void apu_commands(std::uint64_t n) override { port_.apu_commands(n); }
+  void enter_step(const char* name) override { port_.phase(name); }
 
  private:
   nc::NcPort& port_;

@@ -70,7 +70,10 @@ void describe(CLI::App& app, Options& o) {
   app.footer(
       "Errors go to standard error as file:line:col: error: message.\n"
       "Exit status: 0 done, 2 usage or input error, 1 an output could not be written (none is left).");
-  app.set_version_flag("--version", std::string("apuasm (mc1) ") + MC1_VERSION);
+  // The form every MC-1 program prints (host/common/cmdline.hpp), spelled
+  // out here: the assembler runs inside the build and links CLI11 alone.
+  app.set_version_flag("--version", std::string("apuasm (MC-1 virtual platform) ") + MC1_VERSION,
+                       "print the version and exit");
   auto* source = app.add_option("source", o.source, "APU assembly source (docs/apu-asm.md)")->type_name("SOURCE.apu");
   auto* image = app.add_option("-o", o.image, "image to write (default: the source name with .bin)")->type_name("FILE");
   auto* listing =

@@ -146,4 +146,18 @@ void require_stdin_not_directory() {
     throw UsageError("standard input is a directory, not a file");
 }
 
+std::string progress_times(double elapsed_seconds, double fraction_done) {
+  auto span = [](double s) {
+    char b[32];
+    if (s < 60) std::snprintf(b, sizeof b, "%.0f s", s);
+    else if (s < 3600) std::snprintf(b, sizeof b, "%d min %02d s", int(s) / 60, int(s) % 60);
+    else std::snprintf(b, sizeof b, "%d h %02d min", int(s) / 3600, int(s) / 60 % 60);
+    return std::string(b);
+  };
+  std::string t = span(elapsed_seconds) + " elapsed, ";
+  if (fraction_done <= 0 || !std::isfinite(fraction_done)) return t + "~? left";
+  const double left = fraction_done >= 1 ? 0 : elapsed_seconds * (1 - fraction_done) / fraction_done;
+  return t + "~" + span(left) + " left";
+}
+
 }  // namespace mc1::cmdline

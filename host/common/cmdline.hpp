@@ -56,6 +56,11 @@ CLI::Validator real_in(double min, double max);
 // A file that exists, is not a directory and can be read.
 CLI::Validator input_file();
 
+// A progress bar's time part, the same in every program: host time elapsed
+// and, from the fraction done so far, an estimate of what is left:
+// "12 s elapsed, ~30 s left" ("~? left" before anything is done).
+std::string progress_times(double elapsed_seconds, double fraction_done);
+
 // Throws UsageError when standard input is a directory (`prog < docs`),
 // which a stream would otherwise read as empty.
 void require_stdin_not_directory();

@@ -14,7 +14,7 @@ function(expect name want pattern)
 endfunction()
 
 set(tiny ${SCENES}/tiny.json --size 16x16 --nodes 2 --quiet)
-expect(version 0 "^mc1 [0-9]+\\.[0-9]+\\.[0-9]+" --version)
+expect(version 0 "^mc1 \\(MC-1 virtual platform\\) [0-9]+\\.[0-9]+\\.[0-9]+" --version)
 expect(help 0 "usage: mc1" --help)
 expect(help_command 0 "usage: mc1 \\[OPTIONS\\] SUBCOMMAND" help)
 expect(render_help 0 "usage: mc1 render.*--kill-node K@TIME" render --help)

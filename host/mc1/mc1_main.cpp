@@ -176,7 +176,7 @@ int cmd_bench(const CLI::App& cmd) {
   frame_options(a, base);
   const std::vector<unsigned> nodes = cli::parse_list("--nodes", a.get("nodes", "16,256"), 1, 4096);
   std::ostringstream json;
-  json << "{\"engine\": \"" << engine_name(base.engine) << "\", \"width\": " << base.width
+  json << "{\"schema\": \"mc1-bench/1\", \"engine\": \"" << engine_name(base.engine) << "\", \"width\": " << base.width
        << ", \"height\": " << base.height << ", \"block_width\": " << base.block_w
        << ", \"block_height\": " << base.block_h << ", \"runs\": [";
   std::printf("%6s %12s %10s %14s %12s %12s %6s\n", "NCs", "simulated", "host", "APU cycles", "cycles/s",
@@ -226,8 +226,6 @@ class Formatter : public CLI::Formatter {
 void add_commands(CLI::App& app) {
   app.formatter(std::make_shared<Formatter>());
   cmdline::conventions(app);
-  // `mc1 --version` prints "mc1 X.Y.Z", as it always has.
-  app.set_version_flag("--version", std::string("mc1 ") + cmdline::version(), "print the version and exit");
   app.get_formatter()->label("Usage", "usage");
   app.require_subcommand(1);
   app.add_subcommand("help", "this text; `mc1 COMMAND --help` for a command's options");

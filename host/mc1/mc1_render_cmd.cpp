@@ -12,6 +12,8 @@
 #include <sstream>
 
 #include "image.hpp"
+#include "json.hpp"
+#include "cmdline.hpp"
 #include "mc1_cli.hpp"
 #include "mc1_render.hpp"
 #include "png_writer.hpp"
@@ -95,7 +97,8 @@ std::string ms(Picos t) {
   return b;
 }
 
-// A progress bar on the terminal: blocks done of the total, simulated time.
+// A progress bar on the terminal: blocks done of the total, simulated time,
+// host time elapsed and an estimate of what is left (from blocks done).
 class ProgressBar {
  public:
   explicit ProgressBar(bool on) : on_(on) {}
@@ -108,8 +111,11 @@ class ProgressBar {
     drawn_ = true;
     constexpr int kWidth = 30;
     const int fill = p.blocks ? static_cast<int>(kWidth * static_cast<double>(p.blocks_done) / p.blocks) : kWidth;
-    std::fprintf(stderr, "\r  [%s%s] %u/%u blocks, %.3f ms simulated", std::string(fill, '#').c_str(),
-                 std::string(kWidth - fill, '.').c_str(), p.blocks_done, p.blocks, p.time * 1e-9);
+    const double fraction = p.blocks ? static_cast<double>(p.blocks_done) / p.blocks : 1.0;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    std::fprintf(stderr, "\r  [%s%s] %u/%u blocks, %.3f ms simulated, %s   ", std::string(fill, '#').c_str(),
+                 std::string(kWidth - fill, '.').c_str(), p.blocks_done, p.blocks, p.time * 1e-9,
+                 mc1::cmdline::progress_times(elapsed, fraction).c_str());
     std::fflush(stderr);
   }
   void done() {
@@ -121,6 +127,7 @@ class ProgressBar {
   bool on_;
   bool drawn_ = false;
   std::chrono::steady_clock::time_point last_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 void frame_options(const Parsed& a, SystemConfig& cfg, RenderJob& job) {
@@ -299,7 +306,7 @@ int cmd_bench_render(const CLI::App& cmd) {
   };
 
   std::ostringstream json;
-  json << "{\"scene\": \"" << scene << "\", \"block\": " << base.block_w << ", \"runs\": [";
+  json << "{\"schema\": \"mc1-bench-render/1\", \"scene\": " << mc1::scene::json::quote(scene) << ", \"block\": " << base.block_w << ", \"runs\": [";
   std::map<unsigned, Picos> t_size;
   for (unsigned n : nodes)
     t_size[n] = run_one("speedup", n, size, rc::Schedule::Lpt, EngineKind::Iss).frame_time;

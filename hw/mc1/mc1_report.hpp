@@ -24,6 +24,7 @@ struct NcReport {
   std::string fault;      // what the watchdog saw
   Picos link_down = 0;  // the RC's controller gave its link up (0: never)
   std::vector<std::pair<std::string, Picos>> milestones;
+  std::vector<std::pair<Picos, std::string>> phases;  // the firmware's step changes (NcPort::phase)
   Picos apu_busy = 0;                                   // APU started, not halted
   std::uint64_t apu_cycles = 0, blocks = 0, pixels = 0, runs = 0;
   Picos mpu_busy = 0;

@@ -180,6 +180,7 @@ FrameReport Mc1System::report(double host_seconds) {
     x.watchdog = s.watchdog;
     x.fault = s.fault;
     x.milestones = s.milestones;
+    x.phases = s.phases;
     x.apu_busy = s.apu_running;
     x.apu_cycles = s.apu_cycles;
     x.blocks = s.blocks;

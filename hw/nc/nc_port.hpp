@@ -55,6 +55,9 @@ class NcPort {
   // For the statistics: the firmware reached a named point of the frame
   // ("downloaded", "step1", ...); the NC records the time.
   virtual void milestone(const std::string& /*name*/) {}
+  // For the activity chart: the firmware began work of the named step of the
+  // frame (fig. 3's "s1 hidden surface", ...); the NC records when.
+  virtual void phase(const std::string& /*name*/) {}
 };
 
 using Firmware = std::function<void(NcPort&)>;

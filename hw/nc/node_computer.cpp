@@ -304,6 +304,7 @@ void NodeComputer::finished() {
 }
 
 void NodeComputer::milestone(const std::string& name) { stats_.milestones.emplace_back(name, now()); }
+void NodeComputer::phase(const std::string& name) { stats_.phases.emplace_back(now(), name); }
 
 void NodeComputer::die() {
   const Picos t = std::max(since_, std::min(now(), kill_at_));

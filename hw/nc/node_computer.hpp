@@ -72,6 +72,7 @@ struct NcStats {
   bool watchdog = false;  // stopped by the APU watchdog (killed is set too)
   std::string fault;      // what the watchdog saw
   std::vector<std::pair<std::string, Picos>> milestones;  // in the order reached
+  std::vector<std::pair<Picos, std::string>> phases;      // step changes, in time order (phase())
   Picos mpu_busy = 0;               // MPU work annotated (copies, commands, interrupts)
   double apu_host_seconds = 0;      // host time spent clocking the APU engine
   // Only when the engine is the ISS (it counts them): words issued, and
@@ -119,6 +120,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   void block_end() override;
   void finished() override;
   void milestone(const std::string& name) override;
+  void phase(const std::string& name) override;
 
  private:
   void run();

@@ -26,6 +26,17 @@ std::string format(const char* fmt, ...) {
   return buf;
 }
 
+// A JSON string's body: quotes, backslashes and control characters escaped.
+std::string json_escape(const std::string& text) {
+  std::string o;
+  for (unsigned char c : text) {
+    if (c == '"' || c == '\\') o += '\\';
+    if (c < 0x20) o += format("\\u%04x", c);
+    else o += static_cast<char>(c);
+  }
+  return o;
+}
+
 double percent(std::uint64_t part, std::uint64_t whole) { return whole ? 100.0 * part / whole : 0.0; }
 
 }  // namespace
@@ -48,10 +59,17 @@ void Profile::add(const CycleRecord& r) {
   const int pc = r.pc % kProgramWords;
   PcStats& p = pcs_[bank][pc];
   if (!r.issued) {
+    if (p.stalled() == 0) p.first_stall_cycle = r.cycle;
     ++stalls_[static_cast<int>(r.stall)];
     ++p.stalls[static_cast<int>(r.stall)];
+    if (run_.bank != bank || run_.pc != pc || run_.first + run_.cycles != r.cycle) {
+      end_run();
+      run_ = {bank, pc, r.cycle, 0};
+    }
+    ++run_.cycles;
     return;
   }
+  end_run();
   ++issued_;
   ++p.issued;
   const Encoded e = word_at_ ? word_at_(bank, static_cast<std::uint16_t>(pc)) : Encoded{};
@@ -61,6 +79,53 @@ void Profile::add(const CycleRecord& r) {
   }
   const std::uint8_t m = units_[bank][pc];
   for (int u = 0; u < kFpUnits; ++u) unit_ops_[u] += (m >> u) & 1;
+}
+
+void Profile::end_run() {
+  if (run_.bank < 0) return;
+  PcStats& p = pcs_[run_.bank][run_.pc];
+  if (run_.cycles > p.worst_cycles) {
+    p.worst_cycles = run_.cycles;
+    p.worst_cycle = run_.first;
+  }
+  run_.bank = -1;
+}
+
+std::string Profile::json(const std::string& program) const {
+  Profile closed = *this;  // the run under way counts as it stands
+  closed.end_run();
+  std::string s = format("{\"schema\": \"apu-profile/1\", \"program\": \"%s\", \"cycles\": %llu, \"issued\": %llu",
+                         json_escape(program).c_str(), static_cast<unsigned long long>(cycles_),
+                         static_cast<unsigned long long>(issued_));
+  s += ", \"unit_ops\": {";
+  for (int u = 0; u < kFpUnits; ++u)
+    s += format("%s\"%s\": %llu", u ? ", " : "", unit_name(u), static_cast<unsigned long long>(unit_ops_[u]));
+  auto stalls = [](const std::array<std::uint64_t, kStallKinds>& a) {
+    std::string t = "{";
+    for (int k = 1; k < kStallKinds; ++k)
+      t += format("%s\"%s\": %llu", k > 1 ? ", " : "", stall_name(static_cast<Stall>(k)),
+                  static_cast<unsigned long long>(a[k]));
+    return t + "}";
+  };
+  s += "}, \"stalls\": " + stalls(stalls_) + ", \"words\": [";
+  bool first = true;
+  for (int b = 0; b < 2; ++b)
+    for (int pc = 0; pc < kProgramWords; ++pc) {
+      const PcStats& p = closed.pcs_[b][pc];
+      if (p.issued == 0 && p.stalled() == 0) continue;
+      const Encoded e = word_at_ ? word_at_(b, static_cast<std::uint16_t>(pc)) : Encoded{};
+      s += format("%s\n  {\"bank\": %d, \"pc\": %d, \"issued\": %llu, \"stalled\": %llu, \"stalls\": ",
+                  first ? "" : ",", b, pc, static_cast<unsigned long long>(p.issued),
+                  static_cast<unsigned long long>(p.stalled()));
+      s += stalls(p.stalls);
+      if (p.stalled())
+        s += format(", \"first_stall_cycle\": %llu, \"worst_stall\": {\"cycle\": %llu, \"cycles\": %llu}",
+                    static_cast<unsigned long long>(p.first_stall_cycle), static_cast<unsigned long long>(p.worst_cycle),
+                    static_cast<unsigned long long>(p.worst_cycles));
+      s += ", \"word\": \"" + json_escape(disassemble(e)) + "\"}";
+      first = false;
+    }
+  return s + "\n]}\n";
 }
 
 double Profile::utilization(int unit) const {

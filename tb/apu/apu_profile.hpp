@@ -30,6 +30,9 @@ class Profile {
     std::uint64_t issued = 0;
     std::array<std::uint64_t, kStallKinds> stalls{};
     std::uint64_t stalled() const;
+    // The first stalled cycle at this word, and the longest run of stalled
+    // cycles in a row there (its first cycle, its length); engine cycles.
+    std::uint64_t first_stall_cycle = 0, worst_cycle = 0, worst_cycles = 0;
   };
   std::uint64_t cycles() const { return cycles_; }            // cycles the APU was running
   std::uint64_t issued() const { return issued_; }
@@ -43,6 +46,9 @@ class Profile {
 
   // The text report of docs/apu-tools.md, with the top_n stalling words.
   std::string report(int top_n = 10) const;
+  // The same as JSON, schema "apu-profile/1" (docs/apu-tools.md), every
+  // word that issued or stalled listed; `program` names the run.
+  std::string json(const std::string& program) const;
 
  private:
   std::function<Encoded(int, std::uint16_t)> word_at_;
@@ -50,6 +56,8 @@ class Profile {
   std::array<std::uint64_t, kFpUnits> unit_ops_{};
   std::array<std::uint64_t, kStallKinds> stalls_{};
   std::array<std::array<PcStats, kProgramWords>, 2> pcs_{};
+  void end_run();  // closes the run of stalled cycles under way
+  struct Run { int bank = -1, pc = 0; std::uint64_t first = 0, cycles = 0; } run_;
   // The unit mask of the word last seen at each pc (recomputed when the word changes).
   std::array<std::array<Encoded, kProgramWords>, 2> seen_{};
   std::array<std::array<std::uint8_t, kProgramWords>, 2> units_{};

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "apu_driver.hpp"
+#include "atomic_file.hpp"
+#include "disasm.hpp"
 #include "apu_lockstep.hpp"
 #include "apu_profile.hpp"
 #include "apu_tools.hpp"
@@ -28,6 +30,7 @@ struct Options {
   std::string program, trace, engine = "iss";
   std::vector<std::string> data, read_texts;
   bool profile = false;
+  std::string profile_json;
   int top = 10;
   std::uint64_t max_cycles = 100'000'000;
   std::uint16_t start = 0;
@@ -53,6 +56,8 @@ void add_options(CLI::App& app, Options& o) {
   tools::add_data_option(app, o.data);
   app.add_option("--trace", o.trace, "rtl only: write an FST waveform of the core to FILE")->type_name("FILE");
   app.add_flag("--profile", o.profile, "print the cycle profile");
+  app.add_option("--profile-json", o.profile_json, "also write the profile as JSON to FILE (docs/apu-tools.md)")
+      ->type_name("FILE");
   app.add_option("--top", o.top, "stalling words the profile lists")
       ->transform(cli::unsigned_in(0, 2 * kProgramWords))
       ->capture_default_str();
@@ -88,6 +93,28 @@ void print_state(const ApuEngine& e) {
   print_regs("A", 1, kNumARegs, 8, 4, [&](int i) { return std::uint32_t{e.areg(i)}; });
 }
 
+// Beside an FST trace: TRACE.pc.txt, a GTKWave translate filter from the pc
+// (3 hex digits, as GTKWave prints TOP.apu_core.pc[9:0]) to the word the
+// program holds there, disassembled.
+std::string pc_filter(const std::string& trace, const std::vector<Encoded>& words) {
+  std::string text = "# pc -> word of the program traced in " + trace + " (apu-run --trace)\n";
+  for (std::size_t pc = 0; pc < words.size(); ++pc)
+    text += hex_text(static_cast<std::uint32_t>(pc), 3).substr(2) + " " + disassemble(words[pc]) + "\n";
+  return text;
+}
+
+// An output file written whole (host/common/atomic_file.hpp); false, said
+// on stderr, when it could not be.
+bool write_output(const std::string& option, const std::string& path, const std::string& text) {
+  try {
+    mc1::write_file_atomically(path, text);
+    return true;
+  } catch (const std::exception& e) {
+    std::cerr << "apu-run: " << option << ": " << e.what() << "\n";
+    return false;
+  }
+}
+
 int run(const Options& o) {
   const std::vector<Encoded> words = tools::load_program_file(o.program);
   auto engine = tools::make_engine(o.engine, o.trace.empty() ? nullptr : o.trace.c_str());
@@ -105,7 +132,7 @@ int run(const Options& o) {
   drv.hand_over_program();
   drv.start(o.start);
   std::unique_ptr<Profile> profile;
-  if (o.profile) {
+  if (o.profile || !o.profile_json.empty()) {
     profile = std::make_unique<Profile>([&drv](int bank, std::uint16_t pc) { return drv.program_word(bank, pc); });
     drv.set_observer([&](const CycleRecord& r) { profile->add(r); });
   }
@@ -131,7 +158,10 @@ int run(const Options& o) {
                 << hex_text(v[i], 6);
     std::cout << "\n";
   }
-  if (profile) std::cout << profile->report(o.top);
+  if (!o.trace.empty() && !write_output("--trace", o.trace + ".pc.txt", pc_filter(o.trace, words))) rc = 1;
+  if (profile && o.profile) std::cout << profile->report(o.top);
+  if (profile && !o.profile_json.empty() && !write_output("--profile-json", o.profile_json, profile->json(o.program)))
+    rc = 1;
   return rc;
 }
 
