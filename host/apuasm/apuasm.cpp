@@ -7,6 +7,7 @@
 #include "apuasm.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -90,6 +91,12 @@ class Assembler {
   void error(const SrcLine& l, int col, const std::string& msg, size_t key) {
     diags_.push_back({{l.loc.file, l.loc.line, col}, l.context ? msg + *l.context : msg});
     keys_.push_back(key);
+    if (diags_.size() < kMaxErrors) return;
+    // Sorted after the others: it says where the assembly gave up.
+    diags_.push_back({{l.loc.file, l.loc.line, col},
+                      "too many errors (" + std::to_string(kMaxErrors) + "), the assembly stops here"});
+    keys_.push_back(SIZE_MAX);
+    throw LimitReached{};
   }
   void error(const SrcLine& l, int col, const std::string& msg) { error(l, col, msg, listing_.size() - 1); }
 

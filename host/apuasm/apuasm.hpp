@@ -4,6 +4,7 @@
 // APU's own (hw/apu/apu_image.hpp).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <stdexcept>
@@ -52,8 +53,14 @@ struct Program {
   std::vector<ListingLine> listing;
 };
 
+// An assembly stops at this many errors (and says so in one more): a macro
+// expanded thousands of times would otherwise repeat one error per expansion,
+// megabytes of diagnostics that each carry the whole chain of invocations.
+constexpr std::size_t kMaxErrors = 100;
+
 // Assembles `source`; `filename` names it in diagnostics, and .include paths
-// are relative to its directory. Throws AsmError listing every error found.
+// are relative to its directory. Throws AsmError listing every error found
+// (the first kMaxErrors).
 Program assemble(const std::string& source, const std::string& filename = "<input>");
 Program assemble_file(const std::string& path);
 
