@@ -171,6 +171,29 @@ TEST_F(Mc1Render, SamePngForEveryNodeCountAndSchedule) {
     }
 }
 
+// Section 7's scenes (CSG, solids of revolution), small: the same PNG for
+// 1, 4, 16 and 64 NCs under every schedule, and on the RTL engine.
+TEST_F(Mc1Render, Section7ScenesSamePngForEveryNodeCountScheduleAndEngine) {
+  const unsigned w = 32, h = 24;
+  for (const char* scene : {"csg", "lathe"}) {
+    SCOPED_TRACE(scene);
+    const FrameReport ref = render_frame(config(1), scene, w, h).report;
+    expect_complete(ref);
+    for (unsigned n : {1u, 4u, 16u, 64u})
+      for (rc::Schedule s : {rc::Schedule::Lpt, rc::Schedule::Fifo, rc::Schedule::Static}) {
+        if (n == 1 && s == rc::Schedule::Lpt) continue;  // ref
+        SCOPED_TRACE(std::to_string(n) + " NCs, " + rc::schedule_name(s));
+        const FrameReport r = render_frame(config(n, s), scene, w, h).report;
+        expect_complete(r);
+        EXPECT_EQ(encode_png_rgb8(w, h, r.rgb.data()), encode_png_rgb8(w, h, ref.rgb.data()));
+      }
+    SystemConfig c = config(4);
+    c.engine = EngineKind::Rtl;
+    c.engines = make_engine;
+    EXPECT_EQ(render_frame(c, scene, w, h).report.rgb, ref.rgb);
+  }
+}
+
 // Not asked of the machine, but true of the renderer: a pixel does not
 // depend on the block it is rendered in.
 TEST_F(Mc1Render, SamePngForEveryBlockSize) {
@@ -629,7 +652,8 @@ TEST_F(Mc1Render, WithinPsnr35OfTheReferenceOnEveryStandardScene) {
   const struct {
     const char* scene;
     unsigned w, h;
-  } cases[] = {{"tiny", 32, 32}, {"whitted", 48, 36}, {"room", 48, 36}, {"smooth", 32, 24}, {"teapot", 32, 24}};
+  } cases[] = {{"tiny", 32, 32}, {"whitted", 48, 36}, {"room", 48, 36}, {"smooth", 32, 24}, {"teapot", 32, 24},
+               {"csg", 48, 36},  {"lathe", 48, 36}};
   for (const auto& c : cases) {
     SCOPED_TRACE(c.scene);
     const FrameReport r = render_frame(config(4, rc::Schedule::Lpt, 16), c.scene, c.w, c.h).report;

@@ -195,6 +195,76 @@ TEST(RefSolid, UnionHidesInnerSurfaces) {
   EXPECT_EQ(hit.primitive, 1);
 }
 
+// Two unit spheres at x = 0 and x = 1 combined (docs/scene-format.md "Objects").
+scene::Scene two_spheres(const std::string& combine) {
+  return one_pixel("\"colour\": [1, 1, 1], \"ko\": 1",
+                   "{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1}, "
+                   "{\"type\": \"sphere\", \"centre\": [1, 0, 0], \"radius\": 1}",
+                   "solid\", \"combine\": \"" + combine);
+}
+
+TEST(RefCsg, IntersectionIsTheLens) {
+  // Along +x from x = -5: the first sphere's surface at x = -1 lies outside
+  // the second (hidden); the second's at x = 0 inside the first is the lens.
+  scene::Scene s = two_spheres("intersection");
+  ASSERT_EQ(s.objects[0].combine, scene::Combine::intersection);
+  refrender::Hit hit;
+  ASSERT_TRUE(Renderer(s).nearest_hit({{-5, 0, 0}, {1, 0, 0}}, hit));
+  EXPECT_NEAR(hit.t, 5.0, 1e-12);
+  EXPECT_EQ(hit.primitive, 1);
+  expect_colour(hit.normal, {-1, 0, 0});
+  // A line through the first sphere only meets no surface of the lens.
+  EXPECT_FALSE(Renderer(s).nearest_hit({{-0.5, -5, 0}, {0, 1, 0}}, hit));
+}
+
+TEST(RefCsg, DifferenceShowsTheBiteWithTheSolidsNormal) {
+  // Along -x from x = 5: the second sphere's far side (x = 2) is outside the
+  // first, the first's at x = 1 inside the second: both hidden. The second's
+  // at x = 0, inside the first, bounds the bite: its inward normal, +x.
+  scene::Scene s = two_spheres("difference");
+  refrender::Hit hit;
+  ASSERT_TRUE(Renderer(s).nearest_hit({{5, 0, 0}, {-1, 0, 0}}, hit));
+  EXPECT_NEAR(hit.t, 5.0, 1e-12);
+  EXPECT_EQ(hit.primitive, 1);
+  expect_colour(hit.normal, {1, 0, 0});
+  ASSERT_TRUE(Renderer(s).nearest_hit({{-5, 0, 0}, {1, 0, 0}}, hit));  // the first's near side
+  EXPECT_NEAR(hit.t, 4.0, 1e-12);
+  EXPECT_EQ(hit.primitive, 0);
+}
+
+TEST(RefCsg, ShadowRaysMeetOnlyTheCombinedSurface) {
+  // The segment x = -0.5 from y = -3 to the light at y = 3 crosses the first
+  // sphere, not the second: it blocks the light for the union, not for the
+  // intersection; x = 0.5 crosses both: the lens blocks it too.
+  const scene::Light up{{-0.5, 3, 0}, {1, 1, 1}}, up2{{0.5, 3, 0}, {1, 1, 1}};
+  scene::Scene lens = two_spheres("intersection"), both = two_spheres("union");
+  EXPECT_FALSE(Renderer(lens).shadowed({-0.5, -3, 0}, up));
+  EXPECT_TRUE(Renderer(both).shadowed({-0.5, -3, 0}, up));
+  EXPECT_TRUE(Renderer(lens).shadowed({0.5, -3, 0}, up2));
+  scene::Scene bite = two_spheres("difference");
+  EXPECT_TRUE(Renderer(bite).shadowed({-0.5, -3, 0}, up));
+  EXPECT_FALSE(Renderer(bite).shadowed({1.5, -3, 0}, {{1.5, 3, 0}, {1, 1, 1}}));  // the subtrahend alone
+}
+
+TEST(RefRevolution, ConeAndCylinderFrustums) {
+  // A profile (0, 0) - (1, 1) - (1, 2) about the z axis through the origin:
+  // a cone x^2 + y^2 = z^2 below z = 1, a cylinder of radius 1 above.
+  scene::Scene s = one_pixel("\"colour\": [1, 1, 1], \"ko\": 1",
+                             "{\"type\": \"revolution\", \"axis\": \"z\", \"base\": [0, 0, 0], "
+                             "\"profile\": [[0, 0], [1, 1], [1, 2]]}",
+                             "solid");
+  ASSERT_EQ(s.objects[0].primitives.size(), 2u);
+  refrender::Hit hit;
+  ASSERT_TRUE(Renderer(s).nearest_hit({{-5, 0, 0.5}, {1, 0, 0}}, hit));  // the cone at radius 0.5
+  EXPECT_NEAR(hit.t, 4.5, 1e-12);
+  expect_colour(hit.normal, glm::normalize(glm::dvec3(-1, 0, -1)));
+  ASSERT_TRUE(Renderer(s).nearest_hit({{-5, 0, 1.5}, {1, 0, 0}}, hit));  // the cylinder
+  EXPECT_NEAR(hit.t, 4.0, 1e-12);
+  EXPECT_EQ(hit.primitive, 1);
+  expect_colour(hit.normal, {-1, 0, 0});
+  EXPECT_FALSE(Renderer(s).nearest_hit({{-5, 0, 2.5}, {1, 0, 0}}, hit));  // above the profile
+}
+
 TEST(ImgcmpPsnr, IdenticalIsInfinite) {
   imgcmp::Image a(4, 4);
   EXPECT_TRUE(std::isinf(imgcmp::psnr(a, a)));

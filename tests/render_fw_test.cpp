@@ -426,6 +426,107 @@ TEST(RenderScenes, SmoothWithin35dBOfTheReference) { EXPECT_GE(standard_scene_ps
 TEST(RenderScenes, TeapotWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("teapot", 32, 24), 35.0); }
 TEST(RenderScenes, TeapotAt64x48Within35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("teapot", 64, 48), 35.0); }
 
+// Section 7's scenes (docs/renderer.md "CSG and solids of revolution").
+TEST(RenderScenes, CsgWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("csg", 64, 48), 35.0); }
+TEST(RenderScenes, LatheWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("lathe", 64, 48), 35.0); }
+
+// CSG on eye and shadow rays: csg.json at 64x48 as one block, s1 with the
+// solid rule (r_inside's CSG_OUT regions hide hits outside them), then s2
+// (the combined regions cast apart, the solid rule on the shadow rays):
+// every pixel's object and per-light shadow flags against the reference's
+// nearest_hit and shadowed.
+TEST(RenderCsg, EyeHitsAndShadowFlagsMatchTheReference) {
+  const int w = 64, h = 48;
+  Rig rig;
+  const scene::Scene sc = load_standard_scene(rig, "csg", w, h);
+  const auto& v = rig.fw.view();
+  const BlockList list = rig.fw.build_block_list({0, 0, w, h});
+  std::vector<RenderFirmware::Ray> rays = rig.fw.hidden_surface(list);
+  rig.fw.solid_rule(rays, {rig.fw.eye_candidates(list)}, Step::HiddenSurface);
+  const std::uint64_t eye_hidden = rig.fw.stats().hidden_hits;
+  rig.fw.surface(rays, Step::HiddenSurface);
+  rig.fw.shadows(rays);
+  const std::uint64_t shadow_hidden = rig.fw.stats().hidden_hits - eye_hidden;
+  const refrender::Renderer ref(sc);
+  int other_object = 0, other_flags = 0, combined = 0, shadowed = 0;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const auto& rec = rays[j * w + i].rec;
+      refrender::Hit hit;
+      const bool ref_hit = ref.nearest_hit(refrender::eye_ray(sc.camera, i, j, w, h), hit);
+      const int obj = rec[R_ID] == kNoHit ? -1 : v.prim_object[rec[R_ID]];
+      if (obj != (ref_hit ? hit.object : -1)) {
+        ++other_object;
+        continue;
+      }
+      if (obj < 0) continue;
+      combined += sc.objects[obj].combine != scene::Combine::union_;
+      int ref_flags = 0;
+      for (int l = 0; l < static_cast<int>(sc.lights.size()); ++l) ref_flags |= ref.shadowed(hit.point, sc.lights[l]) << l;
+      other_flags += static_cast<int>(rec[R_SHADOW]) != ref_flags;
+      shadowed += ref_flags != 0;
+    }
+  std::printf("csg 64x48: %d pixels on combined solids, %d shadowed; hidden hits eye %llu, shadow %llu; "
+              "other object %d, other shadow flags %d\n",
+              combined, shadowed, static_cast<unsigned long long>(eye_hidden),
+              static_cast<unsigned long long>(shadow_hidden), other_object, other_flags);
+  EXPECT_GT(combined, 400);
+  EXPECT_GT(eye_hidden, 100u);    // the lens's and the bores' hidden crossings
+  EXPECT_GT(shadow_hidden, 10u);  // shadow rays past hidden crossings
+  EXPECT_LE(other_object, 3);     // measured 0
+  EXPECT_LE(other_flags, 3);      // measured 1
+}
+
+// The section 7 primitives' cost on the APU (docs/renderer.md "Timing"):
+// 32 eye rays across a row, cast against one candidate less the same cast
+// against none, per ray; the solid rule over eye hits on the lens.
+std::uint64_t cast_cycles(Rig& rig, int row, int first_col, const std::vector<int>& list,
+                          std::vector<RenderFirmware::Ray>* out = nullptr) {
+  std::vector<RenderFirmware::Ray> rays(kRaysPerBatch);
+  for (int k = 0; k < kRaysPerBatch; ++k) {
+    rays[k].rec[R_KIND] = RK_EYE;
+    rays[k].rec[R_ARG] = static_cast<std::uint32_t>(first_col + k);
+    rays[k].rec[R_ARG2] = static_cast<std::uint32_t>(row);
+    rays[k].rec[R_ID] = kNoHit;
+  }
+  rig.fw.reset_stats();
+  rig.fw.cast(rays, {list}, Step::HiddenSurface);
+  if (out) *out = rays;
+  return rig.fw.stats().step[static_cast<int>(Step::HiddenSurface)].apu_cycles;
+}
+
+TEST(RenderCost, CyclesPerRayOfTheSection7Primitives) {
+  Rig lathe;
+  const scene::Scene sl = load_standard_scene(lathe, "lathe", 64, 48);
+  const int pawn = lathe.fw.view().objects.at(2).first_prim + 3;  // its shaft, (0.3, 0.35) - (0.2, 0.8)
+  const std::uint64_t none = cast_cycles(lathe, 25, 16, {});
+  std::vector<RenderFirmware::Ray> rays;
+  const std::uint64_t frustum = cast_cycles(lathe, 25, 16, {pawn}, &rays) - none;
+  int hits = 0;
+  for (const auto& r : rays) hits += r.rec[R_ID] == static_cast<std::uint32_t>(pawn);
+  Rig csg;
+  load_standard_scene(csg, "csg", 64, 48);
+  const auto& lens = csg.fw.view().objects.at(1);
+  const std::vector<int> both{lens.first_prim, lens.first_prim + 1};
+  const std::uint64_t sphere = cast_cycles(csg, 22, 0, {lens.first_prim}) - cast_cycles(csg, 22, 0, {});
+  std::vector<RenderFirmware::Ray> eye;
+  cast_cycles(csg, 22, 0, both, &eye);
+  csg.fw.reset_stats();
+  csg.fw.solid_rule(eye, {both}, Step::HiddenSurface);
+  const std::uint64_t rule = csg.fw.stats().step[static_cast<int>(Step::HiddenSurface)].apu_cycles;
+  int on_lens = 0;
+  for (const auto& r : eye) on_lens += r.rec[R_ID] != kNoHit;
+  std::printf("per ray: a frustum %.1f cycles (%d of 32 hit it), a sphere %.1f; the lens's solid rule %.1f "
+              "(%llu hidden hits, %d rays end on the lens)\n",
+              frustum / 32.0, hits, sphere / 32.0, rule / 32.0,
+              static_cast<unsigned long long>(csg.fw.stats().hidden_hits), on_lens);
+  EXPECT_GT(hits, 0);
+  EXPECT_GT(frustum, 32u * 20);  // a quadric's root pair and box test with its error bound: 100-300 cycles
+  EXPECT_LT(frustum, 32u * 400);
+  EXPECT_GT(on_lens, 0);
+  EXPECT_GT(csg.fw.stats().hidden_hits, 0u);
+}
+
 // Step 2 (r_box): block lists hold only the objects whose projected box
 // meets the block, and s1's candidates only the triangles whose projection
 // does; both are conservative: every eye ray's hit (all primitives, one

@@ -112,6 +112,21 @@ TEST(SceneStandard, Smooth) {
   EXPECT_EQ(s.primitive_count(), 561u);
 }
 
+TEST(SceneStandard, CsgAndLathe) {
+  Scene c = load_scene(scenes_dir() + "/csg.json");
+  EXPECT_EQ(c.count(PrimitiveKind::quad), 2u);
+  EXPECT_EQ(c.count(PrimitiveKind::ellipsoid), 6u);
+  EXPECT_EQ(c.count(PrimitiveKind::quadric), 3u);
+  const Combine want[] = {Combine::union_, Combine::intersection, Combine::difference, Combine::difference,
+                          Combine::intersection};
+  ASSERT_EQ(c.objects.size(), 5u);
+  for (std::size_t o = 0; o < 5; ++o) EXPECT_EQ(c.objects[o].combine, want[o]) << o;
+  Scene l = load_scene(scenes_dir() + "/lathe.json");
+  EXPECT_EQ(l.count(PrimitiveKind::quad), 2u);
+  EXPECT_EQ(l.count(PrimitiveKind::quadric), 7u + 11 + 5 + 6);  // one frustum per profile segment
+  EXPECT_EQ(l.primitive_count(), 31u);
+}
+
 TEST(SceneStandard, Tiny) {
   Scene s = load_scene(scenes_dir() + "/tiny.json");
   EXPECT_EQ(s.primitive_count(), 3u);
@@ -235,6 +250,62 @@ TEST(SceneErrors, DegenerateGeometry) {
   EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"quadric\", \"coefficients\": [1, 1, 1, 0, 0, 0, 0, 0, 0, "
                                             "-1], \"box\": {\"min\": [-1, 1, -1], \"max\": [1, 1, 1]}}"))),
             "t.json:9: objects[0].primitives[0].box: min must be below max on every axis");
+}
+
+TEST(SceneCsg, CombineAndItsErrors) {
+  const std::string two =
+      "{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1}, "
+      "{\"type\": \"sphere\", \"centre\": [1, 0, 0], \"radius\": 1}";
+  auto solid = [&](const std::string& kind, const std::string& combine, const std::string& prims) {
+    return scene_text("{\"kind\": \"" + kind + "\", \"combine\": \"" + combine +
+                      "\", \"material\": \"m\", \"primitives\": [" + prims + "]}");
+  };
+  Scene s = parse_scene(solid("solid", "difference", two), "t.json", "");
+  EXPECT_EQ(s.objects[0].combine, Combine::difference);
+  EXPECT_TRUE(hides_outside(s.objects[0], 0));
+  EXPECT_FALSE(hides_outside(s.objects[0], 1));
+  EXPECT_TRUE(flips_normal(s.objects[0], 1));
+  EXPECT_EQ(parse_scene(solid("solid", "union", two), "t.json", "").objects[0].combine, Combine::union_);
+  EXPECT_EQ(error_of(solid("solid", "and", two)),
+            "t.json:8: objects[0].combine: expected \"union\", \"intersection\" or \"difference\"");
+  EXPECT_EQ(error_of(solid("surface", "intersection", two)),
+            "t.json:8: objects[0].combine: intersection and difference combine solids only");
+  EXPECT_EQ(error_of(solid("solid", "intersection", "{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1}")),
+            "t.json:8: objects[0].combine: intersection and difference need at least two primitives");
+  EXPECT_EQ(error_of(solid("solid", "intersection", two + ", " + kTriangle)),
+            "t.json:8: objects[0].combine: intersection and difference take regions only (ellipsoid, sphere, quadric)");
+}
+
+TEST(SceneRevolution, FrustumsOfTheProfile) {
+  // (0.5, 1) - (1.5, 3) about the y axis through (2, 1, -1): radius
+  // 0.5 + (h - 1) / 2, i.e. c = 0, s = 1/2 (the apex at h = 0).
+  Scene s = parse_scene(scene_text(object_with("{\"type\": \"revolution\", \"axis\": \"y\", \"base\": [2, 1, -1], "
+                                               "\"profile\": [[0.5, 1], [1.5, 3], [1.5, 4]]}")),
+                        "t.json", "");
+  const auto& prims = s.objects[0].primitives;
+  ASSERT_EQ(prims.size(), 2u);
+  const Primitive& cone = prims[0];
+  EXPECT_EQ(cone.kind, PrimitiveKind::quadric);
+  // (x - 2)^2 + (z + 1)^2 - (y - 1)^2 / 4
+  const std::array<double, 10> want = {1, -0.25, 1, 0, 0, 0, -4, 0.5, 2, 4 + 1 - 0.25};
+  for (int k = 0; k < 10; ++k) EXPECT_DOUBLE_EQ(cone.coefficients[k], want[k]) << "a" << k + 1;
+  // About the box centre (2, 3, -1): (x - 2)^2 + (z + 1)^2 - (1 + (y - 3) / 2)^2.
+  const std::array<double, 4> centred = {0, -1, 0, -1};
+  for (int k = 0; k < 4; ++k) EXPECT_DOUBLE_EQ(cone.centred_linear[k], centred[k]) << "centred a" << k + 7;
+  EXPECT_EQ(cone.box_min, glm::dvec3(2 - 1.875, 2, -1 - 1.875));
+  EXPECT_EQ(cone.box_max, glm::dvec3(2 + 1.875, 4, -1 + 1.875));
+  EXPECT_EQ(prims[1].box_min.y, 4.0);
+  EXPECT_EQ(prims[1].box_max.y, 5.0);
+  EXPECT_DOUBLE_EQ(prims[1].coefficients[1], 0.0);  // a cylinder: no y^2
+  auto error = [&](const std::string& profile, const std::string& axis = "y") {
+    return error_of(scene_text(object_with("{\"type\": \"revolution\", \"axis\": \"" + axis +
+                                           "\", \"base\": [0, 0, 0], \"profile\": " + profile + "}")));
+  };
+  EXPECT_EQ(error("[[1, 0], [1, 0]]"), "t.json:9: objects[0].primitives[0].profile[1]: heights must increase along the profile");
+  EXPECT_EQ(error("[[0, 0], [0, 1]]"), "t.json:9: objects[0].primitives[0].profile[1]: a segment on the axis (both radii 0)");
+  EXPECT_EQ(error("[[-1, 0], [0, 1]]"), "t.json:9: objects[0].primitives[0].profile[0][0]: must not be negative");
+  EXPECT_EQ(error("[[1, 0]]"), "t.json:9: objects[0].primitives[0].profile: expected at least 2 [radius, height] points");
+  EXPECT_EQ(error("[[1, 0], [0, 1]]", "w"), "t.json:9: objects[0].primitives[0].axis: expected \"x\", \"y\" or \"z\"");
 }
 
 TEST(SceneErrors, MeshFile) {

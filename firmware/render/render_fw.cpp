@@ -25,6 +25,8 @@ StepCost& StepCost::operator+=(const StepCost& o) {
   list_elements += o.list_elements;
   sort_compares += o.sort_compares;
   apu_commands += o.apu_commands;
+  apu_issued += o.apu_issued;
+  apu_bank_stalls += o.apu_bank_stalls;
   return *this;
 }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "apu_driver.hpp"
+#include "apu_iss.hpp"
 #include "scene_image.hpp"
 
 namespace mc1::render {
@@ -62,7 +63,19 @@ struct StepCost {
   std::uint64_t list_elements = 0;
   std::uint64_t sort_compares = 0;
   std::uint64_t apu_commands = 0;  // hand-overs and starts
+  // On the ISS (apu::Iss::Counters; 0 on another engine): words issued, and
+  // cycles the APU waited at SWAPD for the MPU's data bank.
+  std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
   StepCost& operator+=(const StepCost& o);
+};
+
+// APU work of one kernel over the frame (docs/renderer.md "Timing"): start()
+// to HALT; the rest on the ISS only, as StepCost's.
+struct KernelCost {
+  std::uint64_t apu_cycles = 0, apu_runs = 0, batches = 0;
+  std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
+  std::uint64_t apu_dependence_stalls = 0;  // RAW, WAW, CC and drain stalls
+  std::array<std::uint64_t, 3> unit_ops{};   // multiplier, adder, function unit
 };
 
 enum class Step { Transform, BlockLists, HiddenSurface, Shadows, Shading, Secondary, Output };
@@ -73,6 +86,7 @@ struct RenderStats {
   std::array<StepCost, kSteps> step{};
   std::uint64_t rays = 0, shadow_rays = 0, secondary_rays = 0;
   std::uint64_t hidden_hits = 0;  // solid rule: hits found inside a sibling region (each re-cast once)
+  std::map<std::string, KernelCost> kernels;  // by kernel name (r_cast, ...)
   StepCost total() const;
 };
 
@@ -162,6 +176,7 @@ class RenderFirmware {
     int pixel = 0;   // index in the block
     int depth = 0;   // 0: eye ray
     int from = -1;   // primitive the ray leaves (R_FROM): shadow and secondary rays
+    std::uint32_t limit = 0;  // the solid rule's re-cast: t limit (0: C_BIG); a shadow ray's to its light
   };
   // s1's eye rays of a block, row-major, with their nearest hits: r_scan's
   // Z-buffer over the block's triangles, then r_cast (RK_EYE_SCAN) against its
@@ -215,6 +230,8 @@ class RenderFirmware {
   // MPU's bank, drain(i) reads its results back.
   using BatchFn = std::function<void(int)>;
   void stream(const std::string& kernel, int items, Step step, const BatchFn& fill, const BatchFn& drain);
+  static void count_issue(const apu::Iss::Counters& before, const apu::Iss::Counters& after, StepCost& c,
+                          KernelCost& k);
   // The stream of most kernels: `count` items in batches of at most
   // `per_batch`; item j of a batch at base + stride j. A batch is filled by
   // the scene words if `scene`, begin(first, n), put(item, address) for each
@@ -306,6 +323,10 @@ class RenderFirmware {
     std::map<std::pair<int, int>, int> list_of;  // (group, object * lights + light) -> index in lists
   };
   ShadowGroups shadow_groups(const std::vector<Ray>& rays);
+  // The shadow probes left unblocked, cast again as given rays against the
+  // intersections' and differences' regions of their lists (csg_lists), the
+  // solid rule applied: a visible crossing below the limit blocks.
+  void combined_shadows(std::vector<Ray>& probes, const std::vector<std::vector<int>>& csg_lists);
 
   // ---- output (render_output.cpp)
   std::vector<Rgb8> sum(const std::vector<std::vector<std::array<std::uint32_t, 3>>>& contrib);
@@ -319,6 +340,8 @@ class RenderFirmware {
   std::vector<Box> object_tri_box_;         // per object: the union of its triangles' prim_box_
   std::vector<std::vector<int>> shadow_objects_;  // [object * lights + light]
   std::vector<std::vector<int>> solid_regions_;   // [object]: build_solid_regions
+  std::vector<char> prim_combined_;  // per primitive: of an intersection or difference (build_solid_regions)
+  bool any_combined_ = false;        // some object is an intersection or difference
   // Candidate lists of primitives: [0] the block's eye rays (s1), [1] every
   // primitive in file order. s2 (shadows) and s4 (secondary_candidates)
   // make their own per group of rays.

@@ -139,10 +139,44 @@ void RenderFirmware::shadows(std::vector<Ray>& rays) {
     }
   }
   stats_.shadow_rays += probes.size();
-  cast(probes, g.lists, Step::Shadows);
+  if (!any_combined_) {
+    cast(probes, g.lists, Step::Shadows);
+  } else {
+    // Intersections' and differences' surfaces exist only where the solid
+    // rule leaves them: their regions are cast apart, after the others.
+    std::vector<std::vector<int>> plain(g.lists.size()), combined(g.lists.size());
+    for (std::size_t l = 0; l < g.lists.size(); ++l)
+      for (int q : g.lists[l]) (prim_combined_[q] ? combined : plain)[l].push_back(q);
+    cost(Step::Shadows).list_elements += probes.size();
+    cast(probes, plain, Step::Shadows);
+    combined_shadows(probes, combined);
+  }
   for (std::size_t k = 0; k < probes.size(); ++k)
     if (is_hit(probes[k])) rays[owner[k].first].rec[R_SHADOW] |= 1u << owner[k].second;
   cost(Step::Shadows).list_elements += probes.size();
+}
+
+void RenderFirmware::combined_shadows(std::vector<Ray>& probes, const std::vector<std::vector<int>>& csg_lists) {
+  constexpr Step step = Step::Shadows;
+  std::vector<Ray> again;
+  std::vector<std::size_t> owner;
+  for (std::size_t k = 0; k < probes.size(); ++k) {
+    const Ray& p = probes[k];
+    if (is_hit(p) || csg_lists[p.list].empty()) continue;
+    Ray r = p;  // r_cast wrote back O (moved off a triangle's plane), D and the limit |L - O| - eps (R_T)
+    r.rec[R_KIND] = RK_GIVEN;
+    r.limit = r.rec[R_T];
+    // The combined lists hold regions only: a triangle left needs no R_FROM,
+    // and its plane offset is in O already (not to be applied twice).
+    if (r.from >= 0 && is_triangle(view_.prims[static_cast<std::size_t>(r.from)][P_TYPE])) r.from = -1;
+    again.push_back(r);
+    owner.push_back(k);
+  }
+  cost(step).list_elements += probes.size();
+  if (again.empty()) return;
+  cast(again, csg_lists, step);
+  solid_rule(again, csg_lists, step);
+  for (std::size_t k = 0; k < again.size(); ++k) probes[owner[k]].rec[R_ID] = again[k].rec[R_ID];
 }
 
 }  // namespace mc1::render

@@ -7,12 +7,33 @@ namespace mc1::render {
 
 using namespace layout;
 
+static_assert(R_CHILD == R_OUT + 3 && R_RW == R_RD + 3 && R_TW == R_TD + 3, "r_shade's results, read in runs");
+
+// Only the words r_shade reads go in (R_D .. R_ID, R_P .. R_SHADOW, R_CHILD,
+// R_SOLID: 22 of 48), and only the words it wrote come back (R_OUT, R_CHILD,
+// and a child's direction and weight where its bit is set): the MPU's copies
+// were most of s3's time, the APU waiting at SWAPD (docs/renderer.md "Timing").
 void RenderFirmware::shade(std::vector<Ray>& rays, Step step) {
   ItemStream s{static_cast<int>(rays.size()), kRaysPerBatch, RAYS, R_SIZE, true};
-  s.put = [&](int i, std::uint16_t addr) { write(addr, rays[i].rec.data(), R_SIZE, step); };
+  auto put = [&](const Ray& r, std::uint16_t addr, int first, int last) {
+    write(static_cast<std::uint16_t>(addr + first), r.rec.data() + first, static_cast<std::size_t>(last - first + 1),
+          step);
+  };
+  s.put = [&](int i, std::uint16_t addr) {
+    put(rays[i], addr, R_D, R_ID);
+    put(rays[i], addr, R_P, R_SHADOW);
+    put(rays[i], addr, R_CHILD, R_CHILD);
+    put(rays[i], addr, R_SOLID, R_SOLID);
+  };
   s.get = [&](int i, std::uint16_t addr) {
-    const auto back = read(static_cast<std::uint16_t>(addr + R_OUT), R_TW + 3 - R_OUT, step);
-    std::copy(back.begin(), back.end(), rays[i].rec.begin() + R_OUT);
+    auto& rec = rays[i].rec;
+    auto get = [&](int first, int words) {
+      const auto back = read(static_cast<std::uint16_t>(addr + first), static_cast<std::size_t>(words), step);
+      std::copy(back.begin(), back.end(), rec.begin() + first);
+    };
+    get(R_OUT, R_CHILD + 1 - R_OUT);
+    if (rec[R_CHILD] & CHILD_RD) get(R_RD, R_RW + 3 - R_RD);
+    if (rec[R_CHILD] & CHILD_TD) get(R_TD, R_TW + 3 - R_TD);
   };
   stream_items("r_shade", step, s);
 }

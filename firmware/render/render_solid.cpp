@@ -14,8 +14,14 @@ using namespace layout;
 // region and another primitive (docs/scene-format.md: only regions hide).
 void RenderFirmware::build_solid_regions() {
   solid_regions_.assign(view_.objects.size(), {});
+  prim_combined_.assign(view_.prims.size(), 0);
+  any_combined_ = false;
   for (std::size_t o = 0; o < view_.objects.size(); ++o) {
     const auto& obj = view_.objects[o];
+    if (obj.combine != kUnion) {
+      any_combined_ = true;
+      std::fill_n(prim_combined_.begin() + obj.first_prim, obj.prim_count, 1);
+    }
     if (!obj.solid || obj.prim_count < 2) continue;
     std::vector<int> regions;
     for (int k = 0; k < obj.prim_count; ++k) {
@@ -90,7 +96,7 @@ std::vector<int> RenderFirmware::cast_past(std::vector<Ray>& rays, const std::ve
   std::vector<Ray> again;
   for (int k : hidden) {
     Ray r = rays[k];
-    r.rec[R_T] = big;
+    r.rec[R_T] = r.limit != 0 ? r.limit : big;
     r.rec[R_ID] = kNoHit;
     r.rec[R_KIND] = as_given(r.rec[R_KIND]);
     again.push_back(r);

@@ -112,6 +112,7 @@ void add_objects(ViewScene& v, const SceneImage& img, const XformItems& x) {
     const auto& oi = img.objects[o];
     ViewScene::Object vo;
     vo.solid = oi.solid;
+    vo.combine = oi.combine;
     vo.secondary = spawns_secondary(img.materials.at(oi.material));
     vo.first_prim = oi.first_prim;
     vo.prim_count = oi.prim_count;
@@ -123,6 +124,14 @@ void add_objects(ViewScene& v, const SceneImage& img, const XformItems& x) {
 
 // The primitive records: r_xform's results for triangles and ellipsoids,
 // the world words for quadrics (r_cast takes them to world coordinates).
+// P_CSG of region k of object o (scene::hides_outside, scene::flips_normal).
+std::uint32_t csg_bits(const ObjectImage& o, int k) {
+  std::uint32_t bits = 0;
+  if (o.combine == kIntersection || (o.combine == kDifference && k == 0)) bits |= CSG_OUT;
+  if (o.combine == kDifference && k > 0) bits |= CSG_FLIP;
+  return bits;
+}
+
 void add_prims(ViewScene& v, const SceneImage& img, const XformItems& x) {
   for (std::size_t i = 0; i < img.prims.size(); ++i) {
     const auto& p = img.prims[i];
@@ -131,6 +140,7 @@ void add_prims(ViewScene& v, const SceneImage& img, const XformItems& x) {
     w[P_MAT] = static_cast<std::uint32_t>(MATS + M_SIZE * img.objects.at(p.object).material);
     w[P_SOLID] = img.objects[p.object].solid ? 1 : 0;
     w[P_ID] = static_cast<std::uint32_t>(i);
+    w[P_CSG] = csg_bits(img.objects[p.object], static_cast<int>(i) - img.objects[p.object].first_prim);
     if (is_triangle(p.type)) {
       const auto& it = x.of(x.prim[i]);
       std::copy(it.begin() + XT_V0, it.begin() + XT_RVN + 9, w.begin() + P_P0);  // P0 E1 E2 N UA VA, VN

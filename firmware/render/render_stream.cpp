@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "apu_image.hpp"
+#include "apu_iss.hpp"
 #include "render_internal.hpp"
 #include "render_kernels.hpp"
 
@@ -148,6 +149,8 @@ void RenderFirmware::stream(const std::string& kernel, int items, Step step, con
   fill(0);
   drv.hand_over_data();
   const std::uint64_t c0 = drv.engine().cycle();
+  const auto* iss = dynamic_cast<const apu::Iss*>(&drv.engine());
+  const apu::Iss::Counters k0 = iss ? iss->counters() : apu::Iss::Counters{};
   drv.start(0);
   link_.apu_commands(2);
   c.apu_commands += 2;
@@ -169,8 +172,30 @@ void RenderFirmware::stream(const std::string& kernel, int items, Step step, con
   mpu_bank_ ^= 1;
   drain(items - 1);
   link_.wait_halt();
-  c.apu_cycles += drv.engine().cycle() - c0;
+  const std::uint64_t cycles = drv.engine().cycle() - c0;
+  c.apu_cycles += cycles;
   c.batches += static_cast<std::uint64_t>(items);
+  KernelCost& k = stats_.kernels[kernel];
+  k.apu_cycles += cycles;
+  k.apu_runs += 1;
+  k.batches += static_cast<std::uint64_t>(items);
+  if (iss) count_issue(k0, iss->counters(), c, k);
+}
+
+// The ISS's counters over one kernel run, into its step's and its kernel's costs.
+void RenderFirmware::count_issue(const apu::Iss::Counters& before, const apu::Iss::Counters& after, StepCost& c,
+                                 KernelCost& k) {
+  const auto stalls = [&](apu::Stall s) {
+    return after.stalls[static_cast<int>(s)] - before.stalls[static_cast<int>(s)];
+  };
+  const std::uint64_t issued = after.issued - before.issued, bank = stalls(apu::Stall::Bank);
+  c.apu_issued += issued;
+  c.apu_bank_stalls += bank;
+  k.apu_issued += issued;
+  k.apu_bank_stalls += bank;
+  for (apu::Stall s : {apu::Stall::Raw, apu::Stall::Waw, apu::Stall::Cc, apu::Stall::Drain})
+    k.apu_dependence_stalls += stalls(s);
+  for (int u = 0; u < 3; ++u) k.unit_ops[static_cast<std::size_t>(u)] += after.unit_ops[u] - before.unit_ops[u];
 }
 
 void RenderFirmware::stream_items(const std::string& kernel, Step step, const ItemStream& s) {

@@ -85,6 +85,9 @@ SceneImage make_scene_image(const scene::Scene& s) {
     const auto& obj = s.objects[o];
     ObjectImage oi;
     oi.solid = obj.kind == scene::ObjectKind::solid;
+    oi.combine = obj.combine == scene::Combine::intersection ? kIntersection
+                 : obj.combine == scene::Combine::difference ? kDifference
+                                                             : kUnion;
     oi.material = obj.material;
     oi.first_prim = static_cast<int>(img.prims.size());
     oi.box_min = v3(obj.box_min);

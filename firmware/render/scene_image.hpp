@@ -57,8 +57,12 @@ struct MaterialImage {
 // (FP24 signs and exponents compared as integers).
 bool spawns_secondary(const MaterialImage& m);
 
+// How a solid's regions combine (scene::Combine).
+enum CombineCode : int { kUnion = 0, kIntersection = 1, kDifference = 2 };
+
 struct ObjectImage {
   bool solid = false;
+  int combine = kUnion;  // a CombineCode
   int material = 0;
   int first_prim = 0, prim_count = 0;
   Vec3w box_min{}, box_max{};  // world
@@ -90,6 +94,7 @@ struct ViewScene {
   std::vector<Prim> prims;          // PRIMS records, P_ID = index
   struct Object {
     bool solid = false;
+    int combine = kUnion;    // a CombineCode
     bool secondary = false;  // ks > 0 or kt > 0: its pixels get s4 rays
     int first_prim = 0, prim_count = 0;
     std::array<Word, 6> box{};  // view min xyz, max xyz

@@ -103,7 +103,7 @@ rc::Bytes encode_scene(const render::SceneImage& s) {
   }
   w.u16(static_cast<unsigned>(s.objects.size()));
   for (const auto& o : s.objects) {
-    w.u8(o.solid ? 1 : 0);
+    w.u8((o.solid ? 1u : 0u) | static_cast<unsigned>(o.combine) << 1);  // one byte: solid, CombineCode
     w.u8(static_cast<unsigned>(o.material));
     w.u32(static_cast<std::uint32_t>(o.first_prim));
     w.u32(static_cast<std::uint32_t>(o.prim_count));
@@ -142,7 +142,12 @@ render::SceneImage decode_scene(const rc::Bytes& b) {
   r.count_check(objects, 2 + 8 + 18);
   s.objects.resize(objects);
   for (auto& o : s.objects) {
-    o.solid = r.u8() != 0;
+    const unsigned kind = r.u8();
+    o.solid = (kind & 1) != 0;
+    o.combine = static_cast<int>(kind >> 1);
+    if (o.combine > render::kDifference)
+      throw rc::ProtocolError("scene download: an object's kind byte " + std::to_string(kind) +
+                              " (bit 0 solid, bits 1.. a combination 0..2)");
     o.material = static_cast<int>(r.u8());
     o.first_prim = static_cast<int>(r.u32());
     o.prim_count = static_cast<int>(r.u32());

@@ -1,5 +1,6 @@
 #include "mc1_render.hpp"
 
+#include <map>
 #include <memory>
 
 #include "scene.hpp"
@@ -8,8 +9,9 @@
 namespace mc1 {
 namespace {
 
-// The renderer's per-step costs (fig. 3), summed over the NCs.
-void add_steps(FrameReport& r, const std::vector<render_nc::NcResult>& ncs) {
+// The renderer's per-step costs (fig. 3) and per-kernel APU work, summed
+// over the NCs; MPU cycles at the timing table's cost per class.
+void add_steps(FrameReport& r, const std::vector<render_nc::NcResult>& ncs, const TimingParams& t) {
   for (int i = 0; i < render::kSteps; ++i) {
     StepReport s;
     s.name = render::step_name(static_cast<render::Step>(i));
@@ -22,9 +24,27 @@ void add_steps(FrameReport& r, const std::vector<render_nc::NcResult>& ncs) {
       s.list_elements += c.list_elements;
       s.sort_compares += c.sort_compares;
       s.apu_commands += c.apu_commands;
+      s.apu_issued += c.apu_issued;
+      s.apu_bank_stalls += c.apu_bank_stalls;
     }
+    s.mpu_cycles = s.word_copies * t.mpu_cycles_per_word_copy + s.list_elements * t.mpu_cycles_per_list_element +
+                   s.sort_compares * t.mpu_cycles_per_sort_compare + s.apu_commands * t.mpu_cycles_per_apu_command;
     r.steps.push_back(s);
   }
+  std::map<std::string, KernelReport> kernels;
+  for (const render_nc::NcResult& n : ncs)
+    for (const auto& [name, c] : n.stats.kernels) {
+      KernelReport& k = kernels[name];
+      k.name = name;
+      k.apu_cycles += c.apu_cycles;
+      k.apu_runs += c.apu_runs;
+      k.batches += c.batches;
+      k.apu_issued += c.apu_issued;
+      k.apu_bank_stalls += c.apu_bank_stalls;
+      k.apu_dependence_stalls += c.apu_dependence_stalls;
+      for (std::size_t u = 0; u < 3; ++u) k.unit_ops[u] += c.unit_ops[u];
+    }
+  for (auto& [name, k] : kernels) r.kernels.push_back(k);
   for (const render_nc::NcResult& n : ncs) {
     r.rays += n.stats.rays;
     r.shadow_rays += n.stats.shadow_rays;
@@ -52,7 +72,7 @@ RenderRun run_render(const RenderJob& job, SystemConfig cfg, const std::string& 
                         std::move(progress));
   out.report.scene = job.scene;
   out.ncs = *results;
-  add_steps(out.report, out.ncs);
+  add_steps(out.report, out.ncs, cfg.timing);
   return out;
 }
 

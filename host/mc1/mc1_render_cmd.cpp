@@ -18,6 +18,7 @@
 #include "mc1_render.hpp"
 #include "png_writer.hpp"
 #include "refrender.hpp"
+#include "report_profile.hpp"
 #include "report_writers.hpp"
 #include "scene.hpp"
 
@@ -56,6 +57,9 @@ void add_render_options(CLI::App& cmd) {
   add_fault_options(cmd);
   add_param_options(cmd);
   add_report_options(cmd);
+  value_option(cmd, "profile", "FILE.md",
+               "write the timing evaluation: per step and per kernel APU cycles, issue, bank stalls, MPU cycles "
+               "(docs/renderer.md \"Timing\"; issue and stalls on the ISS engine only)");
   value_option(cmd, "trace", "FILE.fst", "APU waveform of NC --trace-node (that NC runs the RTL core)");
   value_option(cmd, "trace-node", "K", "the NC to trace (default 1)");
   flag_option(cmd, "ref",
@@ -229,6 +233,7 @@ int cmd_render(const CLI::App& cmd) {
   if (a.has("out")) out.add(a.get("out"), encode_png_rgb8(r.width, r.height, r.rgb.data()));
   if (a.has("stats")) out.add(a.get("stats"), stats_json(r));
   if (a.has("gantt")) out.add(a.get("gantt"), gantt_svg(r));
+  if (a.has("profile")) out.add(a.get("profile"), profile_tables(r));
   if (!quiet) print_summary(run);
   int status = 0;
   if (r.fm_pixels_written != std::uint64_t{r.width} * r.height) {

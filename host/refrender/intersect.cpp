@@ -136,15 +136,36 @@ bool meets_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& o, 
   return t0 <= t1 && t1 >= 0.0;
 }
 
+namespace {
+
+// The region's margins (docs/scene-format.md "Objects"): 1e-9 of |A(x-b)|^2
+// = 1, of max |a_i| and of the box's diagonal.
+double coefficient_scale(const Primitive& p) {
+  double scale = 0;
+  for (double a : p.coefficients) scale = std::max(scale, std::abs(a));
+  return scale;
+}
+
+}  // namespace
+
 bool strictly_inside(const Primitive& p, const glm::dvec3& x) {
   if (p.kind == PrimitiveKind::ellipsoid) {
     glm::dvec3 u = p.A * (x - p.centre);
     return glm::dot(u, u) < 1.0 - 1e-9;
   }
   if (p.kind != PrimitiveKind::quadric) return false;
-  double scale = 0;
-  for (double a : p.coefficients) scale = std::max(scale, std::abs(a));
-  return in_box(p, x, -1e-9 * glm::length(p.box_max - p.box_min)) && quadric_value(p, x) < -1e-9 * scale;
+  return in_box(p, x, -1e-9 * glm::length(p.box_max - p.box_min)) &&
+         quadric_value(p, x) < -1e-9 * coefficient_scale(p);
+}
+
+bool strictly_outside(const Primitive& p, const glm::dvec3& x) {
+  if (p.kind == PrimitiveKind::ellipsoid) {
+    glm::dvec3 u = p.A * (x - p.centre);
+    return glm::dot(u, u) > 1.0 + 1e-9;
+  }
+  if (p.kind != PrimitiveKind::quadric) return false;
+  return !in_box(p, x, 1e-9 * glm::length(p.box_max - p.box_min)) ||
+         quadric_value(p, x) > 1e-9 * coefficient_scale(p);
 }
 
 }  // namespace mc1::refrender

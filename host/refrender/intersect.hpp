@@ -23,5 +23,7 @@ bool meets_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& ori
 
 // Strictly inside the primitive's region (ellipsoid or boxed quadric).
 bool strictly_inside(const scene::Primitive& p, const glm::dvec3& x);
+// Strictly outside it: beyond the same margins on the other side.
+bool strictly_outside(const scene::Primitive& p, const glm::dvec3& x);
 
 }  // namespace mc1::refrender

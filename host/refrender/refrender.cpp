@@ -33,8 +33,11 @@ glm::dvec3 Renderer::surface_colour(const Material& m, const glm::dvec3& p) {
 
 bool Renderer::hidden_in_solid(const Object& o, int prim, const glm::dvec3& p) const {
   if (o.kind != ObjectKind::solid) return false;
-  for (int k = 0; k < static_cast<int>(o.primitives.size()); ++k)
-    if (k != prim && strictly_inside(o.primitives[k], p)) return true;
+  for (int k = 0; k < static_cast<int>(o.primitives.size()); ++k) {
+    if (k == prim) continue;
+    const auto& region = o.primitives[k];
+    if (scene::hides_outside(o, k) ? strictly_outside(region, p) : strictly_inside(region, p)) return true;
+  }
   return false;
 }
 
@@ -51,7 +54,7 @@ bool Renderer::nearest_hit(const Ray& ray, Hit& hit) const {
         glm::dvec3 p = ray.origin + c[k].t * ray.dir;
         if (hidden_in_solid(o, pi, p)) continue;
         best = c[k].t;
-        hit = {c[k].t, p, c[k].normal, oi, pi};
+        hit = {c[k].t, p, scene::flips_normal(o, pi) ? -c[k].normal : c[k].normal, oi, pi};
         break;
       }
     }
@@ -67,11 +70,14 @@ bool Renderer::shadowed(const glm::dvec3& p, const scene::Light& light) const {
   glm::dvec3 d = to / dist;
   for (const Object& o : scene_.objects) {
     if (!meets_box(o.box_min, o.box_max, p, d, dist)) continue;
-    for (const auto& prim : o.primitives) {
+    // A union's hidden crossings count (a segment that reaches one crosses
+    // the boundary first); an intersection's or difference's do not exist.
+    const bool classify = o.combine != scene::Combine::union_;
+    for (int pi = 0; pi < static_cast<int>(o.primitives.size()); ++pi) {
       Crossing c[2];
-      int n = intersect(prim, p, d, eps, c);
+      int n = intersect(o.primitives[pi], p, d, eps, c);
       for (int k = 0; k < n; ++k)
-        if (c[k].t < dist - eps) return true;
+        if (c[k].t < dist - eps && !(classify && hidden_in_solid(o, pi, p + c[k].t * d))) return true;
     }
   }
   return false;

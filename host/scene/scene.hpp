@@ -96,6 +96,12 @@ struct Primitive {
 
 enum class ObjectKind { solid, surface };
 
+// How a solid's primitives' regions combine (docs/scene-format.md "Objects"):
+// union (the default: any polygons and regions), or, of regions only, the
+// intersection of all (the paper's AND) or the difference of the first and
+// the union of the others.
+enum class Combine { union_, intersection, difference };
+
 // An object: a bounding box, its primitives and its material (fig. 2).
 // solid = union of the primitives' regions (polygons bound it, normals outward);
 // surface = a shell of the primitives' surfaces.
@@ -103,10 +109,24 @@ struct Object {
   std::string name;
   ObjectKind kind = ObjectKind::surface;
   int material = 0;  // index into Scene::materials
+  Combine combine = Combine::union_;  // solids only
   std::vector<Primitive> primitives;
   glm::dvec3 box_min{0.0};  // union of the primitives' boxes
   glm::dvec3 box_max{0.0};
 };
+
+// The classification rule of a solid's surfaces, one region k of object o at a
+// time (docs/scene-format.md "Objects"): a crossing of primitive j's surface
+// is hidden when some other region k holds the point on the side that hides:
+// strictly inside for a region of a union or a subtrahend of a difference,
+// strictly outside for every region of an intersection and for the minuend
+// of a difference.
+inline bool hides_outside(const Object& o, int k) {
+  return o.combine == Combine::intersection || (o.combine == Combine::difference && k == 0);
+}
+// A subtrahend's surface bounds the difference from its inside: the solid's
+// outward normal is the subtrahend's inward one.
+inline bool flips_normal(const Object& o, int k) { return o.combine == Combine::difference && k > 0; }
 
 struct RenderSettings {
   int max_depth = 5;             // levels of ks/kt secondary rays below the eye ray
@@ -146,6 +166,11 @@ enum class Basis { bezier, bspline };
 // collapsed edge becomes a pseudo-triangle; a cell collapsed further is dropped).
 void tessellate_patch(const BicubicNet& net, Basis basis, int level,
                       std::vector<Primitive>& out);
+
+// Solid of revolution: the quadric frustum of one profile segment (radius,
+// height) p0 - p1 (p1.y > p0.y, radii >= 0, not both 0) about the line
+// through `base` along world axis `axis` (0 x, 1 y, 2 z); heights from base.
+Primitive revolved_segment(int axis, const glm::dvec3& base, const glm::dvec2& p0, const glm::dvec2& p1);
 
 // The loader's derived data, shared with tests and tools.
 void finish_polygon(Primitive& p);  // plane normal and box from the vertices

@@ -326,7 +326,7 @@ class Loader {
   }
 
   Object object(const Value& v, const std::string& path, const std::vector<Material>& materials) {
-    expect_object(v, path, {"name", "kind", "material", "primitives"});
+    expect_object(v, path, {"name", "kind", "combine", "material", "primitives"});
     Object o;
     if (const Value* n = v.find("name")) o.name = text(*n, join(path, "name"));
     const Value& kind = required(v, path, "kind");
@@ -343,6 +343,7 @@ class Loader {
     for (std::size_t i = 0; i < prims.items.size(); ++i)
       primitive(prims.items[i], index(join(path, "primitives"), i), o.primitives);
     if (o.primitives.empty()) fail(prims, join(path, "primitives"), "object has no primitives");
+    if (const Value* c = v.find("combine")) combine(*c, join(path, "combine"), o);
     o.box_min = o.primitives[0].box_min;
     o.box_max = o.primitives[0].box_max;
     for (const auto& p : o.primitives) {
@@ -350,6 +351,20 @@ class Loader {
       o.box_max = glm::max(o.box_max, p.box_max);
     }
     return o;
+  }
+
+  // "combine": union (default), or for a solid of regions only intersection
+  // or difference, of at least two of them.
+  void combine(const Value& v, const std::string& path, Object& o) const {
+    const std::string c = text(v, path);
+    if (c == "union") return;
+    if (c == "intersection") o.combine = Combine::intersection;
+    else if (c == "difference") o.combine = Combine::difference;
+    else fail(v, path, "expected \"union\", \"intersection\" or \"difference\"");
+    if (o.kind != ObjectKind::solid) fail(v, path, "intersection and difference combine solids only");
+    if (o.primitives.size() < 2) fail(v, path, "intersection and difference need at least two primitives");
+    if (!std::all_of(o.primitives.begin(), o.primitives.end(), [](const Primitive& p) { return p.is_region(); }))
+      fail(v, path, "intersection and difference take regions only (ellipsoid, sphere, quadric)");
   }
 
   void primitive(const Value& v, const std::string& path, std::vector<Primitive>& out) {
@@ -362,6 +377,8 @@ class Loader {
       add(ellipsoid(v, path, t == "sphere"), v, path, out);
     else if (t == "quadric")
       add(quadric(v, path), v, path, out);
+    else if (t == "revolution")
+      revolution(v, path, out);
     else if (t == "bezier_patch")
       bezier_patch(v, path, out);
     else if (t == "bspline_patch")
@@ -480,6 +497,38 @@ class Loader {
       if (!(p.box_min[i] < p.box_max[i])) fail(box, bpath, "min must be below max on every axis");
     centre_quadric(p);
     return p;
+  }
+
+  // A profile of [radius, height] points revolved about an axis: one
+  // quadric frustum per segment (revolved_segment).
+  void revolution(const Value& v, const std::string& path, std::vector<Primitive>& out) {
+    expect_object(v, path, {"type", "axis", "base", "profile"});
+    const Value& av = required(v, path, "axis");
+    const std::string axis = text(av, join(path, "axis"));
+    if (axis != "x" && axis != "y" && axis != "z") fail(av, join(path, "axis"), "expected \"x\", \"y\" or \"z\"");
+    const glm::dvec3 base = vec3(required(v, path, "base"), join(path, "base"));
+    const Value& pv = required(v, path, "profile");
+    const std::string ppath = join(path, "profile");
+    if (pv.type != Type::array || pv.items.size() < 2) fail(pv, ppath, "expected at least 2 [radius, height] points");
+    std::vector<glm::dvec2> pts;
+    for (std::size_t i = 0; i < pv.items.size(); ++i) {
+      const Value& q = pv.items[i];
+      if (q.type != Type::array || q.items.size() != 2) fail(q, index(ppath, i), "expected [radius, height]");
+      pts.emplace_back(non_negative(q.items[0], index(index(ppath, i), 0)), fp24(q.items[1], index(index(ppath, i), 1)));
+      if (i == 0) continue;
+      if (!(pts[i].y > pts[i - 1].y)) fail(q, index(ppath, i), "heights must increase along the profile");
+      if (pts[i].x == 0 && pts[i - 1].x == 0) fail(q, index(ppath, i), "a segment on the axis (both radii 0)");
+    }
+    const std::size_t before = out.size();
+    for (std::size_t i = 1; i < pts.size(); ++i) {
+      Primitive p = revolved_segment(axis[0] - 'x', base, pts[i - 1], pts[i]);
+      for (double a : p.coefficients)
+        if (!in_fp24_range(a)) fail(pv.items[i], index(ppath, i), "a coefficient of its quadric, " + shortest(a) + ", outside FP24's range");
+      for (double a : p.centred_linear)
+        if (!in_fp24_range(a)) fail(pv.items[i], index(ppath, i), "a coefficient of its quadric, " + shortest(a) + ", outside FP24's range");
+      out.push_back(p);
+    }
+    count_ids(v, path, out, before);
   }
 
   int level(const Value& v, const std::string& path) const {

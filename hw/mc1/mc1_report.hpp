@@ -4,6 +4,7 @@
 // (host/mc1/report_writers.hpp; docs/platform.md gives both formats).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -67,6 +68,16 @@ struct StepReport {
   std::string name;
   std::uint64_t apu_cycles = 0, apu_runs = 0, batches = 0, word_copies = 0, list_elements = 0,
                 sort_compares = 0, apu_commands = 0;
+  std::uint64_t apu_issued = 0, apu_bank_stalls = 0;  // ISS engine only (0 on the RTL engine)
+  std::uint64_t mpu_cycles = 0;  // the MPU work above at the timing table's cycles per class
+};
+
+// APU work of one renderer kernel over the frame, summed over NCs.
+struct KernelReport {
+  std::string name;
+  std::uint64_t apu_cycles = 0, apu_runs = 0, batches = 0;
+  std::uint64_t apu_issued = 0, apu_bank_stalls = 0, apu_dependence_stalls = 0;  // ISS engine only
+  std::array<std::uint64_t, 3> unit_ops{};  // multiplier, adder, function unit (ISS only)
 };
 
 struct DeadLinkReport {
@@ -102,6 +113,7 @@ struct FrameReport {
   std::vector<rc::Dispatch> dispatches;
   std::vector<rc::Completion> completions;
   std::vector<StepReport> steps;  // rendered frame
+  std::vector<KernelReport> kernels;  // rendered frame, by kernel name
   std::uint64_t rays = 0, shadow_rays = 0, secondary_rays = 0;
   std::uint64_t fm_pixels_written = 0;
   std::vector<std::uint8_t> rgb;  // the frame memory, rows top first
