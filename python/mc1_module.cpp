@@ -239,6 +239,9 @@ int reg_index(int i, int count, const char* file) {
 }
 
 void bind_apu(py::module_& m) {
+  // start(pc)'s fetch cycles issue nothing and stall nothing, so a profile's
+  // cycles are the run's less these (docs/apu-isa.md "Timing").
+  m.attr("START_FETCH_CYCLES") = mc1::apu::kStartFetchCycles;
   m.doc() = "The APU through its MPU driver, on the ISS or the verilated RTL core (docs/apu-tools.md)";
   py::register_exception<apu::ApuError>(m, "ApuError", PyExc_RuntimeError);
   py::class_<Apu>(m, "Apu")

@@ -72,10 +72,11 @@ TEST(ApuRtl, StallCauseSignalsNameTheSlotAndTheUnit) {
   CorePorts core;
   Vapu_core& top = core.top;
   // 0 LIF F1  1 MUL F3  2 ADD F4 = F1 + F3: raw on A b (read port 3), the
-  // multiplier's tag  3 SIN F5  4 ST F9 | RECIP F5: waw on F d (destination
-  // 2), the function unit's tag; no raw.
+  // multiplier's tag  3 SIN F5  4 ST F9 | MUL F5: the MUL would land with the
+  // SIN (latency kMulLatency < kTrigLatency): waw on M d (destination 0), the
+  // function unit's tag; no raw.
   const auto prog = encode({lif(1, 0x3F00), mul(3, 1, 1), addu(AddOp::Add, 4, 1, 3), func(FuncOp::Sin, 5, 1),
-                            mem(MemOp::St, 9, 0, 0) | func(FuncOp::Recip, 5, 1), halt()});
+                            mem(MemOp::St, 9, 0, 0) | mul(5, 1, 1), halt()});
   for (std::size_t i = 0; i < prog.size(); ++i) core.write_program(static_cast<std::uint16_t>(i), prog[i]);
   top.mpu2apu_hand_over_program = 1;
   core.edge();
@@ -92,12 +93,12 @@ TEST(ApuRtl, StallCauseSignalsNameTheSlotAndTheUnit) {
     core.edge();
   }
   const int R = static_cast<int>(Stall::Raw), W = static_cast<int>(Stall::Waw), D = static_cast<int>(Stall::Drain);
-  // cycles: 0 fetch, 1 LIF, 2 MUL, 3 raw, 4 ADD, 5 SIN, 6 waw, 7 ST|RECIP,
+  // cycles: 0 fetch, 1 LIF, 2 MUL, 3 raw, 4 ADD, 5 SIN, 6 waw, 7 ST|MUL,
   // 8 drain, 9 HALT
   EXPECT_EQ(stall, (std::vector<int>{0, 0, 0, R, 0, 0, W, 0, D, 0}));
   EXPECT_EQ(raw_src, (std::vector<int>{0, 0, 0, 1 << 3, 0, 0, 0, 0, 0, 0}));
   EXPECT_EQ(raw_unit, (std::vector<int>{0, 0, 0, 1 << 0, 0, 0, 0, 0, 0, 0}));
-  EXPECT_EQ(waw_dst, (std::vector<int>{0, 0, 0, 0, 0, 0, 1 << 2, 0, 0, 0}));
+  EXPECT_EQ(waw_dst, (std::vector<int>{0, 0, 0, 0, 0, 0, 1 << 0, 0, 0, 0}));
   EXPECT_EQ(waw_unit, (std::vector<int>{0, 0, 0, 0, 0, 0, 1 << 2, 0, 0, 0}));
   EXPECT_FALSE(top.dbg_unit_mismatch);
 }
