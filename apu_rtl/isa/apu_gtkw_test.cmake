@@ -3,6 +3,7 @@
 # of the enum, as GTKWave prints it in hex, to one name; every filter a save
 # file loads exists.
 #   cmake -DPKG_SV=apu_pkg.sv -DFILTERS=dir -DSAVE_FILES=a.gtkw;b.gtkw -P apu_gtkw_test.cmake
+include(${CMAKE_CURRENT_LIST_DIR}/apu_hex.cmake)
 cmake_minimum_required(VERSION 3.22)
 file(READ "${PKG_SV}" pkg)
 string(REPLACE ";" "," pkg "${pkg}")  # a CMake list separator; the enums end in "} name,"
@@ -35,14 +36,7 @@ foreach(e IN LISTS enums)
   foreach(v IN LISTS values)
     string(REGEX MATCH "([A-Z0-9_]+) = [0-9]+'d([0-9]+)" _ "${v}")
     set(name ${CMAKE_MATCH_1})
-    math(EXPR hex "${CMAKE_MATCH_2}" OUTPUT_FORMAT HEXADECIMAL)
-    string(SUBSTRING "${hex}" 2 -1 hex)
-    string(TOUPPER "${hex}" hex)
-    string(LENGTH "${hex}" len)
-    while(len LESS digits)
-      string(PREPEND hex "0")
-      math(EXPR len "${len} + 1")
-    endwhile()
+    apu_hex("${CMAKE_MATCH_2}" ${digits} hex)
     set(found 0)
     foreach(l IN LISTS lines)
       if(l MATCHES "^${hex} [^ ]+$")

@@ -9,6 +9,7 @@
 # Writes OUT_DIR/<SV enum type>.txt (add_op_e.txt, stall_e.txt, ...); a file
 # is rewritten only when its content changes. apu_isagen.cmake checks the
 # table; this reads only its enum and value records.
+include(${CMAKE_CURRENT_LIST_DIR}/apu_hex.cmake)
 cmake_minimum_required(VERSION 3.22)
 if(NOT TABLE OR NOT OUT_DIR)
   message(FATAL_ERROR "usage: cmake -DTABLE=<apu_isa.tbl> -DOUT_DIR=<dir> -P apu_gtkwgen.cmake")
@@ -40,14 +41,7 @@ foreach(line IN LISTS lines)
       string(TOLOWER "${cpp}" name)
     endif()
     math(EXPR digits "(${bits_${cur}} + 3) / 4")
-    math(EXPR hex "${code}" OUTPUT_FORMAT HEXADECIMAL)
-    string(SUBSTRING "${hex}" 2 -1 hex)
-    string(TOUPPER "${hex}" hex)
-    string(LENGTH "${hex}" len)
-    while(len LESS digits)
-      string(PREPEND hex "0")
-      math(EXPR len "${len} + 1")
-    endwhile()
+    apu_hex("${code}" ${digits} hex)
     string(APPEND text_${cur} "${hex} ${name}\n")
   elseif(kind STREQUAL "slot")
     break()  # the enums come first in the table
