@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "fp24_trig.hpp"
+#include "fp24_trig_rtl.hpp"
 
 namespace {
 
@@ -100,6 +101,56 @@ std::array<std::uint64_t, trig::kTerms> inverse_factorials(int first) {
   return c;
 }
 
+// ---- SIN/COS tables of the RTL (fp24_trig_rtl.hpp) ----------------------------
+namespace rtl = mc1::fp24::trig_rtl;
+
+// round(v * 2^frac) of an MPFR value v >= 0, as an integer below 2^64.
+std::uint64_t fixed_round(mpfr_ptr v, int frac) {
+  Mpfr x(256);
+  mpfr_mul_2si(x.get(), v, frac, MPFR_RNDN);
+  mpfr_round(x.get(), x.get());
+  return mpfr_get_ui(x.get(), MPFR_RNDN);
+}
+
+rtl::Tables make_rtl_tables() {
+  rtl::Tables t{};
+  const std::vector<int> bit = two_over_pi_bits(rtl::kMaxExp + rtl::kWinBits);
+  // Window of exponent E: bits E-17 .. E-17+89 of 2/pi (bit i of weight 2^-i,
+  // bits i <= 0 zero); the direct entry: bits 1..90.
+  for (int idx = 0; idx < rtl::kWindows; ++idx) {
+    const int first = idx == rtl::kDirect ? 1 : idx + rtl::kMinExp - kFracBits - 1;
+    rtl::u128 w = 0;
+    for (int k = 0; k < rtl::kWinBits; ++k) {
+      const int i = first + k;
+      w = (w << 1) | static_cast<rtl::u128>(i >= 1 ? bit.at(i) : 0);
+    }
+    t.window[idx] = w;
+  }
+  Mpfr pi(256), ang(256), v(256), half(256);
+  mpfr_const_pi(pi.get(), MPFR_RNDN);
+  mpfr_div_2ui(half.get(), pi.get(), 1, MPFR_RNDN);  // pi/2
+  for (int j = 0; j < rtl::kTableEntries; ++j) {
+    mpfr_mul_ui(ang.get(), pi.get(), j, MPFR_RNDN);
+    mpfr_div_2ui(ang.get(), ang.get(), 9, MPFR_RNDN);  // j/256 quarter turns
+    mpfr_sin(v.get(), ang.get(), MPFR_RNDN);
+    t.sin_tab[j] = fixed_round(v.get(), rtl::kTabFrac);
+    mpfr_mul(v.get(), v.get(), half.get(), MPFR_RNDN);
+    t.hsin_tab[j] = fixed_round(v.get(), rtl::kHalfFrac);
+    mpfr_cos(v.get(), ang.get(), MPFR_RNDN);
+    t.cos_tab[j] = fixed_round(v.get(), rtl::kTabFrac);
+    mpfr_mul(v.get(), v.get(), half.get(), MPFR_RNDN);
+    t.hcos_tab[j] = fixed_round(v.get(), rtl::kHalfFrac);
+  }
+  mpfr_sqr(v.get(), half.get(), MPFR_RNDN);  // (pi/2)^2
+  mpfr_div_ui(ang.get(), v.get(), 2, MPFR_RNDN);
+  t.k2 = fixed_round(ang.get(), rtl::kKFrac);
+  mpfr_div_ui(ang.get(), v.get(), 6, MPFR_RNDN);
+  t.k3 = fixed_round(ang.get(), rtl::kKFrac);
+  mpfr_sqr(v.get(), v.get(), MPFR_RNDN);
+  mpfr_div_ui(ang.get(), v.get(), 24, MPFR_RNDN);
+  t.k4 = fixed_round(ang.get(), rtl::kK4Frac);
+  return t;
+}
 
 // ---- RECIP/SQRT seed table -----------------------------------------------------
 // The RTL's RECIP and SQRT (docs/fp24-func.md) start from a piecewise-linear
@@ -187,6 +238,12 @@ std::vector<Seed> make_seed_table() {
   return t;
 }
 
+std::string hex(std::uint64_t v, int digits) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%0*llx", digits, static_cast<unsigned long long>(v));
+  return buf;
+}
+
 struct HardCase {
   std::uint32_t key;     // is_cos << 24 | input encoding
   std::uint32_t result;  // correctly rounded encoding (flags: NX)
@@ -212,17 +269,64 @@ std::uint32_t correctly_rounded(bool is_cos, std::uint32_t a) {
   return sign | static_cast<std::uint32_t>(field) << kFracBits | (s & 0xFFFF);
 }
 
-// Every input whose approximation cannot decide its own rounding. sin and
-// cos are odd and even, and the core works on |x|, so each positive hard
-// input brings its negative twin.
-std::vector<HardCase> find_hard_cases(const trig::Tables& t, std::uint64_t* min_distance) {
+// FP24 encoding of an approximation |y| = sig * 2^(exp - (bits - 1)), bit
+// bits-1 of sig set, rounded to 17 bits as both RTL and model do (RNE,
+// sticky = 1: sin and cos are never representable nor a midpoint).
+std::uint32_t encode(bool neg, int exp, std::uint64_t sig, int bits) {
+  const int drop = bits - 1 - kFracBits;
+  std::uint64_t r = (sig >> drop) + ((sig >> (drop - 1)) & 1);
+  if (r >> (kFracBits + 1)) {
+    r >>= 1;
+    ++exp;
+  }
+  const int field = exp + kBias;
+  if (field < 1 || field > 126) throw std::runtime_error("sin/cos result outside the normal range");
+  return (neg ? 0x800000u : 0u) | static_cast<std::uint32_t>(field) << kFracBits | static_cast<std::uint32_t>(r & 0xFFFF);
+}
+
+struct TrigStats {
+  std::uint64_t model_min_distance = ~std::uint64_t{0};  // model core, units of its bit 0
+  std::uint64_t rtl_min_distance = ~std::uint64_t{0};    // RTL core, units of its bit 0
+  double rtl_max_error = 0;                              // RTL core vs the model's, RTL units
+  std::size_t model_hard = 0, rtl_hard = 0;              // positive inputs, both ops
+};
+
+// Every input that either core (the model's, hw/apu/fp24_trig.cpp, and the
+// RTL's, fp24_trig_rtl.cpp) cannot round by its own error bound; both
+// consult the one hard-case ROM. sin and cos are odd and even and both cores
+// work on |x|, so each positive hard input brings its negative twin. Every
+// other input is rounded by both cores, and they must agree: since the
+// model's results are correctly rounded (the exhaustive regression against
+// MPFR), this proves the RTL's are too, or the build stops.
+std::vector<HardCase> find_hard_cases(const trig::Tables& t, const rtl::Tables& rt, TrigStats* st) {
   std::vector<HardCase> hard;
-  *min_distance = ~std::uint64_t{0};
   for (int is_cos = 0; is_cos <= 1; ++is_cos) {
     for (std::uint32_t a = 0x010000; a < 0x7F0000; ++a) {
-      const std::uint64_t d = trig::midpoint_distance(trig::approximate(is_cos != 0, a, t));
-      if (d < *min_distance) *min_distance = d;
-      if (d >= trig::kHardMargin) continue;
+      const trig::Approx ym = trig::approximate(is_cos != 0, a, t);
+      const rtl::Approx yr = rtl::approximate(is_cos != 0, a, rt);
+      const std::uint64_t dm = trig::midpoint_distance(ym);
+      const std::uint64_t dr = rtl::midpoint_distance(yr);
+      st->model_min_distance = std::min(st->model_min_distance, dm);
+      st->rtl_min_distance = std::min(st->rtl_min_distance, dr);
+      // The RTL's error against the model's approximation (itself within
+      // 2^-57 relative), in units of bit 0 of the RTL's 53-bit significand.
+      if (ym.neg != yr.neg) throw std::runtime_error("sin/cos: RTL and model differ in sign at " + hex(a, 6));
+      const int shift = ym.exp - yr.exp + 1;  // in {0, 1, 2}
+      if (shift < 0 || shift > 2) throw std::runtime_error("sin/cos: RTL and model exponents apart at " + hex(a, 6));
+      const auto scaled_r = static_cast<unsigned __int128>(yr.sig) << 12;
+      const auto scaled_m = static_cast<unsigned __int128>(ym.sig) << shift;
+      const double err = static_cast<double>(scaled_r > scaled_m ? scaled_r - scaled_m : scaled_m - scaled_r) / 4096.0;
+      st->rtl_max_error = std::max(st->rtl_max_error, err);
+      const bool model_hard = dm < trig::kHardMargin;
+      const bool rtl_hard = dr < rtl::kHardMargin;
+      st->model_hard += model_hard;
+      st->rtl_hard += rtl_hard;
+      if (!model_hard && !rtl_hard) {
+        if (encode(ym.neg, ym.exp, ym.sig, 64) != encode(yr.neg, yr.exp, yr.sig, rtl::kSigBits))
+          throw std::runtime_error("sin/cos: the RTL core rounds " + hex(a, 6) + (is_cos ? " (cos)" : " (sin)") +
+                                   " unlike the model outside the hard-case margin");
+        continue;
+      }
       for (std::uint32_t s : {0u, 0x800000u}) {
         const std::uint32_t key = static_cast<std::uint32_t>(is_cos) << 24 | s | a;
         hard.push_back({key, correctly_rounded(is_cos != 0, s | a)});
@@ -233,11 +337,6 @@ std::vector<HardCase> find_hard_cases(const trig::Tables& t, std::uint64_t* min_
   return hard;
 }
 
-std::string hex(std::uint64_t v, int digits) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%0*llx", digits, static_cast<unsigned long long>(v));
-  return buf;
-}
 
 struct Roms {
   std::array<Word128, trig::kWindowCount> windows;
@@ -246,6 +345,7 @@ struct Roms {
   std::array<std::uint64_t, trig::kTerms> cos_coef;
   std::vector<HardCase> hard;
   std::vector<Seed> seed;
+  rtl::Tables trig_rtl;
 };
 
 constexpr const char* kBanner =
@@ -279,28 +379,35 @@ std::string cpp_rom(const Roms& r) {
 std::string sv_rom(const Roms& r) {
   std::ostringstream o;
   o << "// " << kBanner << "// Included inside module fp24_func.\n\n";
-  // One constant vector indexed by a part-select rather than a case:
-  // Verilator reads it as a constant, where a case becomes a decision tree
-  // that makes the SIN/COS simulation ~12% slower. Not an unpacked array:
-  // Yosys 0.23 takes no unpacked-array localparam (docs/fp24-rtl.md).
-  o << "// 128-bit windows of 2/pi, entry idx at [128*idx +: 128]; idx = unbiased\n"
-    << "// exponent - (" << trig::kReduceMinExp << "), 0 past the last.\n"
-    << "localparam logic [128*128-1:0] ROM_TWO_OVER_PI = {\n";
-  for (int i = 127; i >= 0; --i) {
-    const Word128 w = i < trig::kWindowCount ? r.windows[i] : Word128{};
-    o << "    128'h" << hex(w.hi, 16) << "_" << hex(w.lo, 16) << (i > 0 ? ",\n" : "\n");
-  }
-  o << "};\n\n"
-    << "function automatic logic [127:0] rom_two_over_pi(input logic [6:0] idx);\n"
-    << "  rom_two_over_pi = ROM_TWO_OVER_PI[128*idx+:128];\nendfunction\n\n";
-  o << "localparam logic [63:0] ROM_HALF_PI = 64'h" << hex(r.half_pi, 16) << ";\n\n";
-  o << "// Series coefficients 1/(2k+1)! (sin) and 1/(2k)! (cos), k = idx + 1, in 0.64.\n"
-    << "function automatic logic [63:0] rom_coef(input logic use_cos, input logic [2:0] idx);\n"
-    << "  case ({use_cos, idx})\n";
-  for (int c = 0; c < 2; ++c)
-    for (int k = 0; k < trig::kTerms; ++k)
-      o << "    4'd" << (c * 8 + k) << ": rom_coef = 64'h" << hex((c ? r.cos_coef : r.sin_coef)[k], 16) << ";\n";
-  o << "    default: rom_coef = '0;\n  endcase\nendfunction\n\n";
+  // SIN/COS of the RTL (fp24_func_trig.sv, apu_rtl/rom/fp24_trig_rtl.hpp);
+  // the model's 64-bit tables are in fp24_rom.inc only.
+  auto hex128 = [](rtl::u128 v, int bits) {
+    const auto hi = static_cast<std::uint64_t>(v >> 64);
+    const auto lo = static_cast<std::uint64_t>(v);
+    return std::to_string(bits) + "'h" + hex(hi, (bits - 64 + 3) / 4) + "_" + hex(lo, 16);
+  };
+  const rtl::Tables& rt = r.trig_rtl;
+  o << "// Windows of 2/pi (" << rtl::kWinBits << " bits): idx = unbiased exponent - (" << rtl::kMinExp
+    << ") for exponents " << rtl::kMinExp << ".." << rtl::kMaxExp << ", idx " << rtl::kDirect
+    << ": the leading bits (inputs below 2^" << rtl::kMinExp << ").\n"
+    << "localparam int TRIG_WIN_W = " << rtl::kWinBits << ";\n"
+    << "function automatic logic [" << rtl::kWinBits - 1 << ":0] rom_trig_window(input logic [6:0] idx);\n"
+    << "  case (idx)\n";
+  for (int i = 0; i < rtl::kWindows; ++i)
+    o << "    7'd" << i << ": rom_trig_window = " << hex128(rt.window[i], rtl::kWinBits) << ";\n";
+  o << "    default: rom_trig_window = '0;\n  endcase\nendfunction\n\n";
+  o << "// sin, cos at j/256 quarter turns, j = 0.." << rtl::kTableEntries - 1
+    << ": {S_j 1.52, C_j 1.52, pi/2 S_j 1.44, pi/2 C_j 1.44}.\n"
+    << "function automatic logic [195:0] rom_trig_table(input logic [7:0] j);\n"
+    << "  case (j)\n";
+  for (int j = 0; j < rtl::kTableEntries; ++j)
+    o << "    8'd" << j << ": rom_trig_table = {53'h" << hex(rt.sin_tab[j], 14) << ", 53'h" << hex(rt.cos_tab[j], 14)
+      << ", 45'h" << hex(rt.hsin_tab[j], 12) << ", 45'h" << hex(rt.hcos_tab[j], 12) << "};\n";
+  o << "    default: rom_trig_table = '0;\n  endcase\nendfunction\n\n";
+  o << "// (pi/2)^2/2 and (pi/2)^2/6 in 1.40, (pi/2)^4/24 in 0.24.\n"
+    << "localparam logic [40:0] TRIG_K2 = 41'h" << hex(rt.k2, 11) << ";\n"
+    << "localparam logic [40:0] TRIG_K3 = 41'h" << hex(rt.k3, 11) << ";\n"
+    << "localparam logic [23:0] TRIG_K4 = 24'h" << hex(rt.k4, 6) << ";\n\n";
   o << "// RECIP/SQRT seeds {A, B} (" << kSeedAWidth << " + " << kSeedBWidth
     << " bits): address f[15:7] (RECIP) or 512 + {odd, f[15:9]} (SQRT).\n"
     << "// Sum fraction bits F = " << kSeedF << ", A fraction bits FA = " << kSeedFA << ".\n"
@@ -345,17 +452,19 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    Roms r{make_windows(), half_pi_1_63(), inverse_factorials(3), inverse_factorials(2), {}};
+    Roms r{make_windows(), half_pi_1_63(), inverse_factorials(3), inverse_factorials(2), {}, {}, make_rtl_tables()};
     const trig::Tables t{r.windows.data(), r.half_pi, r.sin_coef.data(), r.cos_coef.data()};
-    std::uint64_t min_distance = 0;
-    r.hard = find_hard_cases(t, &min_distance);
+    TrigStats st;
+    r.hard = find_hard_cases(t, r.trig_rtl, &st);
     r.seed = make_seed_table();
     const std::string dir = argv[1];
     write_if_changed(dir + "/fp24_rom.inc", cpp_rom(r));
     write_if_changed(dir + "/fp24_rom.svh", sv_rom(r));
-    std::cout << "fp24_romgen: " << r.hard.size() << " hard cases (margin 2^" << __builtin_ctzll(trig::kHardMargin)
-              << " units), closest approximation "
-              << min_distance << " units from a midpoint\n";
+    std::cout << "fp24_romgen: " << r.hard.size() << " hard-case entries; model core: " << st.model_hard
+              << " positive inputs within 2^" << __builtin_ctzll(trig::kHardMargin)
+              << " units of a midpoint, closest " << st.model_min_distance << "; RTL core: " << st.rtl_hard
+              << " within 2^" << __builtin_ctzll(rtl::kHardMargin) << ", closest " << st.rtl_min_distance
+              << ", max error " << st.rtl_max_error << " units; all others rounded alike\n";
   } catch (const std::exception& e) {
     std::cerr << "fp24_romgen: " << e.what() << "\n";
     return 1;
