@@ -1,7 +1,7 @@
 // SIN and COS of the FP24 function unit (docs/fp24-func.md "SIN and COS
 // (RTL)"): table of sin, cos at 1/256 quarter turns plus a short polynomial
 // in the remainder, correctly rounded on every input (the generator proves it
-// and puts the inputs it cannot round in the hard-case ROM). Eight stages,
+// and puts the inputs it cannot round in the hard-case ROM). Nine stages,
 // one op per cycle, each one multiply deep at most:
 //   s1 <- the op and its window of 2/pi (synchronous ROM read)
 //   s2 <- v = m * window (x * 2/pi mod 4, 88 fraction bits); special
@@ -10,9 +10,11 @@
 //         |delta| normalized to phi (44 bits, scale 2^(-53-s)); signs
 //   s4 <- u = phi^2
 //   s5 <- T_s = k3 u, w = k2 - k4 u
-//   s6 <- T_c = u w, X = phi (1 - T_s); the table entry of j (ROM read)
+//   s6 <- T_c = u w, X = phi (1 - T_s); the table entry of j (ROM read,
+//         entries 1..128; entry 0 is a constant)
 //   s7 <- A T_c, (pi/2) B X with (A, B) = (S_j, C_j) or (C_j, -S_j)
-//   s8 <- y = A - A T_c +- (pi/2) B X, normalized, rounded, packed
+//   s8 <- y = A - A T_c +- (pi/2) B X, normalized
+//   s9 <- rounded, packed
 // apu_rtl/rom/fp24_trig_rtl.cpp is the same pipeline in C++, bit for bit.
 // Every stage's datapath registers load only when an op is in it.
 // rst_n is synchronous and clears only the valid bits.
@@ -168,13 +170,15 @@ module fp24_func_trig #(
   logic [W-1:0] s3_result, s4_result, s5_result, s6_result, s7_result;
   logic [4:0]   s3_flags, s4_flags, s5_flags, s6_flags, s7_flags;
   // The datapath's control, carried to the end.
-  logic [7:0]   s3_j, s4_j, s5_j;
-  logic         s3_cos, s4_cos, s5_cos, s6_cos, s7_cos;     // use_cos
+  logic [7:0]   s3_j, s4_j;
+  logic         s3_cos, s4_cos, s5_cos, s6_cos;             // use_cos
   logic         s3_plus, s4_plus, s5_plus, s6_plus, s7_plus;  // the B term adds
   logic         s3_sin0, s4_sin0, s5_sin0, s6_sin0, s7_sin0;  // j = 0 sine: y = B X, scaled by 2^-s
   logic         s3_sign, s4_sign, s5_sign, s6_sign, s7_sign;
   logic [5:0]   s3_s, s4_s, s5_s, s6_s, s7_s;
   logic [43:0]  s3_phi, s4_phi, s5_phi;
+  logic         s5_j0, s6_j0;  // j = 0: the table entry is TRIG_TAB0
+  logic [6:0]   s5_addr;
 
   always_ff @(posedge clk) begin
     if (!rst_n) begin
@@ -197,16 +201,20 @@ module fp24_func_trig #(
           {s3_known, s3_result, s3_flags, s3_j, s3_cos, s3_plus, s3_sin0, s3_sign, s3_s, s3_phi};
     end
     if (s4_valid) begin
-      {s5_known, s5_result, s5_flags, s5_j, s5_cos, s5_plus, s5_sin0, s5_sign, s5_s, s5_phi} <=
-          {s4_known, s4_result, s4_flags, s4_j, s4_cos, s4_plus, s4_sin0, s4_sign, s4_s, s4_phi};
+      {s5_known, s5_result, s5_flags, s5_cos, s5_plus, s5_sin0, s5_sign, s5_s, s5_phi} <=
+          {s4_known, s4_result, s4_flags, s4_cos, s4_plus, s4_sin0, s4_sign, s4_s, s4_phi};
+      // The ROM holds j = 1..128 at j - 1; j = 0 is a constant.
+      s5_j0   <= s4_j == 8'd0;
+      s5_addr <= 7'(s4_j - 8'd1);
     end
     if (s5_valid) begin
       {s6_known, s6_result, s6_flags, s6_cos, s6_plus, s6_sin0, s6_sign, s6_s} <=
           {s5_known, s5_result, s5_flags, s5_cos, s5_plus, s5_sin0, s5_sign, s5_s};
+      s6_j0 <= s5_j0;
     end
     if (s6_valid) begin
-      {s7_known, s7_result, s7_flags, s7_cos, s7_plus, s7_sin0, s7_sign, s7_s} <=
-          {s6_known, s6_result, s6_flags, s6_cos, s6_plus, s6_sin0, s6_sign, s6_s};
+      {s7_known, s7_result, s7_flags, s7_plus, s7_sin0, s7_sign, s7_s} <=
+          {s6_known, s6_result, s6_flags, s6_plus, s6_sin0, s6_sign, s6_s};
     end
   end
 
@@ -246,7 +254,7 @@ module fp24_func_trig #(
   end
 
   // ---- stage 5 -> 6: T_c = u w, X = phi (1 - T_s); the table entry ----------
-  logic [46:0] tc;
+  logic [46:12] tc;  // T_c in 0.64, but for the 12 bits A T_c does not need
   logic [43:0] x;
   /* verilator lint_off UNUSEDSIGNAL */
   logic [86:0]  tc_full;
@@ -254,20 +262,20 @@ module fp24_func_trig #(
   /* verilator lint_on UNUSEDSIGNAL */
   always_comb begin
     tc_full = {41'd0, s5_u} * {46'd0, s5_w};
-    tc      = tc_full[86:40];
+    tc      = tc_full[86:52];
     // One multiply-subtract, floored once (as the C++ twin).
     x_full  = {s5_phi, 64'd0} - {64'd0, s5_phi} * {63'd0, s5_ts};
     x       = x_full[107:64];
   end
 
-  logic [46:0]  s6_tc;
+  logic [46:12] s6_tc;
   logic [43:0]  s6_x;
   logic [195:0] s6_tab;  // {S_j, C_j, pi/2 S_j, pi/2 C_j}
   always_ff @(posedge clk) begin
     if (s5_valid) begin
       s6_tc  <= tc;
       s6_x   <= x;
-      s6_tab <= fp24_func_pkg::rom_trig_table(s5_j);
+      s6_tab <= fp24_func_pkg::rom_trig_table(s5_addr);
     end
   end
 
@@ -280,9 +288,11 @@ module fp24_func_trig #(
   logic [71:0] at_full;
   logic [88:0] bx_full;
   /* verilator lint_on UNUSEDSIGNAL */
+  logic [195:0] tab;
   always_comb begin
-    av      = s6_cos ? s6_tab[142:90] : s6_tab[195:143];
-    bv      = s6_cos ? s6_tab[89:45] : s6_tab[44:0];
+    tab     = s6_j0 ? fp24_func_pkg::TRIG_TAB0 : s6_tab;
+    av      = s6_cos ? tab[142:90] : tab[195:143];
+    bv      = s6_cos ? tab[89:45] : tab[44:0];
     at_full = {35'd0, av[52:16]} * {37'd0, s6_tc[46:12]};
     at      = at_full[71:36];
     bx_full = {44'd0, bv} * {45'd0, s6_x};
@@ -300,47 +310,64 @@ module fp24_func_trig #(
     end
   end
 
-  // ---- stage 7 -> 8: y = A - A T_c +- (pi/2) B X, normalize, round -----------
+  // ---- stage 7 -> 8: y = A - A T_c +- (pi/2) B X, normalized ----------------
   logic [52:0]       y, ny;   // 1.52, 0 < y <= 1
-  logic [5:0]        ylz;
+  logic [3:0]        ylz;
   logic [SEXP_W-1:0] yexp;
-  logic [W-1:0]      trig_result;
-  logic [4:0]        trig_flags;
 
   always_comb begin
     y = s7_plus ? s7_av - {17'd0, s7_at} + {9'd0, s7_bx} : s7_av - {17'd0, s7_at} - {9'd0, s7_bx};
+    // y >= 2^-11 (the generator checks it): a shift of at most 15.
     ny  = y;
     ylz = '0;
-    if (ny[52-:32] == '0) begin ny = {ny[20:0], 32'd0}; ylz[5] = 1'b1; end
-    if (ny[52-:16] == '0) begin ny = {ny[36:0], 16'd0}; ylz[4] = 1'b1; end
-    if (ny[52-:8] == '0)  begin ny = {ny[44:0], 8'd0};  ylz[3] = 1'b1; end
-    if (ny[52-:4] == '0)  begin ny = {ny[48:0], 4'd0};  ylz[2] = 1'b1; end
-    if (ny[52-:2] == '0)  begin ny = {ny[50:0], 2'd0};  ylz[1] = 1'b1; end
-    if (ny[52] == 1'b0)   begin ny = {ny[51:0], 1'b0};  ylz[0] = 1'b1; end
+    if (ny[52-:8] == '0) begin ny = {ny[44:0], 8'd0}; ylz[3] = 1'b1; end
+    if (ny[52-:4] == '0) begin ny = {ny[48:0], 4'd0}; ylz[2] = 1'b1; end
+    if (ny[52-:2] == '0) begin ny = {ny[50:0], 2'd0}; ylz[1] = 1'b1; end
+    if (ny[52] == 1'b0)  begin ny = {ny[51:0], 1'b0}; ylz[0] = 1'b1; end
     // |y| = ny * 2^(-ylz - 52) (times 2^-s for a sine at j = 0); biased.
     yexp = BIAS - SEXP_W'(ylz) - (s7_sin0 ? SEXP_W'(s7_s) : SEXP_W'(0));
   end
 
-  // sin and cos are transcendental: never exact, never a tie (sticky = 1).
-  fp24_round #(.EXP_W(EXP_W), .FRAC_W(FRAC_W), .SEXP_W(SEXP_W)) u_round (
-      .sign(s7_sign), .exp(yexp), .frac(ny[51-:FRAC_W]), .guard(ny[51-FRAC_W]), .sticky(1'b1),
-      .result(trig_result), .flags(trig_flags));
-
-  // ---- stage 8 registers: the result ------------------------------------------
-  logic         s8_valid;
-  logic [W-1:0] s8_result;
-  logic [4:0]   s8_flags;
+  logic              s8_valid, s8_known, s8_sign;
+  logic [W-1:0]      s8_result;
+  logic [4:0]        s8_flags;
+  logic [FRAC_W:0]   s8_sig;    // the 16 fraction bits and the guard bit
+  logic [SEXP_W-1:0] s8_exp;
 
   always_ff @(posedge clk) begin
     if (!rst_n) s8_valid <= 1'b0;
     else        s8_valid <= s7_valid;
     if (s7_valid) begin
-      s8_result <= s7_known ? s7_result : trig_result;
-      s8_flags  <= s7_known ? s7_flags : trig_flags;
+      {s8_known, s8_result, s8_flags, s8_sign} <= {s7_known, s7_result, s7_flags, s7_sign};
+      s8_sig <= ny[51-:FRAC_W+1];
+      s8_exp <= yexp;
     end
   end
 
-  assign out_valid  = s8_valid;
-  assign out_result = s8_result;
-  assign out_flags  = s8_flags;
+  // ---- stage 8 -> 9: round, pack ---------------------------------------------
+  logic [W-1:0] trig_result;
+  logic [4:0]   trig_flags;
+
+  // sin and cos are transcendental: never exact, never a tie (sticky = 1).
+  fp24_round #(.EXP_W(EXP_W), .FRAC_W(FRAC_W), .SEXP_W(SEXP_W)) u_round (
+      .sign(s8_sign), .exp(s8_exp), .frac(s8_sig[FRAC_W:1]), .guard(s8_sig[0]), .sticky(1'b1),
+      .result(trig_result), .flags(trig_flags));
+
+  // ---- stage 9 registers: the result ------------------------------------------
+  logic         s9_valid;
+  logic [W-1:0] s9_result;
+  logic [4:0]   s9_flags;
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) s9_valid <= 1'b0;
+    else        s9_valid <= s8_valid;
+    if (s8_valid) begin
+      s9_result <= s8_known ? s8_result : trig_result;
+      s9_flags  <= s8_known ? s8_flags : trig_flags;
+    end
+  end
+
+  assign out_valid  = s9_valid;
+  assign out_result = s9_result;
+  assign out_flags  = s9_flags;
 endmodule

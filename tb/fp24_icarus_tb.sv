@@ -20,7 +20,7 @@ module fp24_icarus_tb;
   localparam int LAT_MUL = apu_pkg::LAT_MUL, LAT_ADD = apu_pkg::LAT_ADD;
   localparam int LAT_FUNC = apu_pkg::LAT_FUNC, LAT_TRIG = apu_pkg::LAT_TRIG;
   localparam int LAT_MAX = (LAT_FUNC > LAT_TRIG) ? LAT_FUNC : LAT_TRIG;
-  localparam int RING = 8;  // > every latency
+  localparam int RING = 16;  // > every latency
   // unit of a vector (in `unit`), and the op code on the unit's in_op
   localparam logic [1:0] U_MUL = 2'd0, U_ADD = 2'd1, U_FUNC = 2'd2;
 

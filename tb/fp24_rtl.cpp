@@ -46,12 +46,14 @@ struct Pins {
   OutPins trig;
 };
 
-// The function unit returns SIN/COS on a port of their own: a RECIP/SQRT
-// issued one cycle later finishes in the same cycle (docs/fp24-rtl.md).
+// The function unit returns SIN/COS on a port of their own, with a latency
+// of their own: a RECIP/SQRT issued after a SIN/COS finishes before it or in
+// the same cycle (docs/fp24-rtl.md).
 bool trig_port(Op op) { return op == Op::Sin || op == Op::Cos; }
 
-// One unit's issue port and its in-flight ops. The in-flight list is a
-// fixed ring: a unit can hold at most a few ops, and the hot loop must not
+// One unit's issue port and its in-flight ops, one list per result port
+// (each port's results come in its own issue order). The lists are fixed
+// rings: a unit can hold at most a few ops, and the hot loop must not
 // allocate.
 class Lane {
  public:
@@ -76,8 +78,9 @@ class Lane {
     if (pins_.in_op != nullptr) *pins_.in_op = info.rtl_code;
     *pins_.in_a = op.a & 0xFFFFFF;
     *pins_.in_b = op.b & 0xFFFFFF;
-    if (count_ == ring_.size()) throw TimingError("fp24 " + unit_name() + " unit: too many ops in flight");
-    ring_[(head_ + count_++) % ring_.size()] = {op, tag, edge, edge + std::uint64_t(info.latency)};
+    Ring& q = rings_[trig_port(op.op) ? 1 : 0];
+    if (q.count == q.slot.size()) throw TimingError("fp24 " + unit_name() + " unit: too many ops in flight");
+    q.slot[(q.head + q.count++) % q.slot.size()] = {op, tag, edge, edge + std::uint64_t(info.latency)};
     next_issue_ = edge + std::uint64_t(info.interval);
   }
 
@@ -88,24 +91,26 @@ class Lane {
     const std::uint64_t sample = edge + 1;
     bool taken[2] = {false, false};  // out, trig
     int n = 0;
-    // The ring is in issue order, and so in order of due edge: a RECIP/SQRT
-    // issued right after a SIN/COS is due on the same edge, never earlier.
-    while (count_ > 0 && ring_[head_].due <= sample) {
-      const InFlight& f = ring_[head_];
-      const int port = trig_port(f.op.op) ? 1 : 0;
-      const OutPins& p = port ? pins_.trig : pins_.out;
-      if (*p.valid == 0 || taken[port]) throw late(f);
-      taken[port] = true;
-      done[n++] = {{*p.result, *p.flags}, f.tag, {f.issue_edge, sample}};
-      head_ = (head_ + 1) % ring_.size();
-      --count_;
+    // Each ring is in issue order, and so (one latency per port) in order of
+    // due edge.
+    for (int port = 0; port < 2; ++port) {
+      Ring& q = rings_[port];
+      while (q.count > 0 && q.slot[q.head].due <= sample) {
+        const InFlight& f = q.slot[q.head];
+        const OutPins& p = port ? pins_.trig : pins_.out;
+        if (*p.valid == 0 || taken[port]) throw late(f);
+        taken[port] = true;
+        done[n++] = {{*p.result, *p.flags}, f.tag, {f.issue_edge, sample}};
+        q.head = (q.head + 1) % q.slot.size();
+        --q.count;
+      }
     }
     check_idle(pins_.out, taken[0], sample, false);
     if (pins_.trig.valid != nullptr) check_idle(pins_.trig, taken[1], sample, true);
     return n;
   }
 
-  bool busy() const { return count_ > 0; }
+  bool busy() const { return rings_[0].count > 0 || rings_[1].count > 0; }
 
  private:
   struct InFlight {
@@ -118,11 +123,8 @@ class Lane {
   // A port whose valid is up must have delivered a result due now.
   void check_idle(const OutPins& p, bool taken, std::uint64_t sample, bool trig) const {
     if (taken || *p.valid == 0) return;
-    for (std::size_t i = 0; i < count_; ++i) {
-      const InFlight& f = ring_[(head_ + i) % ring_.size()];
-      if (trig_port(f.op.op) == trig)
-        throw TimingError(describe(f) + " arrived on edge " + std::to_string(sample));
-    }
+    const Ring& q = rings_[trig ? 1 : 0];
+    if (q.count > 0) throw TimingError(describe(q.slot[q.head]) + " arrived on edge " + std::to_string(sample));
     throw TimingError("fp24 " + unit_name() + " unit: " + (trig ? "out_trig_valid" : "out_valid") + " on edge " +
                       std::to_string(sample) + " with no op in flight");
   }
@@ -142,9 +144,12 @@ class Lane {
 
   Unit unit_;
   Pins pins_;
-  std::array<InFlight, 8> ring_{};
-  std::size_t head_ = 0;
-  std::size_t count_ = 0;
+  struct Ring {
+    std::array<InFlight, 16> slot{};  // > every latency
+    std::size_t head = 0;
+    std::size_t count = 0;
+  };
+  std::array<Ring, 2> rings_{};  // out, trig
   std::uint64_t next_issue_ = 0;
 };
 

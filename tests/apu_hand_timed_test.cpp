@@ -144,35 +144,39 @@ TEST_P(ApuHandTimed, OneOperandAdderOpsDoNotReadB) {
 }
 
 TEST_P(ApuHandTimed, SinCosAndOtherFunctionOpsIssueBackToBack) {
-  // SIN at 1 (visible 4), COS at 2 (visible 5), RECIP at 3 (visible 6, with
-  // the ADD's result); the ADD reading the SIN result issues at 4 with no
-  // stall. HALT at 5 drains (RECIP and ADD in flight), issues at 6.
+  // SIN at 1 (visible 10), COS at 2 (visible 11), RECIP at 3 (visible 6,
+  // before them: each pipe has its own latency, FUNC 3, TRIG 9); the ADD
+  // reading the SIN result waits (raw) at 4..9 and issues at 10 (visible
+  // 12). HALT at 11 drains (the ADD in flight), issues at 12.
   auto r = program({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Cos, 3, 1), func(FuncOp::Recip, 4, 1),
                     addu(AddOp::Add, 5, 2, 2), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, N, Stall::Drain, N}));
-  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, 2, 3, 4, -1, 5}));
+  const Stall R = Stall::Raw;
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, R, R, R, R, R, R, N, Stall::Drain, N}));
+  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, 2, 3, -1, -1, -1, -1, -1, -1, 4, -1, 5}));
   const auto s = fp24::sin(kOne), c = fp24::cos(kOne);
   const auto twice = fp24::add(s.value, s.value);
   EXPECT_EQ(s.flags, fp24::kNX);  // so FLAGS changes with the SIN result
-  EXPECT_EQ(r.recs[4].commits, (Commits{{K::FReg, 2, s.value}, {K::Flags, 0, s.flags}}));
-  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 3, c.value}}));
-  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, kOne}, {K::FReg, 5, twice.value}}));
+  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, kOne}}));
+  EXPECT_EQ(r.recs[10].commits, (Commits{{K::FReg, 2, s.value}, {K::Flags, 0, s.flags}}));
+  EXPECT_EQ(r.recs[11].commits, (Commits{{K::FReg, 3, c.value}}));
+  EXPECT_EQ(r.recs[12].commits, (Commits{{K::FReg, 5, twice.value}}));
   EXPECT_EQ(r.apu->freg(3), c.value);
   EXPECT_EQ(r.apu->freg(4), kOne);
   EXPECT_EQ(r.apu->freg(5), twice.value);
   EXPECT_EQ(r.apu->flags(), s.flags | c.flags | twice.flags);
 }
 
-TEST_P(ApuHandTimed, RecipAfterSinIntoTheSameRegisterNeedNotWait) {
-  // SIN F2 at 1 is visible at 4; RECIP F2 at 2, of the same latency
-  // (FUNC = TRIG = 3), lands at 5, after it: in-order pipes of one latency
-  // cannot reorder, so no waw. HALT drains at 3 and 4.
+TEST_P(ApuHandTimed, RecipAfterSinIntoTheSameRegisterWaitsUntilItLandsLater) {
+  // SIN F2 at 1 is visible at 10; RECIP F2 (FUNC 3 < TRIG 9) at c would
+  // land at c + 3 <= 10 for c <= 7: waw at 2..7, issues at 8 and lands at 11,
+  // after the SIN. HALT drains at 9 and 10.
   auto r = program({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), func(FuncOp::Recip, 2, 1), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, Stall::Drain, Stall::Drain, N}));
-  EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, fp24::sin(kOne).value}));
-  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 2, kOne}}));
+  const Stall W = Stall::Waw, D = Stall::Drain;
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, W, W, W, W, W, W, N, D, D, N}));
+  EXPECT_EQ(r.recs[10].commits[0], (Commit{K::FReg, 2, fp24::sin(kOne).value}));
+  EXPECT_EQ(r.recs[11].commits, (Commits{{K::FReg, 2, kOne}}));
   EXPECT_EQ(r.apu->freg(2), kOne);
 }
 
@@ -191,18 +195,19 @@ TEST_P(ApuHandTimed, BackToBackWritesOfOneLatencyDoNotStall) {
 }
 
 TEST_P(ApuHandTimed, ShorterWriteAfterLongerOneWaitsUntilItLandsLater) {
-  // SIN F2 at 1 (visible 4); MUL F2 at 2 would land at 4 as well: waw; at 3
-  // it lands at 5. A longer write after a shorter one (MUL F4 at 4, visible
-  // 6; COS F4 at 5, visible 8) never waits.
+  // SIN F2 at 1 (visible 10); MUL F2 at c would land at c + 2 <= 10 for
+  // c <= 8: waw at 2..8; at 9 it lands at 11. A longer write after a shorter
+  // one (MUL F4 at 10, visible 12; COS F4 at 11, visible 20) never waits.
   auto r = program({lif(1, 0x3F00), func(FuncOp::Sin, 2, 1), mul(2, 1, 1), mul(4, 1, 1),
                     func(FuncOp::Cos, 4, 1), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Waw, N, N, N, Stall::Drain, Stall::Drain, N}));
-  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, -1, 2, 3, 4, -1, -1, 5}));
-  EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, fp24::sin(kOne).value}));
-  EXPECT_EQ(r.recs[5].commits, (Commits{{K::FReg, 2, kOne}}));
-  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, kOne}}));
-  EXPECT_EQ(r.recs[8].commits[0], (Commit{K::FReg, 4, fp24::cos(kOne).value}));
+  const Stall W = Stall::Waw, D = Stall::Drain;
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, W, W, W, W, W, W, W, N, N, N, D, D, D, D, D, D, D, D, N}));
+  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, -1, -1, -1, -1, -1, -1, -1, 2, 3, 4, -1, -1, -1, -1, -1, -1, -1, -1, 5}));
+  EXPECT_EQ(r.recs[10].commits[0], (Commit{K::FReg, 2, fp24::sin(kOne).value}));
+  EXPECT_EQ(r.recs[11].commits, (Commits{{K::FReg, 2, kOne}}));
+  EXPECT_EQ(r.recs[12].commits, (Commits{{K::FReg, 4, kOne}}));
+  EXPECT_EQ(r.recs[20].commits[0], (Commit{K::FReg, 4, fp24::cos(kOne).value}));
   EXPECT_EQ(r.apu->freg(2), kOne);
   EXPECT_EQ(r.apu->freg(4), fp24::cos(kOne).value);
 }
@@ -227,37 +232,41 @@ TEST_P(ApuHandTimed, OneWordLoopOfAllUnitsRunsAtOneCycleAnIteration) {
   EXPECT_EQ(r.apu->areg(1), 0);
 }
 
-TEST_P(ApuHandTimed, CosReaderStallsRawTwice) {
+TEST_P(ApuHandTimed, CosReaderStallsRawUntilTheResultLands) {
+  // COS at 1 is visible at 10: the MUL reading it waits at 2..9 (TRIG 9).
   auto r = program({lif(1, 0x3F00), func(FuncOp::Cos, 2, 1), mul(3, 2, 2), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Raw, Stall::Raw, N, Stall::Drain, N}));
+  const Stall R = Stall::Raw;
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, R, R, R, R, R, R, R, R, N, Stall::Drain, N}));
   const auto c = fp24::cos(kOne);
   EXPECT_EQ(r.apu->freg(2), c.value);
   EXPECT_EQ(r.apu->freg(3), fp24::mul(c.value, c.value).value);
 }
 
 TEST_P(ApuHandTimed, FunctionUnitTakesAnOpEveryCycle) {
-  // SQRT at 1 (visible 4), COS at 2 and 3 (visible 5, 6), SQRT at 4 (visible
-  // 7): one result a cycle, in issue order. HALT at 5 drains: the COS of 3
-  // and the SQRT of 4 are in flight; at 6 the SQRT still is; HALT issues at 7.
+  // SQRT at 1 (visible 4), COS at 2 and 3 (visible 11, 12), SQRT at 4
+  // (visible 7): an op every cycle, each pipe's results in its issue order.
+  // HALT at 5 drains until the last COS lands (5..11), issues at 12.
   auto r = program({lif(1, 0x4000), func(FuncOp::Sqrt, 2, 1), func(FuncOp::Cos, 3, 1), func(FuncOp::Cos, 4, 1),
                     func(FuncOp::Sqrt, 5, 1), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, N, Stall::Drain, Stall::Drain, N}));
+  const Stall D = Stall::Drain;
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, N, D, D, D, D, D, D, D, N}));
   const auto c = fp24::cos(kTwo), q = fp24::sqrt(kTwo);
   EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, q.value}));
-  EXPECT_EQ(r.recs[5].commits[0], (Commit{K::FReg, 3, c.value}));
-  EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, c.value}}));
   EXPECT_EQ(r.recs[7].commits, (Commits{{K::FReg, 5, q.value}}));
+  EXPECT_EQ(r.recs[11].commits[0], (Commit{K::FReg, 3, c.value}));
+  EXPECT_EQ(r.recs[12].commits, (Commits{{K::FReg, 4, c.value}}));
   EXPECT_EQ(r.apu->freg(5), q.value);
 }
 
 TEST_P(ApuHandTimed, DrainAtHaltWaitsForTheLastResult) {
-  // COS at 1 is visible at 4: HALT waits at 2 and 3, issues at 4.
+  // COS at 1 is visible at 10: HALT waits at 2..9, issues at 10.
   auto r = program({lif(1, 0x3F00), func(FuncOp::Cos, 2, 1), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, Stall::Drain, Stall::Drain, N}));
-  EXPECT_EQ(r.recs[4].commits[0], (Commit{K::FReg, 2, fp24::cos(kOne).value}));
+  const Stall D = Stall::Drain;
+  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, D, D, D, D, D, D, D, D, N}));
+  EXPECT_EQ(r.recs[10].commits[0], (Commit{K::FReg, 2, fp24::cos(kOne).value}));
   EXPECT_EQ(r.apu->state(), RunState::Halted);
 }
 

@@ -21,7 +21,7 @@ using namespace apu_test;
 TEST(ApuProfile, CountsUnitsStallsAndHotWords) {
   auto iss = std::make_unique<Iss>();
   ApuDriver drv(*iss);
-  const std::vector<MicroWord> prog = {lif(1, 0x3F00), lif(2, 0x4000), mul(3, 1, 2) | func(FuncOp::Sin, 4, 1),
+  const std::vector<MicroWord> prog = {lif(1, 0x3F00), lif(2, 0x4000), mul(3, 1, 2) | func(FuncOp::Recip, 4, 1),
                                        addu(AddOp::Add, 5, 3, 1), halt()};
   std::vector<Encoded> words;
   for (const auto& w : prog) words.push_back(w.encode());
@@ -30,7 +30,7 @@ TEST(ApuProfile, CountsUnitsStallsAndHotWords) {
   drv.start(0);
   Profile prof([&drv](int bank, std::uint16_t pc) { return drv.program_word(bank, pc); });
   drv.set_observer([&](const CycleRecord& r) { prof.add(r); });
-  // fetch at 0 (not profiled), raw at 4, drain at 6 (SIN done at 6, ADD at 7)
+  // fetch at 0 (not profiled), raw at 4, drain at 6 (RECIP done at 6, ADD at 7)
   EXPECT_EQ(drv.run_until_done(100), 8u);
   EXPECT_EQ(prof.cycles(), 7u);
   EXPECT_EQ(prof.issued(), 5u);

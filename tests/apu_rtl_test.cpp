@@ -74,7 +74,7 @@ TEST(ApuRtl, StallCauseSignalsNameTheSlotAndTheUnit) {
   // 0 LIF F1  1 MUL F3  2 ADD F4 = F1 + F3: raw on A b (read port 3), the
   // multiplier's tag  3 SIN F5  4 ST F9 | MUL F5: the MUL would land with the
   // SIN (latency kMulLatency < kTrigLatency): waw on M d (destination 0), the
-  // function unit's tag; no raw.
+  // function unit's tag, until the MUL would land after the SIN; no raw.
   const auto prog = encode({lif(1, 0x3F00), mul(3, 1, 1), addu(AddOp::Add, 4, 1, 3), func(FuncOp::Sin, 5, 1),
                             mem(MemOp::St, 9, 0, 0) | mul(5, 1, 1), halt()});
   for (std::size_t i = 0; i < prog.size(); ++i) core.write_program(static_cast<std::uint16_t>(i), prog[i]);
@@ -84,7 +84,7 @@ TEST(ApuRtl, StallCauseSignalsNameTheSlotAndTheUnit) {
   top.mpu2apu_start_pc = 0;
   top.eval();
   std::vector<int> raw_src, raw_unit, waw_dst, waw_unit, stall;
-  for (int c = 0; c < 12 && top.apu2mpu_run_state == static_cast<int>(RunState::Running); ++c) {
+  for (int c = 0; c < 24 && top.apu2mpu_run_state == static_cast<int>(RunState::Running); ++c) {
     stall.push_back(top.dbg_stall_reason);
     raw_src.push_back(top.dbg_raw_src);
     raw_unit.push_back(top.dbg_raw_unit);
@@ -93,13 +93,14 @@ TEST(ApuRtl, StallCauseSignalsNameTheSlotAndTheUnit) {
     core.edge();
   }
   const int R = static_cast<int>(Stall::Raw), W = static_cast<int>(Stall::Waw), D = static_cast<int>(Stall::Drain);
-  // cycles: 0 fetch, 1 LIF, 2 MUL, 3 raw, 4 ADD, 5 SIN, 6 waw, 7 ST|MUL,
-  // 8 drain, 9 HALT
-  EXPECT_EQ(stall, (std::vector<int>{0, 0, 0, R, 0, 0, W, 0, D, 0}));
-  EXPECT_EQ(raw_src, (std::vector<int>{0, 0, 0, 1 << 3, 0, 0, 0, 0, 0, 0}));
-  EXPECT_EQ(raw_unit, (std::vector<int>{0, 0, 0, 1 << 0, 0, 0, 0, 0, 0, 0}));
-  EXPECT_EQ(waw_dst, (std::vector<int>{0, 0, 0, 0, 0, 0, 1 << 0, 0, 0, 0}));
-  EXPECT_EQ(waw_unit, (std::vector<int>{0, 0, 0, 0, 0, 0, 1 << 2, 0, 0, 0}));
+  // cycles: 0 fetch, 1 LIF, 2 MUL, 3 raw, 4 ADD, 5 SIN (lands at 14),
+  // 6..12 waw (the MUL would land at c + 2 <= 14), 13 ST|MUL, 14 drain, 15 HALT
+  constexpr int kD = 1 << 0, kU = 1 << 2;
+  EXPECT_EQ(stall, (std::vector<int>{0, 0, 0, R, 0, 0, W, W, W, W, W, W, W, 0, D, 0}));
+  EXPECT_EQ(raw_src, (std::vector<int>{0, 0, 0, 1 << 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(raw_unit, (std::vector<int>{0, 0, 0, 1 << 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(waw_dst, (std::vector<int>{0, 0, 0, 0, 0, 0, kD, kD, kD, kD, kD, kD, kD, 0, 0, 0}));
+  EXPECT_EQ(waw_unit, (std::vector<int>{0, 0, 0, 0, 0, 0, kU, kU, kU, kU, kU, kU, kU, 0, 0, 0}));
   EXPECT_FALSE(top.dbg_unit_mismatch);
 }
 

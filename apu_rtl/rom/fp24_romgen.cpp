@@ -396,13 +396,18 @@ std::string sv_rom(const Roms& r) {
   for (int i = 0; i < rtl::kWindows; ++i)
     o << "    7'd" << i << ": rom_trig_window = " << hex128(rt.window[i], rtl::kWinBits) << ";\n";
   o << "    default: rom_trig_window = '0;\n  endcase\nendfunction\n\n";
-  o << "// sin, cos at j/256 quarter turns, j = 0.." << rtl::kTableEntries - 1
-    << ": {S_j 1.52, C_j 1.52, pi/2 S_j 1.44, pi/2 C_j 1.44}.\n"
-    << "function automatic logic [195:0] rom_trig_table(input logic [7:0] j);\n"
-    << "  case (j)\n";
-  for (int j = 0; j < rtl::kTableEntries; ++j)
-    o << "    8'd" << j << ": rom_trig_table = {53'h" << hex(rt.sin_tab[j], 14) << ", 53'h" << hex(rt.cos_tab[j], 14)
-      << ", 45'h" << hex(rt.hsin_tab[j], 12) << ", 45'h" << hex(rt.hcos_tab[j], 12) << "};\n";
+  // Entries 1..128 at address j - 1 (128 words); entry 0 is a constant.
+  auto entry = [&rt](int j) {
+    return "{53'h" + hex(rt.sin_tab[j], 14) + ", 53'h" + hex(rt.cos_tab[j], 14) + ", 45'h" + hex(rt.hsin_tab[j], 12) +
+           ", 45'h" + hex(rt.hcos_tab[j], 12) + "}";
+  };
+  o << "// sin, cos at j/256 quarter turns: {S_j 1.52, C_j 1.52, pi/2 S_j 1.44, pi/2 C_j 1.44};\n"
+    << "// j = 1.." << rtl::kTableEntries - 1 << " at address j - 1, j = 0 in TRIG_TAB0.\n"
+    << "localparam logic [195:0] TRIG_TAB0 = " << entry(0) << ";\n"
+    << "function automatic logic [195:0] rom_trig_table(input logic [6:0] addr);\n"
+    << "  case (addr)\n";
+  for (int j = 1; j < rtl::kTableEntries; ++j)
+    o << "    7'd" << j - 1 << ": rom_trig_table = " << entry(j) << ";\n";
   o << "    default: rom_trig_table = '0;\n  endcase\nendfunction\n\n";
   o << "// (pi/2)^2/2 and (pi/2)^2/6 in 1.40, (pi/2)^4/24 in 0.24.\n"
     << "localparam logic [40:0] TRIG_K2 = 41'h" << hex(rt.k2, 11) << ";\n"

@@ -94,13 +94,16 @@ Approx approximate(bool is_cos, std::uint32_t a, const Tables& t) {
   const std::uint64_t at = static_cast<std::uint64_t>((static_cast<u128>(av >> kTabHiDrop) * (tc >> 12)) >> 36);
   const std::uint64_t bx = static_cast<std::uint64_t>((static_cast<u128>(bv) * x) >> 45);
 
-  // s8: y = A cos(e) +- B sin(e) in 1.52, normalized and rounded.
+  // s8: y = A cos(e) +- B sin(e) in 1.52, normalized; s9: rounded.
   const bool bplus = use_cos ? eneg : !eneg;
   const std::uint64_t pos = av - at + (bplus ? bx : 0);
   require(pos > (bplus ? 0 : bx), "y > 0");
   const std::uint64_t y = pos - (bplus ? 0 : bx);
   require(y <= (std::uint64_t{1} << kTabFrac), "y <= 1");
   const int p = msb(y);
+  // y >= 2^-11 (tables: sin(pi/2 2^-9) > 2^-8.4; a sine at j = 0: B X >= 2^42
+  // units; a cosine: > 0.7): the normalizer shifts by at most 15.
+  require(kTabFrac - p <= 15, "y beyond the normalizer");
   Approx r{};
   r.sig = (y << (kSigBits - 1 - p)) & mask(kSigBits);
   r.exp = p - kTabFrac - ((small && !use_cos) ? s : 0);
