@@ -6,7 +6,7 @@
 // op: a result is sampled exactly `latency` edges after its issue edge (so a
 // dependent op could be issued on that edge), on the right port (the function
 // unit's SIN/COS on out_trig_*), never before the result of an op issued
-// earlier, and no valid rises with nothing due. A violation throws
+// earlier on the same port, and no valid rises with nothing due. A violation throws
 // TimingError.
 #pragma once
 

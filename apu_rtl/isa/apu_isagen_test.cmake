@@ -19,14 +19,14 @@ if(rc OR NOT EXISTS ${WORK}/good/apu_pkg.sv OR NOT EXISTS ${WORK}/good/apu_isa.h
 endif()
 file(READ ${WORK}/good/apu_isa.hpp hpp)
 file(READ ${WORK}/good/apu_pkg.sv sv)
-foreach(expected "constexpr int kTrigLatency = 3;" "case FuncOp::Sin: return kTrigLatency;"
+foreach(expected "constexpr int kTrigLatency = 9;" "case FuncOp::Sin: return kTrigLatency;"
                  "visit(Field{118, 10}, w.s.target);" "constexpr int kStallKinds = 6;")
   string(FIND "${hpp}" "${expected}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "apu_isa.hpp lacks: ${expected}")
   endif()
 endforeach()
-foreach(expected "localparam int LAT_TRIG = 3;" "A_RSVD = 3'd7" "logic [9:0] s_target;" "} microword_t;")
+foreach(expected "localparam int LAT_TRIG = 9;" "A_RSVD = 3'd7" "logic [9:0] s_target;" "} microword_t;")
   string(FIND "${sv}" "${expected}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "apu_pkg.sv lacks: ${expected}")
@@ -42,7 +42,7 @@ set(cases
   "value A_SUB   Sub       1|value A_SUB   Sub       0|value A_SUB repeats the code 0 of A_ADD"
   "value F_SIN   Sin       2  sin       TRIG|value F_SIN   Sin       2  sin       TRAG|'TRAG' is neither"
   "value S_HALT   Halt       12|value S_HALT   Halt       16|does not fit 4 bits"
-  "unit TRIG   3|unit TRIG   three|must be a decimal number"
+  "unit TRIG   9|unit TRIG   nine|must be a decimal number"
   "field op     110   4  seq_op_e|field op     110   3  seq_op_e|seq_op_e is 4 bits wide"
   "value I_LI    Li|value S_JMP    Li|value S_JMP defined twice|value S_JMP    Jmp")
 set(n 0)
