@@ -171,11 +171,12 @@ TEST_F(Mc1Render, SamePngForEveryNodeCountAndSchedule) {
     }
 }
 
-// Section 7's scenes (CSG, solids of revolution), small: the same PNG for
-// 1, 4, 16 and 64 NCs under every schedule, and on the RTL engine.
+// Section 7's scenes (CSG, solids of revolution; tilted: about axes along
+// no world axis), small: the same PNG for 1, 4, 16 and 64 NCs under every
+// schedule, and on the RTL engine.
 TEST_F(Mc1Render, Section7ScenesSamePngForEveryNodeCountScheduleAndEngine) {
   const unsigned w = 32, h = 24;
-  for (const char* scene : {"csg", "lathe"}) {
+  for (const char* scene : {"csg", "lathe", "../tests/scenes/tilted"}) {
     SCOPED_TRACE(scene);
     const FrameReport ref = render_frame(config(1), scene, w, h).report;
     expect_complete(ref);
@@ -653,7 +654,7 @@ TEST_F(Mc1Render, WithinPsnr35OfTheReferenceOnEveryStandardScene) {
     const char* scene;
     unsigned w, h;
   } cases[] = {{"tiny", 32, 32}, {"whitted", 48, 36}, {"room", 48, 36}, {"smooth", 32, 24}, {"teapot", 32, 24},
-               {"csg", 48, 36},  {"lathe", 48, 36}};
+               {"csg", 48, 36},  {"lathe", 48, 36}, {"../tests/scenes/tilted", 48, 36}};
   for (const auto& c : cases) {
     SCOPED_TRACE(c.scene);
     const FrameReport r = render_frame(config(4, rc::Schedule::Lpt, 16), c.scene, c.w, c.h).report;

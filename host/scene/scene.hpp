@@ -85,6 +85,10 @@ struct Primitive {
   // (a1..a6 are the same): near the box its terms are small, so FP24 evaluates
   // it without the cancellation of far-away world coordinates (loader-filled).
   std::array<double, 4> centred_linear{};
+  // Quadric: also clipped to the slab |(x - c).slab_axis| <= slab_half, c the
+  // clip box's centre (a solid of revolution's segment; slab_half 0: none).
+  glm::dvec3 slab_axis{0.0};
+  double slab_half = 0.0;
   glm::dvec3 box_min{0.0};                   // quadric clip box; for every kind, the
   glm::dvec3 box_max{0.0};                   // primitive's bounding box (loader-filled)
 
@@ -169,8 +173,8 @@ void tessellate_patch(const BicubicNet& net, Basis basis, int level,
 
 // Solid of revolution: the quadric frustum of one profile segment (radius,
 // height) p0 - p1 (p1.y > p0.y, radii >= 0, not both 0) about the line
-// through `base` along world axis `axis` (0 x, 1 y, 2 z); heights from base.
-Primitive revolved_segment(int axis, const glm::dvec3& base, const glm::dvec2& p0, const glm::dvec2& p1);
+// through `base` along the unit vector `axis`; heights from base.
+Primitive revolved_segment(const glm::dvec3& axis, const glm::dvec3& base, const glm::dvec2& p0, const glm::dvec2& p1);
 
 // The loader's derived data, shared with tests and tools.
 void finish_polygon(Primitive& p);  // plane normal and box from the vertices

@@ -499,13 +499,28 @@ class Loader {
     return p;
   }
 
+  // A revolution's axis: "x", "y", "z" or a direction [x, y, z] (not 0),
+  // as a unit vector.
+  glm::dvec3 revolution_axis(const Value& av, const std::string& path) const {
+    if (av.type == Type::string) {
+      const std::string axis = text(av, path);
+      if (axis != "x" && axis != "y" && axis != "z") fail(av, path, "expected \"x\", \"y\", \"z\" or a direction [x, y, z]");
+      glm::dvec3 a(0.0);
+      a[axis[0] - 'x'] = 1.0;
+      return a;
+    }
+    const glm::dvec3 a = vec3(av, path);
+    const double n = glm::length(a);
+    if (!(n > 0) || !std::isfinite(n)) fail(av, path, "the direction must not be 0");
+    return a / n;
+  }
+
   // A profile of [radius, height] points revolved about an axis: one
   // quadric frustum per segment (revolved_segment).
   void revolution(const Value& v, const std::string& path, std::vector<Primitive>& out) {
     expect_object(v, path, {"type", "axis", "base", "profile"});
     const Value& av = required(v, path, "axis");
-    const std::string axis = text(av, join(path, "axis"));
-    if (axis != "x" && axis != "y" && axis != "z") fail(av, join(path, "axis"), "expected \"x\", \"y\" or \"z\"");
+    const glm::dvec3 axis = revolution_axis(av, join(path, "axis"));
     const glm::dvec3 base = vec3(required(v, path, "base"), join(path, "base"));
     const Value& pv = required(v, path, "profile");
     const std::string ppath = join(path, "profile");
@@ -521,7 +536,7 @@ class Loader {
     }
     const std::size_t before = out.size();
     for (std::size_t i = 1; i < pts.size(); ++i) {
-      Primitive p = revolved_segment(axis[0] - 'x', base, pts[i - 1], pts[i]);
+      Primitive p = revolved_segment(axis, base, pts[i - 1], pts[i]);
       for (double a : p.coefficients)
         if (!in_fp24_range(a)) fail(pv.items[i], index(ppath, i), "a coefficient of its quadric, " + shortest(a) + ", outside FP24's range");
       for (double a : p.centred_linear)
