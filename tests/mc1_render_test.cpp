@@ -124,6 +124,22 @@ TEST(Mc1RenderProtocol, SceneAndKernelDownloads) {
   // objects of 10 bytes + 6 words, 5 primitives of 3 bytes + 21 words.
   EXPECT_EQ(bytes.size(), 14u * 3 + 5 + (1 + 18) + (1 + 3 * 99) + (2 + 3 * 28) + (4 + 5 * 66));
   EXPECT_THROW(render_nc::decode_scene(rc::Bytes(bytes.begin(), bytes.end() - 1)), rc::ProtocolError);
+  {
+    // A solid of revolution's frustums: their slab (4 words) follows, flagged by
+    // bit 7 of the type byte; the other primitives' records are as before.
+    const render::SceneImage lathe = render::make_scene_image(scene::load_scene(scenes_dir() + "/lathe.json"));
+    const rc::Bytes lb = render_nc::encode_scene(lathe);
+    const render::SceneImage lback = render_nc::decode_scene(lb);
+    EXPECT_EQ(render_nc::encode_scene(lback), lb);
+    std::size_t slabs = 0;
+    for (std::size_t i = 0; i < lathe.prims.size(); ++i) {
+      EXPECT_EQ(lback.prims[i].type, lathe.prims[i].type);
+      EXPECT_EQ(lback.prims[i].w, lathe.prims[i].w);
+      EXPECT_EQ(lback.prims[i].slab, lathe.prims[i].slab);
+      slabs += lathe.prims[i].slab != decltype(lathe.prims[i].slab){};
+    }
+    EXPECT_EQ(slabs, 29u);  // every frustum (docs/scene-format.md "Standard scenes")
+  }
 
   const rc::FramePlan plan = render_nc::frame_plan(img, 8, 8);
   const std::size_t kernels = render::kernel_images().size();
