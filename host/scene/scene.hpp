@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <iosfwd>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -170,6 +171,9 @@ enum class Basis { bezier, bspline };
 // collapsed edge becomes a pseudo-triangle; a cell collapsed further is dropped).
 void tessellate_patch(const BicubicNet& net, Basis basis, int level,
                       std::vector<Primitive>& out);
+// A patch file ("patches N", N lines of 16 control-point indices, "points M",
+// M lines "x y z"); throws SceneError "file:line: message" for bad content.
+std::vector<BicubicNet> read_bezier_file(std::istream& in, const std::string& file);
 
 // Solid of revolution: the quadric frustum of one profile segment (radius,
 // height) p0 - p1 (p1.y > p0.y, radii >= 0, not both 0) about the line
