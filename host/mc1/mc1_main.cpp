@@ -56,6 +56,7 @@ void add_frame_options(CLI::App& cmd, const std::string& block_help) {
   cli::value_option(cmd, "engine", "iss|rtl", "APU engine: C++ ISS or verilated RTL core (default iss)");
   cli::value_option(cmd, "size", "WxH", "frame size (default 256x256)");
   cli::value_option(cmd, "block", "B|WxH", block_help);
+  cli::add_threads_option(cmd);
   cli::add_param_options(cmd);
 }
 
@@ -77,6 +78,7 @@ void add_bench_options(CLI::App& cmd) {
 using cli::parse_engine;
 
 void frame_options(const cli::Parsed& a, SystemConfig& cfg) {
+  cli::threads_option(a, cfg);
   if (a.has("engine")) cfg.engine = parse_engine(a.get("engine"));
   if (a.has("size")) std::tie(cfg.width, cfg.height) = cli::parse_size("--size", a.get("size"), false);
   if (a.has("block")) std::tie(cfg.block_w, cfg.block_h) = cli::parse_size("--block", a.get("block"), true);

@@ -58,7 +58,32 @@ NodeComputer::NodeComputer(sc_core::sc_module_name name, const TimingParams& t, 
   SC_THREAD(run);
 }
 
-NodeComputer::~NodeComputer() = default;
+NodeComputer::~NodeComputer() {
+  if (job_) job_->wait_done();  // the simulation ended while the NC waited: the run still uses the engine
+}
+
+// The APU run the MPU waits for, from apu_time_ on, clocked by the pool's
+// threads. Meanwhile the NC waits in simulated time, kPoolStepCycles at a
+// step, each step only once the run is known to last past it (a step stays
+// inside the run, the NC does nothing visible in it) and never up to the
+// kill time: the other NCs run their firmware and hand their APU runs to
+// the pool. The steps depend on the run's length alone, so the simulation
+// is the same for any number of threads; the caller then advances to the
+// run's end as without a pool.
+std::uint64_t NodeComputer::run_on_pool(ApuJob::Work work) {
+  job_ = (pool_ ? *pool_ : inline_).post(std::move(work));
+  const Picos start = apu_time_;
+  for (std::uint64_t step = kPoolStepCycles;; step += kPoolStepCycles) {
+    const Picos target = start + step * cycle_ps_;
+    if (target >= kill_at_ || !job_->lasts(step)) break;
+    const Picos t = now();
+    if (target <= t) continue;
+    qk_.inc(to_sc_time(target - t));
+    qk_.sync();
+  }
+  const std::shared_ptr<ApuJob> job = std::move(job_);
+  return job->result();
+}
 
 Picos NodeComputer::now() const {
   return to_picos(sc_core::sc_time_stamp()) + to_picos(qk_.get_local_time());
@@ -203,12 +228,17 @@ void NodeComputer::apu_wait_swap() {
   const std::uint64_t to_kill =
       kill_at_ == ~Picos{0} ? ~std::uint64_t{0} : kill_at_ > apu_time_ ? (kill_at_ - apu_time_) / cycle_ps_ : 0;
   const std::uint64_t limit = std::min(to_kill, t_.apu_watchdog_cycles);
-  std::uint64_t n = 0;
-  {
+  const std::uint64_t n = run_on_pool([this, limit](ApuJob& job) {
     // Cycle by cycle: the swap interrupt comes in the cycle the APU takes the bank.
     HostTimer timer(stats_.apu_host_seconds);
-    while (driver_.data_ready() && engine_->state() == apu::RunState::Running && n < limit) n += driver_.run(1);
-  }
+    std::uint64_t k = 0;
+    const auto waiting = [&] { return driver_.data_ready() && engine_->state() == apu::RunState::Running && k < limit; };
+    while (waiting()) {
+      k += driver_.run(1);
+      if (waiting()) job.reached(k + 1);
+    }
+    return k;
+  });
   stats_.apu_cycles += n;
   apu_time_ += n * cycle_ps_;
   if (driver_.data_ready() && engine_->state() == apu::RunState::Running) {
@@ -229,19 +259,21 @@ void NodeComputer::apu_wait_halt() {
   mark(Activity::Busy, now());
   catch_up();
   if (engine_->state() != apu::RunState::Running) return;
-  std::uint64_t n = 0;
   std::string runaway;  // the driver's account of a run the watchdog stops
-  {
+  const std::uint64_t n = run_on_pool([this, &runaway](ApuJob& job) -> std::uint64_t {
     HostTimer timer(stats_.apu_host_seconds);
+    const std::uint64_t c0 = engine_->cycle();
+    // Called before every kPoolStepCycles-th cycle, the APU still running.
+    const auto progress = [&] { job.reached(engine_->cycle() - c0 + 1); };
     try {
-      n = driver_.run_until_done(t_.apu_watchdog_cycles);
+      return driver_.run_until_done(t_.apu_watchdog_cycles, progress, kPoolStepCycles);
     } catch (const apu::ApuError& e) {
       if (e.kind() != apu::ApuError::Kind::CycleLimit)
         throw std::runtime_error("NC " + std::to_string(id_) + ": " + e.what());
-      n = t_.apu_watchdog_cycles;
       runaway = e.what();
+      return t_.apu_watchdog_cycles;
     }
-  }
+  });
   stats_.apu_cycles += n;
   apu_time_ += n * cycle_ps_;
   if (!runaway.empty()) watchdog_expired("no HALT: " + runaway);
