@@ -19,6 +19,7 @@
 #include "mc1_cli.hpp"
 #include "mc1_diag.hpp"
 #include "mc1_render_cmd.hpp"
+#include "mc1_sweep_cmd.hpp"
 #include "mc1_system.hpp"
 #include "png_writer.hpp"
 #include "report_writers.hpp"
@@ -233,6 +234,7 @@ void add_commands(CLI::App& app) {
   app.add_subcommand("help", "this text; `mc1 COMMAND --help` for a command's options");
   cli::add_render_options(*app.add_subcommand("render", cli::kRenderDescription));
   cli::add_bench_render_options(*app.add_subcommand("bench-render", cli::kBenchRenderDescription));
+  cli::add_sweep_options(*app.add_subcommand("sweep", cli::kSweepDescription));
   add_diag_options(*app.add_subcommand("diag", kDiagDescription));
   add_bench_options(*app.add_subcommand("bench", kBenchDescription));
   cli::add_param_options(*app.add_subcommand("params", kParamsDescription));
@@ -249,6 +251,7 @@ int run_command(const CLI::App& app, const CLI::App& cmd) {
   if (name == "render") return cli::cmd_render(cmd);
   if (name == "bench-render") return cli::cmd_bench_render(cmd);
   if (name == "bench") return cmd_bench(cmd);
+  if (name == "sweep") return cli::cmd_sweep(cmd);
   return cmd_params(cmd);
 }
 
