@@ -117,8 +117,9 @@ void NodeComputer::check_fault() const {
                              std::to_string(engine_->cycle()));
 }
 
-void NodeComputer::catch_up() {
-  const Picos t = now();
+void NodeComputer::catch_up() { catch_up_to(now()); }
+
+void NodeComputer::catch_up_to(Picos t) {
   if (engine_->state() != apu::RunState::Running) {
     apu_stopped(apu_time_);
     apu_time_ = t;
@@ -160,8 +161,24 @@ void NodeComputer::advance(Picos ps) {
     throw Killed{};
   }
   qk_.inc(to_sc_time(ps));
-  catch_up();
-  if (qk_.need_sync()) qk_.sync();
+  const Picos until = now();
+  const bool long_run = engine_->state() == apu::RunState::Running && until > apu_time_ &&
+                        (until - apu_time_) / cycle_ps_ >= kPoolStepCycles;
+  if (!qk_.need_sync() || !long_run) {  // a short one is not worth a host thread's hand-over
+    catch_up();
+    if (qk_.need_sync()) qk_.sync();
+    return;
+  }
+  // The APU's catch-up is the NC's own business (nothing else sees its
+  // engine or its APU statistics): the pool clocks it while the NC syncs and
+  // the kernel runs the others, the same cycles as before the sync.
+  job_ = (pool_ ? *pool_ : inline_).post([this, until](ApuJob&) -> std::uint64_t {
+    catch_up_to(until);
+    return 0;
+  });
+  qk_.sync();
+  const std::shared_ptr<ApuJob> job = std::move(job_);
+  job->result();  // an APU fault: the error, as from catch_up()
 }
 
 void NodeComputer::mpu_work(std::uint64_t cycles) {

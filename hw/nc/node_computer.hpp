@@ -137,6 +137,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   Picos now() const;
   void advance(Picos ps);              // local time + APU catch-up
   void catch_up();                     // clock the APU up to now()
+  void catch_up_to(Picos t);           // ... up to t (on any thread: no SystemC)
   void apu_stopped(Picos at);
   void check_fault() const;
   void mark(Activity a, Picos at);     // from `at` on, the NC does `a`
