@@ -1,6 +1,11 @@
 #include "apu_pool.hpp"
 
 namespace mc1::nc {
+namespace {
+thread_local bool t_in_job = false;
+}  // namespace
+
+bool ApuJob::in_job() { return t_in_job; }
 
 void ApuJob::reached(std::uint64_t cycles) {
   reached_.store(cycles);
@@ -33,11 +38,14 @@ std::uint64_t ApuJob::result() {
 void ApuJob::execute() {
   std::uint64_t n = 0;
   std::exception_ptr e;
+  const bool outer = t_in_job;
+  t_in_job = true;
   try {
     n = work_(*this);
   } catch (...) {
     e = std::current_exception();
   }
+  t_in_job = outer;
   std::lock_guard<std::mutex> lock(m_);
   cycles_ = n;
   error_ = e;

@@ -39,6 +39,9 @@ class ApuJob {
   void wait_done();
 
   void execute();  // the pool's
+  // True on a thread while it executes a job (the job's own calls into the
+  // driver need no bringing up to date).
+  static bool in_job();
 
  private:
   Work work_;

@@ -54,6 +54,7 @@ NodeComputer::NodeComputer(sc_core::sc_module_name name, const TimingParams& t, 
       firmware_(std::move(firmware)),
       cycle_ps_(t.apu_cycle_ps()) {
   hdlc2nc.register_b_transport(this, &NodeComputer::b_transport);
+  driver_.set_access_hook([this] { settle_apu(); });
   SC_HAS_PROCESS(NodeComputer);
   SC_THREAD(run);
 }
@@ -71,6 +72,7 @@ NodeComputer::~NodeComputer() {
 // is the same for any number of threads; the caller then advances to the
 // run's end as without a pool.
 std::uint64_t NodeComputer::run_on_pool(ApuJob::Work work) {
+  settle_apu();
   job_ = (pool_ ? *pool_ : inline_).post(std::move(work));
   const Picos start = apu_time_;
   for (std::uint64_t step = kPoolStepCycles;; step += kPoolStepCycles) {
@@ -117,7 +119,31 @@ void NodeComputer::check_fault() const {
                              std::to_string(engine_->cycle()));
 }
 
-void NodeComputer::catch_up() { catch_up_to(now()); }
+void NodeComputer::catch_up() {
+  settle_apu();
+  catch_up_to(now());
+}
+
+// The MPU's work only moves the NC's time (advance): the APU's catch-up to
+// it waits, in apu_due_ or as a job on the pool, until the APU is next
+// looked at: here, through the driver's access hook or the NC's own calls.
+// One catch-up to t2 clocks what catch-ups to t1 <= t2 and then t2 do.
+void NodeComputer::settle_apu() {
+  if (settling_ || ApuJob::in_job()) return;
+  struct Guard {
+    bool& flag;
+    explicit Guard(bool& f) : flag(f) { flag = true; }
+    ~Guard() { flag = false; }
+  } guard(settling_);
+  if (job_) {
+    const std::shared_ptr<ApuJob> job = std::move(job_);
+    job->result();  // an APU fault: the error, as from catch_up()
+  }
+  if (apu_due_set_) {
+    apu_due_set_ = false;
+    catch_up_to(apu_due_);
+  }
+}
 
 void NodeComputer::catch_up_to(Picos t) {
   if (engine_->state() != apu::RunState::Running) {
@@ -161,24 +187,27 @@ void NodeComputer::advance(Picos ps) {
     throw Killed{};
   }
   qk_.inc(to_sc_time(ps));
-  const Picos until = now();
-  const bool long_run = engine_->state() == apu::RunState::Running && until > apu_time_ &&
-                        (until - apu_time_) / cycle_ps_ >= kPoolStepCycles;
-  if (!qk_.need_sync() || !long_run) {  // a short one is not worth a host thread's hand-over
-    catch_up();
-    if (qk_.need_sync()) qk_.sync();
-    return;
+  apu_due_ = now();
+  apu_due_set_ = true;
+  if (!qk_.need_sync()) return;
+  // At a synchronisation, what the APU owes goes to the pool and the NC
+  // syncs: the kernel runs the others (their APUs on the pool too), and the
+  // firmware goes on until it next looks at the APU. A short catch-up is not
+  // worth a host thread's hand-over: it waits for the next.
+  if (job_) {
+    const std::shared_ptr<ApuJob> job = std::move(job_);
+    job->result();
   }
-  // The APU's catch-up is the NC's own business (nothing else sees its
-  // engine or its APU statistics): the pool clocks it while the NC syncs and
-  // the kernel runs the others, the same cycles as before the sync.
-  job_ = (pool_ ? *pool_ : inline_).post([this, until](ApuJob&) -> std::uint64_t {
-    catch_up_to(until);
-    return 0;
-  });
+  const Picos until = apu_due_;
+  if (engine_->state() == apu::RunState::Running && until > apu_time_ &&
+      (until - apu_time_) / cycle_ps_ >= kPoolStepCycles) {
+    apu_due_set_ = false;
+    job_ = (pool_ ? *pool_ : inline_).post([this, until](ApuJob&) -> std::uint64_t {
+      catch_up_to(until);
+      return 0;
+    });
+  }
   qk_.sync();
-  const std::shared_ptr<ApuJob> job = std::move(job_);
-  job->result();  // an APU fault: the error, as from catch_up()
 }
 
 void NodeComputer::mpu_work(std::uint64_t cycles) {
@@ -356,6 +385,7 @@ void NodeComputer::milestone(const std::string& name) { stats_.milestones.emplac
 void NodeComputer::phase(const std::string& name) { stats_.phases.emplace_back(now(), name); }
 
 void NodeComputer::die() {
+  settle_apu();
   const Picos t = std::max(since_, std::min(now(), kill_at_));
   apu_stopped(std::max(apu_begin_, std::min(apu_time_, t)));
   block_ = 0xFFFFFFFF;
@@ -378,6 +408,7 @@ void NodeComputer::watchdog_expired(const std::string& what) {
 }
 
 void NodeComputer::close(Picos frame_end) {
+  settle_apu();
   if (!stats_.killed) catch_up();
   apu_stopped(std::min(apu_time_, frame_end));
   mark(current_, frame_end);

@@ -138,6 +138,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   void advance(Picos ps);              // local time + APU catch-up
   void catch_up();                     // clock the APU up to now()
   void catch_up_to(Picos t);           // ... up to t (on any thread: no SystemC)
+  void settle_apu();                   // the lazy catch-up done: the engine up to date
   void apu_stopped(Picos at);
   void check_fault() const;
   void mark(Activity a, Picos at);     // from `at` on, the NC does `a`
@@ -172,6 +173,9 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   ApuPool* pool_ = nullptr;
   ApuPool inline_{1};
   std::shared_ptr<ApuJob> job_;  // the run on the pool, until the NC has its result
+  Picos apu_due_ = 0;            // the APU is to be clocked up to here (advance(): lazily)
+  bool apu_due_set_ = false;
+  bool settling_ = false;
 
   tlm::tlm_generic_payload pixels_;
   std::vector<std::uint8_t> pixel_bytes_;
