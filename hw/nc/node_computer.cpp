@@ -426,7 +426,11 @@ void NodeComputer::run() {
     firmware_(*this);
     finished();
   } catch (const Killed&) {
-    die();
+    try {
+      die();
+    } catch (const std::exception& e) {  // an APU fault in a catch-up not yet clocked (settle_apu)
+      SC_REPORT_ERROR(name(), e.what());
+    }
   } catch (const std::exception& e) {
     SC_REPORT_ERROR(name(), e.what());
   }
