@@ -42,6 +42,14 @@ void ApuDriver::load_program(const std::vector<Encoded>& words, std::uint16_t ba
   }
 }
 
+void ApuDriver::hand_over_program() {
+  if (on_hand_over_) {
+    const int bank = (iss_ ? iss_->psel() : psel_) ^ 1;
+    on_hand_over_(bank, shadow_[bank]);
+  }
+  engine_.hand_over_program();
+}
+
 void ApuDriver::load_data(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
   if (addr + n > static_cast<std::size_t>(kDataWords))
     fail(ApuError::Kind::Usage, "load_data: " + std::to_string(n) + " words at " + std::to_string(addr) +
