@@ -18,7 +18,8 @@
 
 namespace mc1 {
 
-FrameProfiler::FrameProfiler(bool profile, unsigned trace_node) : profile_on_(profile), trace_node_(trace_node) {
+FrameProfiler::FrameProfiler(bool profile, unsigned trace_node, Picos from, Picos to)
+    : profile_on_(profile), trace_node_(trace_node), window_from_(from), window_to_(to) {
   for (const render::KernelImage& k : render::kernel_images()) kernels_.add(k.name, render::kernel_words(k.name));
 }
 
@@ -39,8 +40,10 @@ void FrameProfiler::attach(nc::NodeComputer& n) {
     t->bank_kernel[bank & 1] = k;
     if (traced) engine->trace_kernel(bank, static_cast<std::uint16_t>(k));
   });
-  if (!profile_on_) return;
+  // The traced NC is profiled even without --profile FILE.json: its top
+  // stall sites become the save file's markers.
   profile_.add_nc(id);
+  if (traced) profile_.set_window(id, window_from_, window_to_);
   n.apu().set_observer([this, t, id, engine](const apu::CycleRecord& r) {
     profile_.add(id, t->bank_kernel[r.psel & 1], r, engine->time_of(r.cycle));
   });
@@ -100,7 +103,7 @@ std::vector<std::pair<std::string, std::string>> trace_side_files(const std::str
   std::vector<std::pair<std::string, std::string>> files;
   files.emplace_back(trace + ".kernel.txt", p.kernels().id_filter());
   files.emplace_back(trace + ".pc.txt", p.kernels().pc_filter());
-  const std::string markers = p.profile().totals().cycles ? p.profile().gtkw_markers(p.kernels(), trace_node, 26) : "";
+  const std::string markers = p.profile().nc_totals(trace_node).cycles ? p.profile().gtkw_markers(p.kernels(), trace_node, 26) : "";
   files.emplace_back(trace + ".gtkw", save_file(abs, abs + ".pc.txt", abs + ".kernel.txt", markers));
   return files;
 }

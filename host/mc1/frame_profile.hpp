@@ -18,8 +18,9 @@ namespace mc1 {
 class FrameProfiler {
  public:
   // profile: collect the stall profile (the ISS leaves its fast path on
-  // every NC); trace_node: the NC whose waveform gets the kernel-id signal.
-  FrameProfiler(bool profile, unsigned trace_node);
+  // every NC); trace_node: the NC whose waveform gets the kernel-id signal
+  // and markers at its top stall sites in [from, to) (0: none).
+  FrameProfiler(bool profile, unsigned trace_node, Picos from = 0, Picos to = ~Picos{0});
   // SystemConfig::attach.
   void attach(nc::NodeComputer& n);
 
@@ -32,6 +33,7 @@ class FrameProfiler {
   };
   bool profile_on_;
   unsigned trace_node_;
+  Picos window_from_, window_to_;
   std::mutex mutex_;  // the kernel table, if NCs run on threads
   apu::KernelTable kernels_;
   apu::StallProfile profile_;

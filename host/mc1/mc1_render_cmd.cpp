@@ -229,7 +229,7 @@ int cmd_render(const CLI::App& cmd) {
   }
   const std::string profile = a.get("profile");
   const bool stall_profile = profile.size() > 5 && profile.compare(profile.size() - 5, 5, ".json") == 0;
-  FrameProfiler profiler(stall_profile, cfg.trace_node);
+  FrameProfiler profiler(stall_profile, cfg.trace_node, cfg.trace_from, cfg.trace_to);
   if (stall_profile || cfg.trace_node) cfg.attach = [&profiler](nc::NodeComputer& n) { profiler.attach(n); };
   if ((a.has("diff") || a.has("min-psnr")) && !a.has("ref")) throw CliError("--diff and --min-psnr need --ref");
   const double min_psnr = a.has("min-psnr") ? parse_double("--min-psnr", a.get("min-psnr"), 0, 200) : 0;

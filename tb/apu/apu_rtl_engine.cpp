@@ -74,14 +74,25 @@ void RtlEngine::trace_window(std::uint64_t from_ps, std::uint64_t to_ps) {
   to_ = to_ps;
 }
 
-// The first dump in the window is at its start (the state the APU holds
-// there: it is clocked in bursts, and between them nothing changes).
+// The first dump in the window is at its start: the state the APU holds
+// there (it is clocked in bursts, and between them nothing changes), without
+// the MPU's requests of the burst that follows.
 void RtlEngine::dump(std::uint64_t ps) {
   if (ps >= to_ || (ps < from_ && !dumped_)) return;
   if (!dumped_) {
     dumped_ = true;
     last_dump_ = from_;
+    Vapu_core& t = *top_;
+    const auto program = t.mpu2apu_hand_over_program, data = t.mpu2apu_hand_over_data, start = t.mpu2apu_start,
+               fresh = t.mpu2apu_start_new_program;
+    t.mpu2apu_hand_over_program = t.mpu2apu_hand_over_data = t.mpu2apu_start = t.mpu2apu_start_new_program = 0;
+    t.eval();
     fst_->dump(from_);
+    t.mpu2apu_hand_over_program = program;
+    t.mpu2apu_hand_over_data = data;
+    t.mpu2apu_start = start;
+    t.mpu2apu_start_new_program = fresh;
+    t.eval();
     if (ps == from_) return;
   }
   if (ps <= last_dump_) ps = last_dump_ + 1;  // a burst that starts inside the last one's settle cycles

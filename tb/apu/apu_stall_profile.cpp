@@ -148,6 +148,7 @@ void StallProfile::NcState::add(unsigned kernel, const CycleRecord& r, std::uint
   ++counts.stalls[static_cast<int>(r.stall)];
   ++site.counts.stalls[static_cast<int>(r.stall)];
   note_stall(site.first, nc, time_ps);
+  if (!window.on || (time_ps >= window.from && time_ps < window.to)) ++site.window_stalled;
   if (!run.on || run.kernel != kernel || run.pc != pc || run.next_cycle != r.cycle) {
     end_run();
     run = Run{true, kernel, pc, time_ps, 0, 0};
@@ -158,7 +159,10 @@ void StallProfile::NcState::add(unsigned kernel, const CycleRecord& r, std::uint
 
 void StallProfile::NcState::end_run() {
   if (!run.on) return;
-  note_worst(kernels[run.kernel][run.pc].worst, Event{true, run.time_ps, run.cycles, nc});
+  NcSite& site = kernels[run.kernel][run.pc];
+  const Event e{true, run.time_ps, run.cycles, nc};
+  note_worst(site.worst, e);
+  if (!window.on || (run.time_ps >= window.from && run.time_ps < window.to)) note_worst(site.window_worst, e);
   run = Run{};
 }
 
@@ -324,17 +328,17 @@ std::string StallProfile::gtkw_markers(const KernelTable& kernels, unsigned nc, 
     for (std::size_t k = 0; k < ncs_[nc]->kernels.size(); ++k)
       for (std::size_t pc = 0; pc < ncs_[nc]->kernels[k].size(); ++pc) {
         const NcSite& site = ncs_[nc]->kernels[k][pc];
-        if (site.counts.stalled()) hot.push_back({k, pc, site.counts.stalled(), site.worst});
+        if (site.window_stalled && site.window_worst.seen) hot.push_back({k, pc, site.window_stalled, site.window_worst});
       }
   std::stable_sort(hot.begin(), hot.end(), [](const Hot& a, const Hot& b) { return a.n > b.n; });
   if (static_cast<int>(hot.size()) > top_n) hot.resize(static_cast<std::size_t>(top_n));
-  std::string s = format("[*] Markers A.. : the top %zu stall sites of NC %u, each at the start of its worst run\n",
+  std::string s = format("[*] Markers A.. : the top %zu stall sites of NC %u in the trace, each at the start of its worst run there\n",
                          hot.size(), nc);
   std::string line = "*-21.000000 " + (hot.empty() ? std::string("-1") : std::to_string(hot[0].worst.time_ps));
   for (int i = 0; i < 26; ++i) {
     if (i < static_cast<int>(hot.size())) {
       const Hot& h = hot[static_cast<std::size_t>(i)];
-      s += format("[*] %c %llu ps (%s): %s pc 0x%03zx, %llu stalled cycles, worst %llu in a row: %s\n", 'A' + i,
+      s += format("[*] %c %llu ps (%s): %s pc 0x%03zx, %llu stalled cycles, %llu in a row: %s\n", 'A' + i,
                   static_cast<ull>(h.worst.time_ps), us(h.worst.time_ps).c_str(), kernel_name(kernels, h.kernel).c_str(),
                   h.pc, static_cast<ull>(h.n), static_cast<ull>(h.worst.cycles),
                   word_text(kernels, h.kernel, h.pc).c_str());

@@ -88,19 +88,28 @@ class StallProfile {
 
   std::string json(const KernelTable& kernels, const std::string& source, const std::string& extra = "") const;
   std::string text(const KernelTable& kernels, int top_n) const;
-  // The top_n stall sites of NC `nc` by stalled cycles, each at its worst
-  // run's start: GTKWave save-file marker lines (named markers A..Z).
+  // The traced NC's window (its waveform's [from, to), ps): stalls there are
+  // counted apart for the markers.
+  void set_window(unsigned nc, std::uint64_t from_ps, std::uint64_t to_ps) {
+    nc_state(nc).window = {true, from_ps, to_ps};
+  }
+  // The top_n (<= 26) stall sites of NC `nc` by stalled cycles in its window
+  // (all time without one), each at the start of its worst run there: GTKWave
+  // save-file lines, the marker list (markers A..Z) and comments naming them.
   std::string gtkw_markers(const KernelTable& kernels, unsigned nc, int top_n) const;
 
  private:
   struct NcSite {
     Counts counts;
     Event first, worst;
+    std::uint64_t window_stalled = 0;  // stalled cycles in the NC's window
+    Event window_worst;
   };
   struct NcState {
     unsigned nc = 0;
     Counts counts;
     std::vector<std::vector<NcSite>> kernels;  // [kernel id][pc], grown on use
+    struct { bool on = false; std::uint64_t from = 0, to = ~std::uint64_t{0}; } window;
     struct Run {  // the stalled cycles in a row under way (indices: the vectors grow)
       bool on = false;
       unsigned kernel = 0;
