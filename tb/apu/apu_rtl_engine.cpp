@@ -50,8 +50,8 @@ RtlEngine::RtlEngine(const char* fst_path) : ctx_(std::make_unique<VerilatedCont
     // TOP.mc1.kernel_id through Verilator's trace callbacks (the API its
     // generated trace code uses, verilated_trace.h of 5.006).
     fst_->spTrace()->addInitCb(&RtlEngine::kernel_init, this);
-    fst_->spTrace()->addFullCb(&RtlEngine::kernel_dump, this);
-    fst_->spTrace()->addChgCb(&RtlEngine::kernel_dump, this);
+    fst_->spTrace()->addFullCb(&RtlEngine::kernel_full, this);
+    fst_->spTrace()->addChgCb(&RtlEngine::kernel_change, this);
     fst_->open(fst_path);
   }
 }
@@ -64,7 +64,12 @@ void RtlEngine::kernel_init(void* self, VerilatedFst* tracep, std::uint32_t code
   tracep->popNamePrefix(2);
 }
 
-void RtlEngine::kernel_dump(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp) {
+void RtlEngine::kernel_full(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp) {
+  const RtlEngine& e = *static_cast<RtlEngine*>(self);
+  bufp->fullSData(bufp->oldp(e.kernel_code_), e.bank_kernel_[e.top_->apu2mpu_psel & 1], 16);
+}
+
+void RtlEngine::kernel_change(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp) {
   const RtlEngine& e = *static_cast<RtlEngine*>(self);
   bufp->chgSData(bufp->oldp(e.kernel_code_), e.bank_kernel_[e.top_->apu2mpu_psel & 1], 16);
 }

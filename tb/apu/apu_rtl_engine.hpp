@@ -73,7 +73,8 @@ class RtlEngine final : public ApuEngine {
   void settle();       // re-evaluate after an MPU-side input change
   void dump(std::uint64_t ps);  // at simulated time ps, if in the window (times strictly increase)
   static void kernel_init(void* self, VerilatedFst* tracep, std::uint32_t code);
-  static void kernel_dump(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp);
+  static void kernel_full(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp);
+  static void kernel_change(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp);
 
   std::unique_ptr<VerilatedContext> ctx_;
   std::unique_ptr<Vapu_core> top_;
