@@ -66,7 +66,7 @@ std::string json_quote(const std::string& text) { return "\"" + json_escape(text
 // ---- kernels ----------------------------------------------------------------
 
 unsigned KernelTable::add(const std::string& name, const std::vector<Encoded>& words) {
-  kernels_.push_back({name, words});
+  kernels_.push_back({name, words, false});
   return static_cast<unsigned>(kernels_.size());
 }
 
@@ -81,14 +81,19 @@ unsigned KernelTable::identify(const std::vector<Encoded>& bank) {
       best_len = w.size();
     }
   }
-  if (best) return best;
+  if (best) {
+    kernels_[best - 1].seen = true;
+    return best;
+  }
   std::size_t n = bank.size();
   while (n > 0 && bank[n - 1] == Encoded{}) --n;
   const std::vector<Encoded> content(bank.begin(), bank.begin() + static_cast<std::ptrdiff_t>(n));
   for (std::size_t i = 0; i < kernels_.size(); ++i)
     if (kernels_[i].name.rfind("unnamed-", 0) == 0 && kernels_[i].words == content)
       return static_cast<unsigned>(i + 1);
-  return add("unnamed-" + std::to_string(++unnamed_), content);
+  const unsigned id = add("unnamed-" + std::to_string(++unnamed_), content);
+  kernels_[id - 1].seen = true;
+  return id;
 }
 
 std::string KernelTable::id_filter() const {
@@ -99,12 +104,14 @@ std::string KernelTable::id_filter() const {
 
 std::string KernelTable::pc_filter() const {
   std::string s = "# pc -> kernel: word, for every kernel with a word there (GTKWave translate filter for pc[9:0])\n";
+  const bool any_seen = std::any_of(kernels_.begin(), kernels_.end(), [](const Kernel& k) { return k.seen; });
   std::size_t longest = 0;
-  for (const Kernel& k : kernels_) longest = std::max(longest, k.words.size());
+  for (const Kernel& k : kernels_)
+    if (k.seen || !any_seen) longest = std::max(longest, k.words.size());
   for (std::size_t pc = 0; pc < longest; ++pc) {
     std::string line;
     for (const Kernel& k : kernels_)
-      if (pc < k.words.size()) line += (line.empty() ? "" : " | ") + k.name + ": " + disassemble(k.words[pc]);
+      if ((k.seen || !any_seen) && pc < k.words.size()) line += (line.empty() ? "" : " | ") + k.name + ": " + disassemble(k.words[pc]);
     s += format("%03X ", static_cast<unsigned>(pc)) + line + "\n";
   }
   return s;

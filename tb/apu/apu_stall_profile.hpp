@@ -35,13 +35,15 @@ class KernelTable {
   // TOP.mc1.kernel_id[15:0]) to the kernel's name.
   std::string id_filter() const;
   // GTKWave translate filter from pc (3 hex digits) to "kernel: word" for
-  // every kernel that has a word there (GTKWave sees the pc alone).
+  // every kernel identify() found (all, if none) that has a word there
+  // (GTKWave sees the pc alone).
   std::string pc_filter() const;
 
  private:
   struct Kernel {
     std::string name;
     std::vector<Encoded> words;
+    bool seen = false;  // identify() found it
   };
   std::vector<Kernel> kernels_;
   unsigned unnamed_ = 0;
