@@ -170,7 +170,7 @@ void RtlEngine::clock() {
   // Time in ps (Verilator's default precision): 250 ns cycles, 4 MHz.
   t.clk = 1;
   t.eval();
-  if (fst_) dump(time_of(cycle_) + kCyclePs / 2);
+  if (fst_) dump(time_of(cycle_) + cycle_ps() / 2);
   // MPU requests last exactly the cycle after the call that made them.
   t.mpu2apu_hand_over_program = 0;
   t.mpu2apu_hand_over_data = 0;
@@ -185,7 +185,7 @@ void RtlEngine::clock() {
 void RtlEngine::step(CycleRecord& rec) {
   // Show forwarded MPU requests in the waveform before the edge that takes them.
   if (dump_pending_) {
-    dump(time_of(cycle_) + kCyclePs / 4);
+    dump(time_of(cycle_) + cycle_ps() / 4);
     dump_pending_ = false;
   }
   const Vapu_core& t = *top_;
@@ -230,7 +230,7 @@ void RtlEngine::step(CycleRecord& rec) {
 
 std::uint64_t RtlEngine::run(std::uint64_t max_cycles) {
   if (dump_pending_) {
-    dump(time_of(cycle_) + kCyclePs / 4);
+    dump(time_of(cycle_) + cycle_ps() / 4);
     dump_pending_ = false;
   }
   std::uint64_t n = 0;
