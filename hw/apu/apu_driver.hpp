@@ -51,9 +51,18 @@ class ApuDriver {
     load_data(addr, values.data(), values.size());
   }
   void hand_over_program();
-  void hand_over_data() { engine_.hand_over_data(); }
-  bool program_ready() const { return engine_.program_ready(); }
-  bool data_ready() const { return engine_.data_ready(); }
+  void hand_over_data() {
+    access();
+    engine_.hand_over_data();
+  }
+  bool program_ready() const {
+    access();
+    return engine_.program_ready();
+  }
+  bool data_ready() const {
+    access();
+    return engine_.data_ready();
+  }
 
   // Starts the idle APU at pc; throws ApuError(Usage) if it is running.
   void start(std::uint16_t pc = 0);
@@ -80,23 +89,45 @@ class ApuDriver {
   // words the driver loaded there (a profile or a waveform names the kernel).
   void on_hand_over(std::function<void(int bank, const std::vector<Encoded>& words)> f) { on_hand_over_ = std::move(f); }
 
-  ApuEngine& engine() { return engine_; }
-  RunState state() const { return engine_.state(); }
+  ApuEngine& engine() {
+    access();
+    return engine_;
+  }
+  RunState state() const {
+    access();
+    return engine_.state();
+  }
   // The word the driver loaded at (bank, addr), as far as it knows (profiles
   // and error messages disassemble it).
   const Encoded& program_word(int bank, std::uint16_t addr) const {
+    access();
     return shadow_[bank & 1][addr % kProgramWords];
   }
-  int psel() const { return psel_; }
-  std::uint16_t pc() const { return pc_; }
+  int psel() const {
+    access();
+    return psel_;
+  }
+  std::uint16_t pc() const {
+    access();
+    return pc_;
+  }
+
+  // Called before every call above reaches the engine: the NC clocks the
+  // APU lazily, on other threads (hw/nc/apu_pool.hpp), and brings it up to
+  // date here, before the MPU touches it.
+  void set_access_hook(std::function<void()> hook) { hook_ = std::move(hook); }
 
  private:
+  void access() const {
+    if (hook_) hook_();
+  }
   std::uint64_t clock(std::uint64_t cycles);  // stops when not running
   [[noreturn]] void fail(ApuError::Kind kind, const std::string& why) const;
 
   ApuEngine& engine_;
   Iss* iss_;  // the ISS when engine_ is one: its bank and pc without records
   std::function<void(const CycleRecord&)> observer_;
+  std::function<void()> hook_;
   std::function<void(int, const std::vector<Encoded>&)> on_hand_over_;
   CycleRecord rec_;
   int psel_ = 0;  // the APU's program bank as seen by the driver

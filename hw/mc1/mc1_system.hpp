@@ -70,6 +70,9 @@ struct SystemConfig {
   // Called with every NC once it is built, before the frame runs (a stall
   // profile or a waveform's kernel names attach to its APU driver here).
   std::function<void(nc::NodeComputer&)> attach;
+  // Host threads clocking the NCs' APUs (nc::ApuPool); 0: the machine's
+  // cores. No simulated figure depends on it.
+  unsigned threads = 0;
   TimingParams timing;
 };
 
@@ -94,6 +97,7 @@ class Mc1System : public sc_core::sc_module {
 
  private:
   SystemConfig cfg_;
+  std::unique_ptr<nc::ApuPool> pool_;  // before the NCs, which wait for its jobs when they go
   std::unique_ptr<RootComputer> rc_;
   std::unique_ptr<HdlcChannel> hdlc_;
   std::vector<std::unique_ptr<nc::NodeComputer>> ncs_;
