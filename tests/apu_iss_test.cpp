@@ -11,12 +11,73 @@
 #include "apu_driver.hpp"
 #include "apu_iss.hpp"
 #include "apu_profile.hpp"
+#include "apu_stall_profile.hpp"
 #include "apu_test_program.hpp"
 
 namespace mc1::apu {
 namespace {
 
 using namespace apu_test;
+
+// The stall profile on records made by hand: two NCs, one kernel; the worst
+// run is the longest stalled run in a row at a word, the first the earliest
+// stalled cycle, both with their simulated time and NC; the marker list
+// keeps to the traced NC's window.
+TEST(ApuStallProfile, FirstAndWorstStallsWithTimeAndNc) {
+  KernelTable kernels;
+  const unsigned k = kernels.add("k", {Encoded{}, Encoded{}});
+  std::vector<Encoded> bank(kProgramWords);
+  EXPECT_EQ(kernels.identify(bank), k);  // k's words are the bank's first
+  bank[1] = halt().encode();
+  EXPECT_EQ(kernels.identify(bank), 2u);  // a bank no image begins: unnamed-1, up to its last word
+  EXPECT_EQ(kernels.name(2), "unnamed-1");
+  EXPECT_EQ(kernels.words(2).size(), 2u);
+  EXPECT_EQ(kernels.identify(bank), 2u);
+  StallProfile prof;
+  prof.add_nc(1);
+  prof.add_nc(2);
+  prof.set_window(2, 0, 10'000'000);
+  auto rec = [](std::uint64_t cycle, std::uint16_t pc, bool issued, Stall s) {
+    CycleRecord r;
+    r.cycle = cycle;
+    r.pc = pc;
+    r.issued = issued;
+    r.stall = s;
+    return r;
+  };
+  // NC 1: pc 1 stalls 1 cycle at t = 1 us, then 3 in a row from 5 us.
+  prof.add(1, k, rec(0, 0, true, Stall::None), 0);
+  prof.add(1, k, rec(4, 1, false, Stall::Raw), 1'000'000);
+  prof.add(1, k, rec(5, 1, true, Stall::None), 1'250'000);
+  for (std::uint64_t c = 20; c < 23; ++c) prof.add(1, k, rec(c, 1, false, Stall::Cc), 5'000'000 + (c - 20) * 250'000);
+  // NC 2: pc 1 stalls 2 in a row from 0.5 us (before NC 1's first), and 4 from 20 us (outside its window).
+  prof.add(2, k, rec(2, 1, false, Stall::Bank), 500'000);
+  prof.add(2, k, rec(3, 1, false, Stall::Bank), 750'000);
+  prof.add(2, k, rec(4, 1, true, Stall::None), 1'000'000);
+  for (std::uint64_t c = 80; c < 84; ++c) prof.add(2, k, rec(c, 1, false, Stall::Raw), 20'000'000 + (c - 80) * 250'000);
+  prof.finish();
+  const StallProfile::Counts t = prof.totals();
+  EXPECT_EQ(t.cycles, 13u);
+  EXPECT_EQ(t.issued, 3u);
+  EXPECT_EQ(t.stalls[int(Stall::Raw)], 5u);
+  EXPECT_EQ(t.stalls[int(Stall::Bank)], 2u);
+  EXPECT_EQ(t.stalls[int(Stall::Cc)], 3u);
+  EXPECT_EQ(prof.nc_totals(2).cycles, 7u);
+  const auto sites = prof.sites();
+  const StallProfile::Site& s = sites.at(k).at(1);
+  EXPECT_EQ(s.counts.stalled(), 10u);
+  EXPECT_EQ(s.first.time_ps, 500'000u);
+  EXPECT_EQ(s.first.nc, 2u);
+  EXPECT_EQ(s.worst.cycles, 4u);
+  EXPECT_EQ(s.worst.time_ps, 20'000'000u);
+  EXPECT_EQ(s.worst.nc, 2u);
+  // NC 2's markers: its window holds the 2-cycle run at 0.5 us only.
+  const std::string m = prof.gtkw_markers(kernels, 2, 26);
+  EXPECT_NE(m.find("\n*-21.000000 500000 500000 -1"), std::string::npos) << m;
+  EXPECT_NE(m.find("k pc 0x001, 2 stalled cycles, 2 in a row"), std::string::npos) << m;
+  const std::string j = prof.json(kernels, "test");
+  EXPECT_NE(j.find("\"worst\": {\"time_ps\": 20000000, \"nc\": 2, \"cycles\": 4}"), std::string::npos) << j;
+}
 
 TEST(ApuProfile, CountsUnitsStallsAndHotWords) {
   auto iss = std::make_unique<Iss>();

@@ -89,15 +89,16 @@ elseif(PROGRAM STREQUAL "apu-run")
   expect(two_programs RC 2 ERR "apu-run: " ARGS halt.apu loop.apu)
   expect(bad_engine RC 2 ERR "--engine: fpga not in" ARGS halt.apu --engine fpga)
   expect(trace_needs_rtl RC 2 ERR "--trace needs --engine rtl" ARGS halt.apu --trace t.fst)
-  # The profile as JSON: a RAW stall at pc 3 each of 20 rounds, one cycle each.
+  # The stall profile as JSON (apu-profile/2): a RAW stall at pc 3 each of 20
+  # rounds, one cycle each; the start's fetch cycle counts in cycles.
   file(WRITE ${WORK_DIR}/stall.apu "  li a1, 20\nloop:\n  lif f1, 1.5\n  mul f2, f1, f1\n  add f3, f2, f1\n  dbnz a1, loop\n  halt\n")
   foreach(engine iss rtl)
     file(REMOVE ${WORK_DIR}/p.json)
     expect(profile_json_${engine} RC 0 ARGS stall.apu --engine ${engine} --profile-json p.json)
     file(READ ${WORK_DIR}/p.json pj)
-    if(NOT pj MATCHES "^{\"schema\": \"apu-profile/1\", \"program\": \"stall.apu\", \"cycles\": 102, \"issued\": 82,"
-       OR NOT pj MATCHES "\"stalls\": {\"bank\": 0, \"raw\": 20, \"waw\": 0, \"cc\": 0, \"drain\": 0}, \"words\""
-       OR NOT pj MATCHES "{\"bank\": 1, \"pc\": 3, \"issued\": 20, \"stalled\": 20, [^\n]*\"raw\": 20[^\n]*\"worst_stall\": {\"cycle\": [0-9]+, \"cycles\": 1}, \"word\": \"add f3, f2, f1\"}")
+    if(NOT pj MATCHES "^{\"schema\": \"apu-profile/2\", \"source\": \"apu-run\", \"program\": \"stall.apu\","
+       OR NOT pj MATCHES "\"totals\": {\"cycles\": 103, \"issued\": 82, \"fetch\": 1, \"stalled\": 20, \"stalls\": {\"bank\": 0, \"raw\": 20, \"waw\": 0, \"cc\": 0, \"drain\": 0}}"
+       OR NOT pj MATCHES "{\"pc\": 3, \"word\": \"add f3, f2, f1\", \"cycles\": 40, \"issued\": 20, \"fetch\": 0, \"stalled\": 20, [^\n]*\"raw\": 20[^\n]*\"worst\": {\"time_ps\": [0-9]+, \"nc\": 1, \"cycles\": 1}")
       message(SEND_ERROR "apu-run --profile-json on ${engine}: ${pj}")
     endif()
   endforeach()
@@ -107,6 +108,10 @@ elseif(PROGRAM STREQUAL "apu-run")
   file(READ ${WORK_DIR}/s.fst.pc.txt pcs)
   if(NOT pcs MATCHES "\n003 add f3, f2, f1\n004 dbnz a1, ")
     message(SEND_ERROR "apu-run --trace: s.fst.pc.txt: ${pcs}")
+  endif()
+  file(READ ${WORK_DIR}/s.fst.kernel.txt kernel_ids)
+  if(NOT kernel_ids MATCHES "\n0000 -\n0001 stall.apu\n$")
+    message(SEND_ERROR "apu-run --trace: s.fst.kernel.txt: ${kernel_ids}")
   endif()
 elseif(PROGRAM STREQUAL "apu-cosim")
   file(WRITE ${WORK_DIR}/halt.apu "  halt\n")

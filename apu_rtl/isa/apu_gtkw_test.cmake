@@ -1,8 +1,11 @@
 # CTest check of the generated GTKWave translate filters: every enum the RTL's
 # package (generated/apu_pkg.sv) defines has a filter, and it maps every code
 # of the enum, as GTKWave prints it in hex, to one name; every filter a save
-# file loads exists.
-#   cmake -DPKG_SV=apu_pkg.sv -DFILTERS=dir -DSAVE_FILES=a.gtkw;b.gtkw -P apu_gtkw_test.cmake
+# file loads exists. A signal the core (CORE_SV) declares of an enum type has
+# the enum's table in the FST, and GTKWave applies that table before any file
+# filter (a file filter on it is never used): the save files show it with the
+# enum flag (TR_ENUM, bit 32 of the trace flags) and load no filter for it.
+#   cmake -DPKG_SV=apu_pkg.sv -DCORE_SV=apu_core.sv -DFILTERS=dir -DSAVE_FILES=a.gtkw;b.gtkw -P apu_gtkw_test.cmake
 include(${CMAKE_CURRENT_LIST_DIR}/apu_hex.cmake)
 cmake_minimum_required(VERSION 3.22)
 file(READ "${PKG_SV}" pkg)
@@ -61,4 +64,38 @@ foreach(save IN LISTS SAVE_FILES)
     endif()
   endforeach()
 endforeach()
-message(STATUS "${n_enums} enums, ${checked} values, each mapped once")
+file(STRINGS "${CORE_SV}" decls REGEX "apu_pkg::[a-z_]+_e +[a-z_0-9]+ *[,;]")
+set(enum_signals)
+foreach(d IN LISTS decls)
+  string(REGEX MATCH "apu_pkg::[a-z_]+_e +([a-z_0-9]+)" _ "${d}")
+  list(APPEND enum_signals ${CMAKE_MATCH_1})
+endforeach()
+if(NOT enum_signals)
+  message(SEND_ERROR "${CORE_SV}: no signal of an enum type found")
+endif()
+foreach(save IN LISTS SAVE_FILES)
+  file(STRINGS "${save}" lines)
+  set(flags "")
+  set(prev "")
+  foreach(l IN LISTS lines)
+    if(l MATCHES "^@([0-9a-fA-F]+)$")
+      set(flags ${CMAKE_MATCH_1})
+    elseif(l MATCHES "^TOP\\.apu_core\\.([a-z_0-9]+)\\[")
+      list(FIND enum_signals ${CMAKE_MATCH_1} at)
+      if(at GREATER_EQUAL 0)
+        string(LENGTH "${flags}" n)
+        set(enum_flag 0)
+        if(n GREATER_EQUAL 9)
+          math(EXPR i "${n} - 9")
+          string(SUBSTRING "${flags}" ${i} 1 d)
+          math(EXPR enum_flag "0x${d} & 1")
+        endif()
+        if(NOT enum_flag OR prev MATCHES "^\\^")
+          message(SEND_ERROR "${save}: ${l} (an SV enum: its FST table) needs the enum flag (@100000028) and no filter")
+        endif()
+      endif()
+    endif()
+    set(prev "${l}")
+  endforeach()
+endforeach()
+message(STATUS "${n_enums} enums, ${checked} values, each mapped once; enum-typed signals ${enum_signals}")

@@ -28,6 +28,9 @@ expect(bad_option 2 "not expected: --bogus" render ${tiny} --bogus)
 expect(bad_number 2 "mc1 diag: --nodes: '0' is out of range \\[1, 4096\\]" diag --nodes 0)
 expect(bad_time 2 "--kill-node: bad time '20parsecs'" render ${tiny} --kill-node 1@20parsecs)
 expect(params_extra 2 "not expected: extra" params extra)
+expect(window_needs_trace 2 "--trace-from and --trace-to need --trace" render ${tiny} --trace-from 1ms)
+expect(window_empty 2 "--trace-to must be later than --trace-from" render ${tiny} --trace t.fst --trace-from 2ms --trace-to 1ms)
+expect(window_bad_time 2 "--trace-to: bad time" render ${tiny} --trace t.fst --trace-to soon)
 
 # --params and --param apply in the order given, as one sequence.
 file(WRITE ${WORK_DIR}/w4.params "hdlc_window = 4\n")

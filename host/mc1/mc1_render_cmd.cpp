@@ -18,6 +18,7 @@
 #include "mc1_render.hpp"
 #include "png_writer.hpp"
 #include "refrender.hpp"
+#include "frame_profile.hpp"
 #include "report_profile.hpp"
 #include "report_writers.hpp"
 #include "scene.hpp"
@@ -58,11 +59,17 @@ void add_render_options(CLI::App& cmd) {
   add_fault_options(cmd);
   add_param_options(cmd);
   add_report_options(cmd);
-  value_option(cmd, "profile", "FILE.md",
-               "write the timing evaluation: per step and per kernel APU cycles, issue, bank stalls, MPU cycles "
-               "(docs/renderer.md \"Timing\"; issue and stalls on the ISS engine only)");
-  value_option(cmd, "trace", "FILE.fst", "APU waveform of NC --trace-node (that NC runs the RTL core)");
+  value_option(cmd, "profile", "FILE.md|FILE.json",
+               "FILE.md: the timing evaluation, per step and per kernel APU cycles, issue, bank stalls, MPU cycles "
+               "(docs/renderer.md \"Timing\"; issue and stalls on the ISS engine only); FILE.json: the stall "
+               "profile per kernel and pc, over NCs and per NC (schema apu-profile/2, docs/apu-tools.md), its "
+               "summary on stdout");
+  value_option(cmd, "trace", "FILE.fst",
+               "APU waveform of NC --trace-node (that NC runs the RTL core) on simulated time; also FILE.fst.gtkw "
+               "(the save file), .pc.txt and .kernel.txt (translate filters)");
   value_option(cmd, "trace-node", "K", "the NC to trace (default 1)");
+  value_option(cmd, "trace-from", "TIME", "the waveform starts at simulated TIME (12.5ms, 300us, ...; bare: ms)");
+  value_option(cmd, "trace-to", "TIME", "the waveform ends at simulated TIME");
   flag_option(cmd, "ref",
               "also render the double-precision reference (mc1-ref) at the same size and print the PSNR of the "
               "frame against it");
@@ -217,9 +224,16 @@ int cmd_render(const CLI::App& cmd) {
   if (a.has("trace")) {
     cfg.trace_path = a.get("trace");
     cfg.trace_node = a.has("trace-node") ? parse_unsigned("--trace-node", a.get("trace-node"), 1, cfg.nodes) : 1;
-  } else if (a.has("trace-node")) {
-    throw CliError("--trace-node needs --trace FILE.fst");
+    if (a.has("trace-from")) cfg.trace_from = parse_time("--trace-from", a.get("trace-from"));
+    if (a.has("trace-to")) cfg.trace_to = parse_time("--trace-to", a.get("trace-to"));
+    if (cfg.trace_to <= cfg.trace_from) throw CliError("--trace-to must be later than --trace-from");
+  } else if (a.has("trace-node") || a.has("trace-from") || a.has("trace-to")) {
+    throw CliError("--trace-node, --trace-from and --trace-to need --trace FILE.fst");
   }
+  const std::string profile = a.get("profile");
+  const bool stall_profile = profile.size() > 5 && profile.compare(profile.size() - 5, 5, ".json") == 0;
+  FrameProfiler profiler(stall_profile, cfg.trace_node, cfg.trace_from, cfg.trace_to);
+  if (stall_profile || cfg.trace_node) cfg.attach = [&profiler](nc::NodeComputer& n) { profiler.attach(n); };
   if ((a.has("diff") || a.has("min-psnr")) && !a.has("ref")) throw CliError("--diff and --min-psnr need --ref");
   const double min_psnr = a.has("min-psnr") ? parse_double("--min-psnr", a.get("min-psnr"), 0, 200) : 0;
   const bool quiet = a.has("quiet");
@@ -236,8 +250,18 @@ int cmd_render(const CLI::App& cmd) {
   if (a.has("out")) out.add(a.get("out"), encode_png_rgb8(r.width, r.height, r.rgb.data()));
   if (a.has("stats")) out.add(a.get("stats"), stats_json(r));
   if (a.has("gantt")) out.add(a.get("gantt"), gantt_svg(r));
-  if (a.has("profile")) out.add(a.get("profile"), profile_tables(r));
+  if (a.has("profile") && !stall_profile) out.add(profile, profile_tables(r));
   if (!quiet) print_summary(run);
+  if (stall_profile) {
+    profiler.profile().finish();
+    out.add(profile, profiler.profile().json(profiler.kernels(), "mc1 render",
+                                             ", \"scene\": " + scene::json::quote(r.scene) + ", \"engine\": \"" + r.engine +
+                                                 "\", \"nodes\": " + std::to_string(r.nodes) +
+                                                 ", \"frame_time_ps\": " + std::to_string(r.frame_time)));
+    if (!quiet) std::fputs(profiler.profile().text(profiler.kernels(), 10).c_str(), stdout);
+  }
+  if (cfg.trace_node)
+    for (const auto& [path, text] : trace_side_files(cfg.trace_path, profiler, cfg.trace_node)) out.add(path, text);
   int status = 0;
   if (r.fm_pixels_written != std::uint64_t{r.width} * r.height) {
     std::fprintf(stderr, "mc1 render: the frame memory got %llu pixel writes for %u pixels\n",

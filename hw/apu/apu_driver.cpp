@@ -43,6 +43,15 @@ void ApuDriver::load_program(const std::vector<Encoded>& words, std::uint16_t ba
   }
 }
 
+void ApuDriver::hand_over_program() {
+  access();
+  if (on_hand_over_) {
+    const int bank = (iss_ ? iss_->psel() : psel_) ^ 1;
+    on_hand_over_(bank, shadow_[bank]);
+  }
+  engine_.hand_over_program();
+}
+
 void ApuDriver::load_data(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
   access();
   if (addr + n > static_cast<std::size_t>(kDataWords))

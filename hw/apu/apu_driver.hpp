@@ -50,10 +50,7 @@ class ApuDriver {
   void load_data(std::uint16_t addr, const std::vector<std::uint32_t>& values) {
     load_data(addr, values.data(), values.size());
   }
-  void hand_over_program() {
-    access();
-    engine_.hand_over_program();
-  }
+  void hand_over_program();
   void hand_over_data() {
     access();
     engine_.hand_over_data();
@@ -88,6 +85,9 @@ class ApuDriver {
   // Called with every cycle's record. Having an observer takes the ISS off
   // its fast path (records are built every cycle).
   void set_observer(std::function<void(const CycleRecord&)> observer) { observer_ = std::move(observer); }
+  // Called at every program hand-over with the bank handed over and the
+  // words the driver loaded there (a profile or a waveform names the kernel).
+  void on_hand_over(std::function<void(int bank, const std::vector<Encoded>& words)> f) { on_hand_over_ = std::move(f); }
 
   ApuEngine& engine() {
     access();
@@ -128,6 +128,7 @@ class ApuDriver {
   Iss* iss_;  // the ISS when engine_ is one: its bank and pc without records
   std::function<void(const CycleRecord&)> observer_;
   std::function<void()> hook_;
+  std::function<void(int, const std::vector<Encoded>&)> on_hand_over_;
   CycleRecord rec_;
   int psel_ = 0;  // the APU's program bank as seen by the driver
   std::uint16_t pc_ = 0;

@@ -71,6 +71,29 @@ class ApuEngine {
   virtual std::uint16_t areg(int i) const = 0;
   virtual std::uint8_t flags() const = 0;
   virtual std::uint8_t cc() const = 0;
+
+  // The platform's time. A machine that clocks the APU in bursts (the NC:
+  // idle between kernel runs) says before each burst at which simulated time
+  // (ps) the next cycle starts and how long a cycle is (its timing table's
+  // APU clock); time_of() stamps a cycle with it (waveforms, stall
+  // profiles). Without set_time(), cycle c starts at c x 250 ns.
+  void set_time(std::uint64_t ps, std::uint64_t cycle_ps) {
+    time_ps_ = ps;
+    time_cycle_ = cycle();
+    cycle_ps_ = cycle_ps;
+  }
+  std::uint64_t time_of(std::uint64_t cycle) const { return time_ps_ + (cycle - time_cycle_) * cycle_ps_; }
+  std::uint64_t cycle_ps() const { return cycle_ps_; }
+
+  // Waveform annotations, for an engine that writes one (the RTL engine;
+  // others ignore them): dump only simulated times in [from_ps, to_ps);
+  // the program in `bank` is kernel `id` (a kernel-id signal follows the
+  // APU's program bank).
+  virtual void trace_window(std::uint64_t from_ps, std::uint64_t to_ps) { (void)from_ps, (void)to_ps; }
+  virtual void trace_kernel(int bank, std::uint16_t id) { (void)bank, (void)id; }
+
+ private:
+  std::uint64_t time_ps_ = 0, time_cycle_ = 0, cycle_ps_ = 250000;  // 4 MHz (paper section 2)
 };
 
 }  // namespace mc1::apu

@@ -32,6 +32,7 @@ struct NcReport {
   double apu_host_seconds = 0;  // host time inside the APU engine
   bool apu_counted = false;     // the ISS counted issues and stalls
   std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
+  std::array<std::uint64_t, apu::kStallKinds> apu_stalls{};  // by apu::Stall (ISS only)
   std::vector<nc::Span> spans;
   std::vector<nc::ApuSpan> apu;
 };

@@ -73,6 +73,8 @@ Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::
     n.nc2bus_pixels.bind(bus_->nc2bus_pixels);
     // The APU watchdog stops the processor, and the link protocol it runs.
     n.on_stop([this, k](Picos at) { hdlc_->stop_station(k, at); });
+    if (k == cfg.trace_node) n.engine().trace_window(cfg.trace_from, cfg.trace_to);
+    if (cfg.attach) cfg.attach(n);
   }
   bus_->bus2dc.bind(monitor_->bus2dc);
   monitor_->mon2dc.bind(dc_->bus2dc);
@@ -194,6 +196,7 @@ FrameReport Mc1System::report(double host_seconds) {
     x.apu_counted = s.apu_counted;
     x.apu_issued = s.apu_issued;
     x.apu_bank_stalls = s.apu_bank_stalls;
+    for (int k = 0; k < apu::kStallKinds; ++k) x.apu_stalls[k] = s.apu_stalls[k];
     x.spans = n->spans();
     x.apu = n->apu_spans();
     r.ncs.push_back(std::move(x));

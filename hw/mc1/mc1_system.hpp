@@ -66,6 +66,10 @@ struct SystemConfig {
   // waveform (whatever `engine` is: both engines are cycle- and bit-exact).
   unsigned trace_node = 0;
   std::string trace_path;
+  Picos trace_from = 0, trace_to = ~Picos{0};  // the waveform holds simulated times in [from, to)
+  // Called with every NC once it is built, before the frame runs (a stall
+  // profile or a waveform's kernel names attach to its APU driver here).
+  std::function<void(nc::NodeComputer&)> attach;
   // Host threads clocking the NCs' APUs (nc::ApuPool); 0: the machine's
   // cores. No simulated figure depends on it.
   unsigned threads = 0;

@@ -159,6 +159,7 @@ void NodeComputer::catch_up_to(Picos t) {
   const std::uint64_t k = (t - apu_time_) / cycle_ps_;
   if (k == 0) return;
   std::uint64_t n = 0;
+  engine_->set_time(apu_time_, cycle_ps_);
   {
     HostTimer timer(stats_.apu_host_seconds);
     n = driver_.run(k);
@@ -275,6 +276,7 @@ void NodeComputer::apu_wait_swap() {
       kill_at_ == ~Picos{0} ? ~std::uint64_t{0} : kill_at_ > apu_time_ ? (kill_at_ - apu_time_) / cycle_ps_ : 0;
   const std::uint64_t limit = std::min(to_kill, t_.apu_watchdog_cycles);
   const std::uint64_t n = run_on_pool([this, limit](ApuJob& job) {
+    engine_->set_time(apu_time_, cycle_ps_);  // the run starts at apu_time_ (waveforms, profiles)
     // Cycle by cycle: the swap interrupt comes in the cycle the APU takes the bank.
     HostTimer timer(stats_.apu_host_seconds);
     std::uint64_t k = 0;
@@ -307,6 +309,7 @@ void NodeComputer::apu_wait_halt() {
   if (engine_->state() != apu::RunState::Running) return;
   std::string runaway;  // the driver's account of a run the watchdog stops
   const std::uint64_t n = run_on_pool([this, &runaway](ApuJob& job) -> std::uint64_t {
+    engine_->set_time(apu_time_, cycle_ps_);  // the run starts at apu_time_ (waveforms, profiles)
     HostTimer timer(stats_.apu_host_seconds);
     const std::uint64_t c0 = engine_->cycle();
     // Called before every kPoolStepCycles-th cycle, the APU still running.
@@ -416,7 +419,9 @@ void NodeComputer::close(Picos frame_end) {
     stats_.apu_counted = true;
     stats_.apu_issued = iss->counters().issued;
     stats_.apu_bank_stalls = iss->counters().stalls[static_cast<int>(apu::Stall::Bank)];
+    for (int k = 0; k < apu::kStallKinds; ++k) stats_.apu_stalls[k] = iss->counters().stalls[k];
   }
+  engine_->set_time(std::max(apu_time_, frame_end), cycle_ps_);  // a waveform's idle tail ends with the frame
   for (Picos& p : stats_.time) p = 0;
   for (const Span& s : spans_) stats_.time[static_cast<int>(s.what)] += s.end - s.begin;
 }

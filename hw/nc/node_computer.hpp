@@ -80,6 +80,7 @@ struct NcStats {
   // cycles stalled on `bank` (the APU waiting for the MPU's hand-over).
   bool apu_counted = false;
   std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
+  std::uint64_t apu_stalls[apu::kStallKinds] = {};  // stall cycles by apu::Stall
 };
 
 class NodeComputer : public sc_core::sc_module, public NcPort {

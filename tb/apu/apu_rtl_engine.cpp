@@ -1,6 +1,7 @@
 // RtlEngine: the verilated apu_core behind ApuEngine (docs/apu-rtl.md).
 #include "apu_rtl_engine.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -46,9 +47,62 @@ RtlEngine::RtlEngine(const char* fst_path) : ctx_(std::make_unique<VerilatedCont
   if (fst_path) {
     fst_ = std::make_unique<VerilatedFstC>();
     t.trace(fst_.get(), 99);
+    // TOP.mc1.kernel_id through Verilator's trace callbacks (the API its
+    // generated trace code uses, verilated_trace.h of 5.006).
+    fst_->spTrace()->addInitCb(&RtlEngine::kernel_init, this);
+    fst_->spTrace()->addFullCb(&RtlEngine::kernel_full, this);
+    fst_->spTrace()->addChgCb(&RtlEngine::kernel_change, this);
     fst_->open(fst_path);
-    fst_->dump(0);
   }
+}
+
+void RtlEngine::kernel_init(void* self, VerilatedFst* tracep, std::uint32_t code) {
+  static_cast<RtlEngine*>(self)->kernel_code_ = code;
+  tracep->pushNamePrefix("TOP ");
+  tracep->pushNamePrefix("mc1 ");
+  tracep->declBus(code, "kernel_id", -1, FST_VD_IMPLICIT, FST_VT_VCD_WIRE, false, -1, 15, 0);
+  tracep->popNamePrefix(2);
+}
+
+void RtlEngine::kernel_full(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp) {
+  const RtlEngine& e = *static_cast<RtlEngine*>(self);
+  bufp->fullSData(bufp->oldp(e.kernel_code_), e.bank_kernel_[e.top_->apu2mpu_psel & 1], 16);
+}
+
+void RtlEngine::kernel_change(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp) {
+  const RtlEngine& e = *static_cast<RtlEngine*>(self);
+  bufp->chgSData(bufp->oldp(e.kernel_code_), e.bank_kernel_[e.top_->apu2mpu_psel & 1], 16);
+}
+
+void RtlEngine::trace_window(std::uint64_t from_ps, std::uint64_t to_ps) {
+  from_ = from_ps;
+  to_ = to_ps;
+}
+
+// The first dump in the window is at its start: the state the APU holds
+// there (it is clocked in bursts, and between them nothing changes), without
+// the MPU's requests of the burst that follows.
+void RtlEngine::dump(std::uint64_t ps) {
+  if (ps >= to_ || (ps < from_ && !dumped_)) return;
+  if (!dumped_) {
+    dumped_ = true;
+    last_dump_ = from_;
+    Vapu_core& t = *top_;
+    const auto program = t.mpu2apu_hand_over_program, data = t.mpu2apu_hand_over_data, start = t.mpu2apu_start,
+               fresh = t.mpu2apu_start_new_program;
+    t.mpu2apu_hand_over_program = t.mpu2apu_hand_over_data = t.mpu2apu_start = t.mpu2apu_start_new_program = 0;
+    t.eval();
+    fst_->dump(from_);
+    t.mpu2apu_hand_over_program = program;
+    t.mpu2apu_hand_over_data = data;
+    t.mpu2apu_start = start;
+    t.mpu2apu_start_new_program = fresh;
+    t.eval();
+    if (ps == from_) return;
+  }
+  if (ps <= last_dump_) ps = last_dump_ + 1;  // a burst that starts inside the last one's settle cycles
+  last_dump_ = ps;
+  fst_->dump(ps);
 }
 
 RtlEngine::~RtlEngine() {
@@ -57,7 +111,11 @@ RtlEngine::~RtlEngine() {
   // engines, that may be one already destroyed (a hang on its freed mutex,
   // seen in examples/apu_tb.cpp). Make it ours while top_ goes.
   Verilated::threadContextp(ctx_.get());
-  if (fst_) fst_->close();
+  if (fst_) {
+    const std::uint64_t end = std::min(time_of(cycle_), to_ - 1);  // the idle tail, up to the last set_time()
+    if (!dumped_ || end > last_dump_) dump(end);
+    fst_->close();
+  }
   top_->final();
 }
 
@@ -112,7 +170,7 @@ void RtlEngine::clock() {
   // Time in ps (Verilator's default precision): 250 ns cycles, 4 MHz.
   t.clk = 1;
   t.eval();
-  if (fst_) fst_->dump(cycle_ * 250000 + 125000);
+  if (fst_) dump(time_of(cycle_) + cycle_ps() / 2);
   // MPU requests last exactly the cycle after the call that made them.
   t.mpu2apu_hand_over_program = 0;
   t.mpu2apu_hand_over_data = 0;
@@ -121,13 +179,13 @@ void RtlEngine::clock() {
   t.clk = 0;
   t.eval();
   ++cycle_;
-  if (fst_) fst_->dump(cycle_ * 250000);
+  if (fst_) dump(time_of(cycle_));
 }
 
 void RtlEngine::step(CycleRecord& rec) {
   // Show forwarded MPU requests in the waveform before the edge that takes them.
   if (dump_pending_) {
-    fst_->dump(cycle_ * 250000 + 62500);
+    dump(time_of(cycle_) + cycle_ps() / 4);
     dump_pending_ = false;
   }
   const Vapu_core& t = *top_;
@@ -172,7 +230,7 @@ void RtlEngine::step(CycleRecord& rec) {
 
 std::uint64_t RtlEngine::run(std::uint64_t max_cycles) {
   if (dump_pending_) {
-    fst_->dump(cycle_ * 250000 + 62500);
+    dump(time_of(cycle_) + cycle_ps() / 4);
     dump_pending_ = false;
   }
   std::uint64_t n = 0;

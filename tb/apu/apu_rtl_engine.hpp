@@ -20,6 +20,10 @@
 class Vapu_core;
 class VerilatedContext;
 class VerilatedFstC;
+class VerilatedFst;
+class VerilatedFstBuffer;
+template <class T_Buffer>
+class VerilatedTraceBuffer;
 
 namespace mc1::apu {
 
@@ -54,6 +58,12 @@ class RtlEngine final : public ApuEngine {
   // passed; returns the cycles clocked (the fast path, as Iss::run).
   std::uint64_t run(std::uint64_t max_cycles) override;
 
+  // Dumps only simulated times in [from_ps, to_ps) (mc1 render --trace-from/--trace-to).
+  void trace_window(std::uint64_t from_ps, std::uint64_t to_ps) override;
+  // TOP.mc1.kernel_id, a signal beside the core's: the kernel id of the
+  // program in the APU's program bank (apu2mpu_psel); 0 until one is named.
+  void trace_kernel(int bank, std::uint16_t id) override { bank_kernel_[bank & 1] = id; }
+
   // True if a unit's out_valid / out_trig_valid ever disagreed with the core's
   // interlock mirror of the pipelines (a unit latency other than the doc's).
   bool unit_mismatch() const;
@@ -61,6 +71,10 @@ class RtlEngine final : public ApuEngine {
  private:
   void clock();        // one rising edge and the falling edge after it
   void settle();       // re-evaluate after an MPU-side input change
+  void dump(std::uint64_t ps);  // at simulated time ps, if in the window (times strictly increase)
+  static void kernel_init(void* self, VerilatedFst* tracep, std::uint32_t code);
+  static void kernel_full(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp);
+  static void kernel_change(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp);
 
   std::unique_ptr<VerilatedContext> ctx_;
   std::unique_ptr<Vapu_core> top_;
@@ -68,6 +82,11 @@ class RtlEngine final : public ApuEngine {
   std::unique_ptr<RtlBackdoor> backdoor_;  // into *top_
   std::uint64_t cycle_ = 0;
   bool dump_pending_ = false;  // MPU inputs changed since the last waveform dump
+  std::uint64_t from_ = 0, to_ = ~std::uint64_t{0};  // the dump window (ps)
+  bool dumped_ = false;        // a dump was written; last_dump_ is its time
+  std::uint64_t last_dump_ = 0;
+  std::uint16_t bank_kernel_[2] = {0, 0};
+  std::uint32_t kernel_code_ = 0;  // the FST code of TOP.mc1.kernel_id
 };
 
 }  // namespace mc1::apu

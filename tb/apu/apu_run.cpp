@@ -12,6 +12,7 @@
 #include "disasm.hpp"
 #include "apu_lockstep.hpp"
 #include "apu_profile.hpp"
+#include "apu_stall_profile.hpp"
 #include "apu_tools.hpp"
 
 namespace {
@@ -129,12 +130,20 @@ int run(const Options& o) {
     ++next_block;
   };
   if (!blocks.empty()) hand_over_next();
+  // The program is kernel 1 (TOP.mc1.kernel_id in the waveform, the stall profile's kernel).
+  KernelTable kernels;
+  kernels.add(o.program, words);
+  drv.on_hand_over([&](int bank, const std::vector<Encoded>&) { engine->trace_kernel(bank, 1); });
   drv.hand_over_program();
   drv.start(o.start);
   std::unique_ptr<Profile> profile;
+  StallProfile stalls;
   if (o.profile || !o.profile_json.empty()) {
     profile = std::make_unique<Profile>([&drv](int bank, std::uint16_t pc) { return drv.program_word(bank, pc); });
-    drv.set_observer([&](const CycleRecord& r) { profile->add(r); });
+    drv.set_observer([&](const CycleRecord& r) {
+      profile->add(r);
+      stalls.add(1, 1, r, engine->time_of(r.cycle));
+    });
   }
   int rc = 0;
   try {
@@ -158,10 +167,18 @@ int run(const Options& o) {
                 << hex_text(v[i], 6);
     std::cout << "\n";
   }
-  if (!o.trace.empty() && !write_output("--trace", o.trace + ".pc.txt", pc_filter(o.trace, words))) rc = 1;
-  if (profile && o.profile) std::cout << profile->report(o.top);
-  if (profile && !o.profile_json.empty() && !write_output("--profile-json", o.profile_json, profile->json(o.program)))
+  if (!o.trace.empty() && (!write_output("--trace", o.trace + ".pc.txt", pc_filter(o.trace, words)) ||
+                           !write_output("--trace", o.trace + ".kernel.txt", kernels.id_filter())))
     rc = 1;
+  if (profile && o.profile) std::cout << profile->report(o.top);
+  if (profile && !o.profile_json.empty()) {
+    stalls.finish();
+    std::string extra = ", \"program\": " + json_quote(o.program) + ", \"engine\": " + json_quote(o.engine) + ", \"unit_ops\": {";
+    for (int u = 0; u < kFpUnits; ++u)
+      extra += std::string(u ? ", " : "") + "\"" + unit_name(u) + "\": " + std::to_string(profile->unit_ops(u));
+    extra += "}";
+    if (!write_output("--profile-json", o.profile_json, stalls.json(kernels, "apu-run", extra))) rc = 1;
+  }
   return rc;
 }
 
