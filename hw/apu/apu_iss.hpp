@@ -102,8 +102,10 @@ class Iss final : public ApuEngine {
   };
   static constexpr int kRing = pow2_above(kMaxLatency);
 
+  // One cycle; returns the stall reason (None if it issued or did not run).
   template <bool kRecord>
-  void clock(CycleRecord* rec);
+  Stall clock(CycleRecord* rec);
+  bool writes_landed() const;
   void apply_next();
   template <bool kRecord>
   void take_due(CycleRecord* rec, int& cc, int& flags);

@@ -66,8 +66,12 @@ class RtlEngine final : public ApuEngine {
   std::unique_ptr<Vapu_core> top_;
   std::unique_ptr<VerilatedFstC> fst_;
   std::unique_ptr<RtlBackdoor> backdoor_;  // into *top_
+  RtlBackdoor::Snapshot snapshot_;         // run()'s fixed-point test
   std::uint64_t cycle_ = 0;
   bool dump_pending_ = false;  // MPU inputs changed since the last waveform dump
+  // An MPU call changed an input or a bank word since the last eval(): the
+  // next edge is a full eval() (clock()).
+  bool changed_ = true;
 };
 
 }  // namespace mc1::apu
