@@ -103,6 +103,16 @@ void Iss::write_data(std::uint16_t addr, std::uint32_t value) {
 
 std::uint32_t Iss::read_data(std::uint16_t addr) const { return data_[dsel_ ^ 1][addr % kDataWords]; }
 
+void Iss::write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
+  auto& bank = data_[dsel_ ^ 1];
+  for (std::size_t i = 0; i < n; ++i) bank[(addr + i) % kDataWords] = values[i] & kMask24;
+}
+
+void Iss::read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const {
+  const auto& bank = data_[dsel_ ^ 1];
+  for (std::size_t i = 0; i < n; ++i) out[i] = bank[(addr + i) % kDataWords];
+}
+
 void Iss::start(std::uint16_t pc) {
   if (state_ == RunState::Running) return;  // only an idle APU starts (Clarification 8)
   if (program_ready_) {

@@ -51,6 +51,8 @@ class Iss final : public ApuEngine {
   void write_program(std::uint16_t addr, const Encoded& word) override;
   void write_data(std::uint16_t addr, std::uint32_t value) override;
   std::uint32_t read_data(std::uint16_t addr) const override;
+  void write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) override;
+  void read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const override;
   void hand_over_program() override { program_ready_ = true; }
   void hand_over_data() override { data_ready_ = true; }
   bool program_ready() const override { return program_ready_; }

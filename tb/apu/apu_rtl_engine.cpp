@@ -74,6 +74,12 @@ void RtlEngine::write_data(std::uint16_t addr, std::uint32_t value) {
   changed_ = true;
 }
 
+void RtlEngine::write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
+  const int bank = top_->apu2mpu_dsel ^ 1;
+  for (std::size_t i = 0; i < n; ++i) backdoor_->write_data(bank, static_cast<std::uint16_t>(addr + i), values[i]);
+  changed_ = true;
+}
+
 std::uint32_t RtlEngine::read_data(std::uint16_t addr) const {
   return backdoor_->read_data(top_->apu2mpu_dsel ^ 1, addr);
 }

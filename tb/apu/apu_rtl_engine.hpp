@@ -34,6 +34,7 @@ class RtlEngine final : public ApuEngine {
   void write_program(std::uint16_t addr, const Encoded& word) override;
   void write_data(std::uint16_t addr, std::uint32_t value) override;
   std::uint32_t read_data(std::uint16_t addr) const override;
+  void write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) override;
   void hand_over_program() override;
   void hand_over_data() override;
   bool program_ready() const override;
