@@ -117,25 +117,24 @@ std::vector<unsigned> parse_list(const std::string& opt, const std::string& text
   return out;
 }
 
-NodeKill parse_kill(const std::string& text) {
-  const std::string opt = "--kill-node";
+namespace {
+
+// K@TIME, the NC and the time of a --kill-node or --cut-line.
+template <class Event>
+Event parse_nc_at(const std::string& opt, const std::string& text) {
   const auto at = text.find('@');
   if (at == std::string::npos) throw CliError(opt + ": bad value '" + text + "' (expected K@TIME, e.g. 3@20ms)");
-  NodeKill k;
-  k.nc = parse_unsigned(opt + " (NC)", text.substr(0, at), 1, 1u << 20);
-  k.time = parse_time(opt, text.substr(at + 1));
-  return k;
+  Event e;
+  e.nc = parse_unsigned(opt + " (NC)", text.substr(0, at), 1, 1u << 20);
+  e.time = parse_time(opt, text.substr(at + 1));
+  return e;
 }
 
-CutLine parse_cut_line(const std::string& text) {
-  const std::string opt = "--cut-line";
-  const auto at = text.find('@');
-  if (at == std::string::npos) throw CliError(opt + ": bad value '" + text + "' (expected K@TIME, e.g. 3@20ms)");
-  CutLine c;
-  c.nc = parse_unsigned(opt + " (NC)", text.substr(0, at), 1, 1u << 20);
-  c.time = parse_time(opt, text.substr(at + 1));
-  return c;
-}
+}  // namespace
+
+NodeKill parse_kill(const std::string& text) { return parse_nc_at<NodeKill>("--kill-node", text); }
+
+CutLine parse_cut_line(const std::string& text) { return parse_nc_at<CutLine>("--cut-line", text); }
 
 void add_fault_options(CLI::App& cmd) {
   value_option(cmd, "ber", "X", "HDLC bit error rate on every line end, both directions (default 0)");
