@@ -175,6 +175,16 @@ void add_report_options(CLI::App& cmd) {
   value_option(cmd, "vcd", "FILE.vcd", "trace platform signals (HDLC line busy, image-bus grant/owner)");
 }
 
+void add_threads_option(CLI::App& cmd) {
+  value_option(cmd, "threads", "N",
+               "host threads clocking the NCs' APUs, 1..1024 (default: the machine's cores); the frame, the "
+               "statistics and every simulated time are the same for any N");
+}
+
+void threads_option(const Parsed& a, SystemConfig& cfg) {
+  if (a.has("threads")) cfg.threads = parse_unsigned("--threads", a.get("threads"), 1, 1024);
+}
+
 EngineKind parse_engine(const std::string& s) {
   if (s == "iss") return EngineKind::Iss;
   if (s == "rtl") return EngineKind::Rtl;

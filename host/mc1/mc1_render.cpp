@@ -1,5 +1,6 @@
 #include "mc1_render.hpp"
 
+#include <cmath>
 #include <map>
 #include <memory>
 
@@ -59,6 +60,12 @@ RenderRun run_render(const RenderJob& job, SystemConfig cfg, const std::string& 
   scene::Scene s = scene::load_scene(job.scene);
   if (job.width) s.camera.width = static_cast<int>(job.width);
   if (job.height) s.camera.height = static_cast<int>(job.height);
+  if (job.orbit_deg != 0) {  // Rodrigues' rotation of eye - look_at about up
+    const double a = job.orbit_deg * 3.14159265358979323846 / 180.0;
+    const glm::dvec3 k = glm::normalize(s.camera.up), v = s.camera.eye - s.camera.look_at;
+    s.camera.eye = s.camera.look_at + v * std::cos(a) + glm::cross(k, v) * std::sin(a) +
+                   k * glm::dot(k, v) * (1 - std::cos(a));
+  }
   const render::SceneImage image = render::make_scene_image(s);
   cfg.width = static_cast<unsigned>(image.width);
   cfg.height = static_cast<unsigned>(image.height);
