@@ -740,5 +740,49 @@ TEST_P(ApuHandTimed, StepAndRunAgreeOnCounters) {
   }
 }
 
+// The fast path takes a long bank stall's cycles at once (Iss::run, RtlEngine::run):
+// the same state, cycle count and counters as clocking them one by one, with
+// results still in flight when the stall begins.
+TEST_P(ApuHandTimed, RunThroughABankStallAgreesWithSteps) {
+  const std::vector<MicroWord> prog = {lif(1, 0x3F80), mul(3, 1, 1) | func(FuncOp::Sqrt, 2, 1),
+                                       addu(AddOp::Add, 4, 1, 1), seq(SeqOp::Swapd),
+                                       mul(5, 3, 2) | mem(MemOp::Ld, 6, 0, 7), halt()};
+  ApuEngine& stepped = engine();
+  ApuEngine& fast = engine();
+  ApuDriver sd(stepped), fd(fast);
+  for (ApuDriver* d : {&sd, &fd}) {
+    d->load_program(encode(prog));
+    d->hand_over_program();
+    d->start(0);
+  }
+  CycleRecord rec;
+  for (int i = 0; i < 500; ++i) stepped.step(rec);
+  EXPECT_EQ(rec.stall, Stall::Bank);
+  EXPECT_EQ(fast.run(500), 500u);
+  EXPECT_EQ(fast.cycle(), stepped.cycle());
+  EXPECT_EQ(fast.state(), RunState::Running);
+  for (int r = 0; r < kNumFRegs; ++r) EXPECT_EQ(fast.freg(r), stepped.freg(r)) << "F" << r;
+  EXPECT_EQ(fast.flags(), stepped.flags());
+  if (const Iss* s = iss(&stepped)) {
+    const Iss* f = iss(&fast);
+    EXPECT_EQ(f->pc(), s->pc());
+    EXPECT_EQ(f->counters().stalls[int(Stall::Bank)], s->counters().stalls[int(Stall::Bank)]);
+    EXPECT_EQ(f->counters().stalls[int(Stall::Bank)], 500u - 4);  // fetch, lif, mul|sqrt, add issue first
+    EXPECT_EQ(f->counters().issued, s->counters().issued);
+  }
+  // Hand the bank over: both finish alike.
+  for (ApuDriver* d : {&sd, &fd}) {
+    d->load_data(7, {0x123456});
+    d->hand_over_data();
+  }
+  std::uint64_t n = 0;
+  for (; stepped.state() == RunState::Running; ++n) stepped.step(rec);
+  EXPECT_EQ(n, 4u);  // SWAPD, MUL|LD, drain, HALT
+  EXPECT_EQ(fd.run_until_done(100), n);
+  for (int i = 0; i < ApuDriver::kSettleCycles; ++i) stepped.step(rec);
+  EXPECT_EQ(fast.cycle(), stepped.cycle());
+  for (int r = 0; r < kNumFRegs; ++r) EXPECT_EQ(fast.freg(r), stepped.freg(r)) << "F" << r;
+}
+
 }  // namespace
 }  // namespace mc1::apu

@@ -43,7 +43,9 @@ const char* const kBenchRenderDescription =
     "  3. --big (512x512) on 1 and --big-nodes (64) NCs, lpt and static: parallel efficiency\n"
     "     T1 / (N TN), the serial download's share, lpt's gain over static;\n"
     "  4. with --rtl: --size on --static-nodes NCs on the RTL engine (host time).\n"
-    "Every run's frame must equal the first run's of its size bit for bit.";
+    "Then the double-precision reference renderer (mc1-ref) on the same scene and size: the\n"
+    "co-simulation's host time on --static-nodes NCs over the reference's, and with --rtl the RTL\n"
+    "engine's over the ISS's. Every run's frame must equal the first run's of its size bit for bit.";
 
 void add_render_options(CLI::App& cmd) {
   cmd.add_option("SCENE", "the scene file (or --scene FILE)")->type_name("FILE");
@@ -354,6 +356,28 @@ int cmd_bench_render(const CLI::App& cmd) {
   if (a.has("rtl")) {
     rtl_host = run_one("RTL engine", static_nodes, size, rc::Schedule::Lpt, EngineKind::Rtl).host_seconds;
   }
+  // The co-simulation against the reference renderer on the same frame: the
+  // ISS run on --static-nodes NCs (lpt) over the best of three reference
+  // renders (it is short, so the best is the least disturbed by other load).
+  double iss_host = 0;
+  for (const BenchRun& b : runs)
+    if (b.engine == EngineKind::Iss && b.nodes == static_nodes && b.schedule == rc::Schedule::Lpt &&
+        b.width == size.first && b.height == size.second) {
+      iss_host = b.r.host_seconds;
+      break;
+    }
+  double ref_host = 0;
+  {
+    const scene::Scene sc = scene::load_scene(scene);
+    const refrender::Renderer ref(sc);
+    for (int i = 0; i < 3; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const imgcmp::Image img = ref.render(static_cast<int>(size.first), static_cast<int>(size.second));
+      const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (i == 0 || t < ref_host) ref_host = t;
+      if (img.width != static_cast<int>(size.first)) throw std::runtime_error("reference renderer: wrong size");
+    }
+  }
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const BenchRun& b = runs[i];
     json << (i ? ", " : "") << "{\"label\": \"" << b.label << "\", \"nodes\": " << b.nodes << ", \"width\": " << b.width
@@ -388,7 +412,15 @@ int cmd_bench_render(const CLI::App& cmd) {
          << ", \"efficiency\": " << eff << ", \"download_share\": " << static_cast<double>(big_dl) / bign
          << ", \"lpt_over_static\": " << big_gain << "}";
   }
-  if (a.has("rtl")) std::printf("RTL engine, %u NCs: host %.1f s\n", static_nodes, rtl_host);
+  const double over_ref = ref_host > 0 ? iss_host / ref_host : 0;
+  std::printf("%ux%u on %u NCs: co-simulation (ISS) host %.2f s, reference renderer %.3f s: %.1fx\n", size.first,
+              size.second, static_nodes, iss_host, ref_host, over_ref);
+  json << ", \"reference_host_seconds\": " << ref_host << ", \"cosim_over_reference\": " << over_ref;
+  if (a.has("rtl")) {
+    const double rtl_over_iss = iss_host > 0 ? rtl_host / iss_host : 0;
+    std::printf("RTL engine, %u NCs: host %.1f s, %.1fx the ISS's\n", static_nodes, rtl_host, rtl_over_iss);
+    json << ", \"rtl_host_seconds\": " << rtl_host << ", \"rtl_over_iss\": " << rtl_over_iss;
+  }
   json << ", \"frames_equal\": " << (same ? "true" : "false") << "}\n";
   if (a.has("json")) write_file_atomically(a.get("json"), json.str());
   if (!same) std::fprintf(stderr, "mc1 bench-render: frames of one size differ between runs\n");

@@ -57,7 +57,7 @@ void ApuDriver::load_data(std::uint16_t addr, const std::uint32_t* values, std::
   if (addr + n > static_cast<std::size_t>(kDataWords))
     fail(ApuError::Kind::Usage, "load_data: " + std::to_string(n) + " words at " + std::to_string(addr) +
                                     " do not fit the 4096-word bank");
-  for (std::size_t i = 0; i < n; ++i) engine_.write_data(static_cast<std::uint16_t>(addr + i), values[i]);
+  engine_.write_data_block(addr, values, n);
 }
 
 std::vector<std::uint32_t> ApuDriver::read_results(std::uint16_t addr, std::size_t n) const {
@@ -66,7 +66,7 @@ std::vector<std::uint32_t> ApuDriver::read_results(std::uint16_t addr, std::size
     fail(ApuError::Kind::Usage, "read_results: " + std::to_string(n) + " words at " + std::to_string(addr) +
                                     " do not fit the 4096-word bank");
   std::vector<std::uint32_t> out(n);
-  for (std::size_t i = 0; i < n; ++i) out[i] = engine_.read_data(static_cast<std::uint16_t>(addr + i));
+  engine_.read_data_block(addr, out.data(), n);
   return out;
 }
 

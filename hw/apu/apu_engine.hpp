@@ -3,6 +3,7 @@
 // cycle-by-cycle view for lockstep co-simulation and stall profiling.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -45,6 +46,14 @@ class ApuEngine {
   virtual void write_program(std::uint16_t addr, const Encoded& word) = 0;
   virtual void write_data(std::uint16_t addr, std::uint32_t value) = 0;
   virtual std::uint32_t read_data(std::uint16_t addr) const = 0;
+  // n words from addr on (addr + n <= kDataWords): one call for a block
+  // (engines override them with a loop that is not a call per word).
+  virtual void write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) write_data(static_cast<std::uint16_t>(addr + i), values[i]);
+  }
+  virtual void read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const {
+    for (std::size_t i = 0; i < n; ++i) out[i] = read_data(static_cast<std::uint16_t>(addr + i));
+  }
   virtual void hand_over_program() = 0;
   virtual void hand_over_data() = 0;
   virtual bool program_ready() const = 0;

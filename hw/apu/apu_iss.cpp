@@ -4,6 +4,7 @@
 #include "apu_iss.hpp"
 
 #include "fp24.hpp"
+#include "fp24_arith_inline.hpp"
 
 namespace mc1::apu {
 
@@ -102,6 +103,16 @@ void Iss::write_data(std::uint16_t addr, std::uint32_t value) {
 
 std::uint32_t Iss::read_data(std::uint16_t addr) const { return data_[dsel_ ^ 1][addr % kDataWords]; }
 
+void Iss::write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
+  auto& bank = data_[dsel_ ^ 1];
+  for (std::size_t i = 0; i < n; ++i) bank[(addr + i) % kDataWords] = values[i] & kMask24;
+}
+
+void Iss::read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const {
+  const auto& bank = data_[dsel_ ^ 1];
+  for (std::size_t i = 0; i < n; ++i) out[i] = bank[(addr + i) % kDataWords];
+}
+
 void Iss::start(std::uint16_t pc) {
   if (state_ == RunState::Running) return;  // only an idle APU starts (Clarification 8)
   if (program_ready_) {
@@ -191,6 +202,7 @@ MC1_HOT Stall Iss::stall_reason(const DecodedWord& dw) const {
   // registers with a write visible at cycle_ + k or later, k going down: a
   // write of latency k collides with (or would be overtaken by) those.
   std::uint64_t late = 0, waw = 0;
+#pragma GCC unroll 16
   for (int k = kRing - 1; k >= 1; --k) {
     late |= ring_[(cycle_ + k) % kRing].fmask;
     if (k <= kMaxLatency) waw |= dw.dst_at[k] & late;
@@ -239,11 +251,12 @@ MC1_HOT Fault Iss::check_fault(const DecodedWord& dw, std::uint32_t next) const 
 template <bool kRecord>
 MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec) {
   namespace fp = mc1::fp24;
+  namespace inl = mc1::fp24::inl;  // mul, add, sub, cmp inline: no call per op
   const MicroWord& w = dw.w;
   // Every read below sees the state before this word's writes: FP results
   // and register writes go to future buckets; only the store is immediate.
   if (w.m.en) {
-    const fp::Result r = fp::mul(f_[w.m.a], f_[w.m.b]);
+    const fp::Result r = inl::mul(f_[w.m.a], f_[w.m.b]);
     push_f(kMulLatency, w.m.d, r.value);
     push_flags(kMulLatency, r.flags);
     note_fp(kMulLatency);
@@ -253,9 +266,9 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
     const std::uint32_t x = f_[w.a.a], y = f_[w.a.b];
     fp::Result r{};
     switch (w.a.op) {
-      case AddOp::Add: r = fp::add(x, y); break;
-      case AddOp::Sub: r = fp::sub(x, y); break;
-      case AddOp::Cmp: r = fp::cmp(x, y); break;
+      case AddOp::Add: r = inl::add(x, y); break;
+      case AddOp::Sub: r = inl::sub(x, y); break;
+      case AddOp::Cmp: r = inl::cmp(x, y); break;
       case AddOp::Float: r = fp::from_int(static_cast<std::uint16_t>(x)); break;
       case AddOp::Fix: r = fp::to_int(x); r.value &= 0xFFFF; break;
       case AddOp::Neg: r = fp::neg(x); break;
@@ -345,7 +358,8 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
 }
 
 template <bool kRecord>
-void Iss::clock(CycleRecord* rec) {
+MC1_HOT Stall Iss::clock(CycleRecord* rec) {
+  Stall s = Stall::None;
   int cc = kNoCommit, flags = kNoCommit;
   if constexpr (kRecord) {
     rec->cycle = cycle_;
@@ -361,7 +375,7 @@ void Iss::clock(CycleRecord* rec) {
     --fetching_;  // the program RAM reads the word at pc: nothing issues
   } else if (state_ == RunState::Running) {
     const DecodedWord& dw = decoded_[psel_][pc_];
-    const Stall s = stall_reason(dw);
+    s = stall_reason(dw);
     if (s != Stall::None) {
       ++counters_.stalls[static_cast<int>(s)];
       if constexpr (kRecord) rec->stall = s;
@@ -383,15 +397,41 @@ void Iss::clock(CycleRecord* rec) {
   }
   ++cycle_;
   apply_next();
+  return s;
 }
 
 void Iss::step(CycleRecord& rec) { clock<true>(&rec); }
 
+// No write in flight: every bucket but this cycle's (applied already, taken at
+// the start of the next clock) is empty. (Flags and CC arrive only with an F
+// write or a CMP's CC.)
+bool Iss::writes_landed() const {
+  for (int k = 1; k < kRing; ++k) {
+    const Bucket& b = ring_[(cycle_ + k) % kRing];
+    if (b.nf | b.na | b.cc_valid) return false;
+  }
+  return true;
+}
+
 std::uint64_t Iss::run(std::uint64_t max_cycles) {
   std::uint64_t n = 0;
   while (n < max_cycles && state_ == RunState::Running) {
-    clock<false>(nullptr);
+    const Stall s = clock<false>(nullptr);
     ++n;
+    if (s == Stall::Bank && n < max_cycles && writes_landed()) {
+      // A word waiting for a bank the MPU has not handed over waits every
+      // cycle until the call returns (the MPU acts between calls, and `bank`
+      // comes first in the stall order); with no write left in flight each of
+      // those cycles only counts a bank stall: clock them all at once.
+      const std::uint64_t k = max_cycles - n;
+      Bucket& b = ring_[cycle_ % kRing];
+      b.nf = b.na = 0;
+      b.cc_valid = b.flags_commit = false;
+      b.flags = 0;
+      counters_.stalls[static_cast<int>(Stall::Bank)] += k;
+      cycle_ += k;
+      n = max_cycles;
+    }
   }
   return n;
 }

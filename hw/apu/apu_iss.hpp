@@ -51,6 +51,8 @@ class Iss final : public ApuEngine {
   void write_program(std::uint16_t addr, const Encoded& word) override;
   void write_data(std::uint16_t addr, std::uint32_t value) override;
   std::uint32_t read_data(std::uint16_t addr) const override;
+  void write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) override;
+  void read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const override;
   void hand_over_program() override { program_ready_ = true; }
   void hand_over_data() override { data_ready_ = true; }
   bool program_ready() const override { return program_ready_; }
@@ -102,8 +104,10 @@ class Iss final : public ApuEngine {
   };
   static constexpr int kRing = pow2_above(kMaxLatency);
 
+  // One cycle; returns the stall reason (None if it issued or did not run).
   template <bool kRecord>
-  void clock(CycleRecord* rec);
+  Stall clock(CycleRecord* rec);
+  bool writes_landed() const;
   void apply_next();
   template <bool kRecord>
   void take_due(CycleRecord* rec, int& cc, int& flags);

@@ -11,6 +11,8 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "microword.hpp"
 
@@ -29,7 +31,7 @@ class RtlBackdoor {
   static Signal program_bank(int bank) { return bank & 1 ? Signal::ProgramBank1 : Signal::ProgramBank0; }
   static Signal data_bank(int bank) { return bank & 1 ? Signal::DataBank1 : Signal::DataBank0; }
 
-  explicit RtlBackdoor(Vapu_core& top) : top_(top) {}
+  explicit RtlBackdoor(Vapu_core& top);
 
   // A program or data bank by number (0, 1), whoever owns it now.
   void write_program(int bank, std::uint16_t addr, const Encoded& word);
@@ -40,8 +42,26 @@ class RtlBackdoor {
   std::uint32_t freg_array(int i) const;
   std::uint16_t areg_array(int i) const;
 
+  // The two clock edges without eval(), for when no input and no bank word
+  // has changed since the last eval() (RtlEngine::clock). Verilator 5's
+  // eval() first recomputes the logic that depends on the inputs (its `ico`
+  // region; the same values again here), then, on a rising edge of clk
+  // against the clk of the eval() before, runs the `nba` region: the
+  // flip-flops, then the logic that depends on them. So a rising edge is the
+  // nba region alone, and a falling edge only notes clk = 0.
+  void rising_edge_unchanged();
+  void clock_low_unchanged();
+
+  // Every bit of the model's state except the four bank memories, which only
+  // a store that issues or an MPU write changes (the fast path's fixed-point
+  // test, RtlEngine::run).
+  using Snapshot = std::vector<unsigned char>;
+  void snapshot(Snapshot& s) const;
+  bool same_state(const Snapshot& s) const;
+
  private:
   Vapu_core& top_;
+  std::vector<std::pair<const unsigned char*, std::size_t>> state_;  // the root's bytes but the banks
 };
 
 }  // namespace mc1::apu

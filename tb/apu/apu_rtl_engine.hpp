@@ -38,6 +38,7 @@ class RtlEngine final : public ApuEngine {
   void write_program(std::uint16_t addr, const Encoded& word) override;
   void write_data(std::uint16_t addr, std::uint32_t value) override;
   std::uint32_t read_data(std::uint16_t addr) const override;
+  void write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) override;
   void hand_over_program() override;
   void hand_over_data() override;
   bool program_ready() const override;
@@ -80,6 +81,7 @@ class RtlEngine final : public ApuEngine {
   std::unique_ptr<Vapu_core> top_;
   std::unique_ptr<VerilatedFstC> fst_;
   std::unique_ptr<RtlBackdoor> backdoor_;  // into *top_
+  RtlBackdoor::Snapshot snapshot_;         // run()'s fixed-point test
   std::uint64_t cycle_ = 0;
   bool dump_pending_ = false;  // MPU inputs changed since the last waveform dump
   std::uint64_t from_ = 0, to_ = ~std::uint64_t{0};  // the dump window (ps)
@@ -87,6 +89,9 @@ class RtlEngine final : public ApuEngine {
   std::uint64_t last_dump_ = 0;
   std::uint16_t bank_kernel_[2] = {0, 0};
   std::uint32_t kernel_code_ = 0;  // the FST code of TOP.mc1.kernel_id
+  // An MPU call changed an input or a bank word since the last eval(): the
+  // next edge is a full eval() (clock()).
+  bool changed_ = true;
 };
 
 }  // namespace mc1::apu

@@ -1,0 +1,88 @@
+// The multiplier's and the adder unit's operations (docs/fp24.md,
+// "Operations") as inline functions: fp24_arith.cpp's mul(), add(), sub() and
+// cmp() are these, and the ISS calls them directly so that its hot loop has no
+// call per FP op. One definition, so the model and the ISS cannot differ; the
+// fp24 exhaustive and random regressions test it through either.
+//
+// Each op checks for "both operands normal" first; anything else (a zero,
+// infinity or NaN after DAZ) goes to a cold out-of-line routine.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <utility>
+
+#include "fp24.hpp"
+#include "fp24_bits.hpp"
+
+namespace mc1::fp24 {
+namespace detail {
+
+// fp24_arith.cpp. Some operand is a zero, infinity or NaN (after DAZ); for
+// add, b already carries the sign it is added with.
+Result mul_special(Bits a, Bits b);
+Result add_special(Bits a, Bits b);
+
+// Sum of two normal numbers of any sign. Significands are placed at bit 40
+// (msb at 56) so that an alignment shift of up to 40 loses nothing and a
+// larger one is caught by the sticky bit; the result msb stays at >= 55
+// whenever bits were lost, far above the sticky bit.
+[[gnu::always_inline]] inline Result add_normal(Bits a, Bits b) {
+  constexpr int kPos = 40;
+  // Order by magnitude so the difference of significands is never negative.
+  if ((b & bits::kMagMask) > (a & bits::kMagMask)) std::swap(a, b);
+  const int d = std::min(bits::exp_of(a) - bits::exp_of(b), 63);
+  const std::uint64_t big = std::uint64_t{bits::sig_of(a)} << kPos;
+  const std::uint64_t small_full = std::uint64_t{bits::sig_of(b)} << kPos;
+  std::uint64_t small = small_full >> d;
+  small |= (small << d) != small_full;  // sticky
+  const std::uint64_t m = bits::sign_of(a) == bits::sign_of(b) ? big + small : big - small;
+  if (m == 0) return {0, 0};  // x + (-x) = +0
+  // big stands for 2^(ea - kBias) * big / 2^(kPos + 16).
+  const auto n = bits::normalize(m, bits::exp_of(a) - kBias - kPos - kFracBits);
+  return bits::round_pack(bits::sign_of(a), n.exp, n.sig);
+}
+
+}  // namespace detail
+
+namespace inl {
+
+[[gnu::always_inline]] inline Result mul(Bits a, Bits b) {
+  a &= bits::kMask24;
+  b &= bits::kMask24;
+  if (__builtin_expect(!(bits::is_normal(a) && bits::is_normal(b)), 0))
+    return detail::mul_special(bits::flush(a), bits::flush(b));
+  // Product of two 17-bit significands: 2^32 <= p < 2^34, exact in 64 bits.
+  const std::uint64_t p = std::uint64_t{bits::sig_of(a)} * bits::sig_of(b);
+  const int k = bits::exp_of(a) + bits::exp_of(b) - 2 * kBias - 2 * kFracBits;
+  const auto n = bits::normalize(p, k);
+  return bits::round_pack(bits::sign_of(a) != bits::sign_of(b), n.exp, n.sig);
+}
+
+[[gnu::always_inline]] inline Result add(Bits a, Bits b) {
+  a &= bits::kMask24;
+  b &= bits::kMask24;
+  if (__builtin_expect(!(bits::is_normal(a) && bits::is_normal(b)), 0))
+    return detail::add_special(bits::flush(a), bits::flush(b));
+  return detail::add_normal(a, b);
+}
+
+// a - b is a + (-b) exactly, signed zeros included: (-0) - (+0) = (-0) + (-0).
+// Flipping the sign of a NaN leaves a NaN, which add() turns canonical.
+[[gnu::always_inline]] inline Result sub(Bits a, Bits b) { return add(a, b ^ kSignBit); }
+
+[[gnu::always_inline]] inline Result cmp(Bits a, Bits b) {
+  a = bits::flush(a);
+  b = bits::flush(b);
+  if (bits::is_nan(a) || bits::is_nan(b)) return {kUN, kNV};
+  // Signed magnitudes order like the values; zeros of either sign map to 0.
+  const auto key = [](Bits x) {
+    const auto mag = static_cast<std::int32_t>(x & bits::kMagMask);
+    return bits::sign_of(x) ? -mag : mag;
+  };
+  const std::int32_t ka = key(a), kb = key(b);
+  return {static_cast<Bits>(ka < kb ? kLT : (ka == kb ? kEQ : kGT)), 0};
+}
+
+}  // namespace inl
+}  // namespace mc1::fp24
