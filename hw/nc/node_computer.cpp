@@ -7,6 +7,7 @@
 
 #include "apu_iss.hpp"
 #include "sc_time_conv.hpp"
+#include "sc_kernel.hpp"
 
 namespace mc1::nc {
 namespace {
@@ -347,7 +348,10 @@ void NodeComputer::run() {
     finished();
   } catch (const Killed&) {
     die();
+  } catch (const sc_core::sc_unwind_exception&) {
+    throw;  // killed at the end of the simulation (unwind_threads): not a failure
   } catch (const std::exception& e) {
+    unwind_threads();  // the error ends the simulation: nothing waits on
     SC_REPORT_ERROR(name(), e.what());
   }
 }

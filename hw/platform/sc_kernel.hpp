@@ -1,0 +1,100 @@
+// The end of a simulation and of a SystemC kernel (docs/reliability.md,
+// "Sanitizers").
+//
+// SystemC 2.3.4 leaves every SC_THREAD that has not returned suspended in
+// its wait() when sc_start() returns, and deleting the kernel unmaps the
+// thread's coroutine stack without unwinding it: what the thread's frames
+// own (the firmware's vectors and strings, the HDLC pump's queues) is never
+// freed, and LeakSanitizer reports it (docs/reliability.md). unwind_threads()
+// kills those threads (sc_process_handle::kill: the thread's wait() throws
+// sc_core::sc_unwind_exception and its frames unwind), at the current
+// simulated time: no process runs on, no time passes.
+//
+// A thread that catches std::exception or `...` around a wait() must rethrow
+// sc_core::sc_unwind_exception first (it is a std::exception):
+//   catch (const sc_core::sc_unwind_exception&) { throw; }
+#pragma once
+
+#include <systemc>
+#include <vector>
+
+#include "sysc/kernel/sc_dynamic_processes.h"
+
+namespace mc1 {
+
+namespace detail {
+
+inline void live_threads(const std::vector<sc_core::sc_object*>& objects, const sc_core::sc_process_handle& self,
+                         std::vector<sc_core::sc_process_handle>& out) {
+  for (sc_core::sc_object* o : objects) {
+    const sc_core::sc_process_handle h(o);
+    if (h.valid() && h != self && !h.terminated() &&
+        (h.proc_kind() == sc_core::SC_THREAD_PROC_ || h.proc_kind() == sc_core::SC_CTHREAD_PROC_))
+      out.push_back(h);
+    live_threads(o->get_child_objects(), self, out);
+  }
+}
+
+inline void kill_all(const std::vector<sc_core::sc_process_handle>& threads) {
+  for (sc_core::sc_process_handle h : threads)
+    if (!h.terminated()) h.kill();
+}
+
+}  // namespace detail
+
+// Unwinds every thread process of the current kernel that has not ended
+// (under `root`, if given; never the caller, when called from a process).
+// Call it while the modules are alive:
+// - after sc_start() returned (paused): a method spawned for it kills the
+//   threads in one zero-time delta cycle (SystemC can kill a thread only
+//   from a process);
+// - from a process that is about to end the simulation with an error
+//   (SC_REPORT_ERROR throws out of sc_start(), after which the kernel runs
+//   no process any more).
+// Does nothing before the simulation has started, after sc_stop(), or once
+// an error has ended it.
+inline void unwind_threads(const sc_core::sc_object* root = nullptr) {
+  sc_core::sc_simcontext* k = sc_core::sc_get_curr_simcontext();
+  if (!sc_core::sc_is_running() || k->get_error()) return;
+  const sc_core::sc_status s = sc_core::sc_get_status();
+  const sc_core::sc_process_handle self =
+      s == sc_core::SC_RUNNING ? sc_core::sc_get_current_process_handle() : sc_core::sc_process_handle();
+  if (s == sc_core::SC_RUNNING && !self.valid()) return;  // not in a process: an error is on its way out
+  if (s != sc_core::SC_RUNNING && s != sc_core::SC_PAUSED) return;
+  std::vector<sc_core::sc_process_handle> threads;
+  detail::live_threads(root ? root->get_child_objects() : sc_core::sc_get_top_level_objects(), self, threads);
+  if (threads.empty()) return;
+  if (s == sc_core::SC_RUNNING) {
+    detail::kill_all(threads);
+    return;
+  }
+  sc_core::sc_spawn_options o;
+  o.spawn_method();
+  // The method runs once, within this sc_start() (no sensitivity): it holds
+  // no handle afterwards, so the killed threads are deleted with `threads`.
+  sc_core::sc_spawn([&threads] { detail::kill_all(threads); }, sc_core::sc_gen_unique_name("mc1_unwind"), &o);
+  sc_core::sc_start(sc_core::SC_ZERO_TIME);
+  // Drops the killed threads' cancelled timeouts from the event queue (the
+  // kernel would otherwise keep them until its next time step).
+  (void)sc_core::sc_pending_activity_at_future_time();
+}
+
+// SystemC elaborates once per kernel: a fresh one for the next
+// elaboration. The previous kernel is deleted, with all it still holds (its
+// processes, their stacks, its event queue); its modules must be destroyed
+// already, its threads unwound (unwind_threads) while they were alive.
+// Except the kernel libsystemc made when it was loaded: the library's own
+// static objects (sc_process_handle::non_event) belong to it and reach it
+// when they are destroyed at exit, so it is kept (reachable, not leaked).
+inline void fresh_kernel() {
+  static sc_core::sc_simcontext* const library_kernel = sc_core::sc_get_curr_simcontext();
+  sc_core::sc_simcontext* old = sc_core::sc_curr_simcontext;
+  // A destroyed event's pending timed notification stays in the queue,
+  // cancelled, until the kernel looks for its next time: free them now.
+  if (old) (void)sc_core::sc_pending_activity_at_future_time(old);
+  sc_core::sc_curr_simcontext = new sc_core::sc_simcontext();
+  sc_core::sc_default_global_context = sc_core::sc_curr_simcontext;
+  if (old != library_kernel) delete old;
+}
+
+}  // namespace mc1
