@@ -295,7 +295,7 @@ FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_pa
   }
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    sc_core::sc_start();
+    sc_run();
   } catch (const std::exception& e) {
     throw std::runtime_error(e.what() + nc_faults(*sys));
   }
