@@ -120,10 +120,14 @@ inline void unwind_threads(const sc_core::sc_object* root = nullptr) {
   }
   sc_core::sc_spawn_options o;
   o.spawn_method();
-  // The method runs once, within this sc_start() (no sensitivity): it holds
-  // no handle afterwards, so the killed threads are deleted with `threads`.
-  sc_core::sc_spawn([&threads] { detail::kill_all(threads); }, sc_core::sc_gen_unique_name("mc1_unwind"), &o);
+  // The method runs once, within this sc_start() (no sensitivity), and is
+  // then ended itself (a method never ends on its own, and a spawned one
+  // belongs to no process table: it would be leaked with the kernel). It
+  // holds no handle afterwards: the killed threads go with `threads`.
+  sc_core::sc_process_handle reaper = sc_core::sc_spawn(
+      [&threads] { detail::kill_all(threads); }, sc_core::sc_gen_unique_name("mc1_unwind"), &o);
   sc_run(sc_core::SC_ZERO_TIME);
+  reaper.kill();
   // Drops the killed threads' cancelled timeouts from the event queue (the
   // kernel would otherwise keep them until its next time step).
   (void)sc_core::sc_pending_activity_at_future_time();
