@@ -18,6 +18,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "cmdline.hpp"
@@ -28,6 +29,7 @@
 #include "fp24_rtl.hpp"
 #include "fp24_vectors.hpp"
 #include "json.hpp"
+#include "shard_report.hpp"
 
 namespace {
 
@@ -131,13 +133,7 @@ void add_options(CLI::App& app, Options& o, std::string& ops, std::string& shard
 
 // "K/N" with 1 <= K <= N < 2^32.
 void parse_shard(const std::string& text, Options& o) {
-  unsigned long long k = 0, n = 0;
-  char end = 0;
-  if (std::sscanf(text.c_str(), "%llu/%llu%c", &k, &n, &end) != 2 || text.find_first_not_of("0123456789/") != text.npos ||
-      n == 0 || k == 0 || k > n || n >= (1ull << 32))
-    throw cli::UsageError("--shard: '" + text + "' is not K/N with 1 <= K <= N < 2^32");
-  o.shard = k;
-  o.shards = n;
+  std::tie(o.shard, o.shards) = mc1::shard::parse_shard("--shard", text);
 }
 
 // The --vectors file, every line checked before anything runs; the ops it
@@ -252,9 +248,7 @@ struct Plan {
   // N shards cover it exactly once, and each shard gets its share of every
   // op and source (their costs differ a hundredfold).
   void add(const Options& o, Op op, Source source, std::uint64_t total) {
-    using u128 = unsigned __int128;
-    const std::uint64_t first = std::uint64_t(u128(total) * (o.shard - 1) / o.shards);
-    const std::uint64_t end = std::uint64_t(u128(total) * o.shard / o.shards);
+    const auto [first, end] = mc1::shard::shard_range(total, o.shard, o.shards);
     if (end == first) return;
     segments.push_back({op, source, first, end - first, jobs});
     jobs += (end - first + kChunk - 1) / kChunk;

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
+#include <iterator>
 
 #include "json.hpp"
 #include "scene.hpp"
+#include "shard_report.hpp"
 
 namespace mc1::fp24::tb {
 namespace {
@@ -24,93 +24,16 @@ const char* const kRunKeys[] = {"program", "vectors_file", "seed", "random_pairs
 const char* const kCounts[] = {"vectors", "rtl_vs_model", "model_vs_oracle", "not_correctly_rounded", "unfaithful",
                                "model_vs_golden"};
 
-struct Report {
-  std::string file;
-  Value root;
-  std::uint64_t shard = 0, shards = 0;
-};
-
-Value number_value(double n) {
-  Value v;
-  v.type = Type::number;
-  v.number = n;
-  return v;
-}
-
-Value string_value(const std::string& text) {
-  Value v;
-  v.type = Type::string;
-  v.string = text;
-  return v;
-}
-
-std::string where(const Report& r, const Value& v) { return r.file + ":" + std::to_string(v.line); }
-
-std::string serialize(const Value& v) {
-  switch (v.type) {
-    case Type::null: return "null";
-    case Type::boolean: return v.boolean ? "true" : "false";
-    case Type::string: return json::quote(v.string);
-    case Type::number: {
-      char buf[32];
-      if (v.number == std::floor(v.number) && std::fabs(v.number) < 9007199254740992.0)
-        std::snprintf(buf, sizeof buf, "%.0f", v.number);
-      else
-        std::snprintf(buf, sizeof buf, "%.6g", v.number);
-      return buf;
-    }
-    case Type::array: {
-      std::string s = "[";
-      for (std::size_t i = 0; i < v.items.size(); ++i) s += (i ? ", " : "") + serialize(v.items[i]);
-      return s + "]";
-    }
-    case Type::object: {
-      std::string s = "{";
-      for (std::size_t i = 0; i < v.members.size(); ++i)
-        s += (i ? ", " : "") + json::quote(v.members[i].first) + ": " + serialize(v.members[i].second);
-      return s + "}";
-    }
-  }
-  return "null";
-}
-
-const Value& member(const Report& r, const Value& object, const char* key, Type type) {
-  const Value* v = object.type == Type::object ? object.find(key) : nullptr;
-  if (v == nullptr) throw cli::UsageError(where(r, object) + ": no \"" + key + "\"");
-  if (v->type != type && v->type != Type::null)
-    throw cli::UsageError(where(r, *v) + ": \"" + key + "\" is " + json::type_name(v->type) + ", not " +
-                          json::type_name(type));
-  return *v;
-}
-
-// `key` of `root` as JSON text; "" if absent.
-std::string field(const Value& root, const char* key) {
-  const Value* v = root.find(key);
-  return v ? serialize(*v) : "";
-}
-
-Value* mutable_member(Value& object, const std::string& key) {
-  for (auto& [k, v] : object.members)
-    if (k == key) return &v;
-  return nullptr;
-}
+using shard::Report;
+using shard::member;
+using shard::mutable_member;
+using shard::number_value;
+using shard::serialize;
+using shard::string_value;
+using shard::where;
 
 Report read(const std::string& file) {
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!in) throw cli::UsageError(file + ": cannot read");
-  Report r{file, json::parse(text.str(), file)};
-  const Value& schema = member(r, r.root, "schema", Type::string);
-  if (schema.string != "fp24-regress/1")
-    throw cli::UsageError(where(r, schema) + ": schema '" + schema.string + "', not fp24-regress/1");
-  const Value& shard = member(r, r.root, "shard", Type::string);
-  unsigned long long k = 0, n = 0;
-  char end = 0;
-  if (std::sscanf(shard.string.c_str(), "%llu/%llu%c", &k, &n, &end) != 2 || k < 1 || k > n)
-    throw cli::UsageError(where(r, shard) + ": shard '" + shard.string + "' is not K/N (a merged report?)");
-  r.shard = k;
-  r.shards = n;
+  Report r = shard::read_report(file, "fp24-regress/1");
   for (const Value& op : member(r, r.root, "ops", Type::array).items) {
     member(r, op, "op", Type::string);
     for (const char* key : kCounts) member(r, op, key, Type::number);
@@ -128,17 +51,9 @@ Report read(const std::string& file) {
 
 // Every report one shard of the same run, and all shards there once.
 void check_same_run(const std::vector<Report>& reports) {
+  shard::check_same_run(reports, std::vector<std::string>(std::begin(kRunKeys), std::end(kRunKeys)));
   const Report& first = reports.front();
-  std::vector<bool> seen(first.shards + 1, false);
   for (const Report& r : reports) {
-    if (r.shards != first.shards)
-      throw cli::UsageError(r.file + ": shard of " + std::to_string(r.shards) + ", " + first.file + " of " +
-                            std::to_string(first.shards));
-    if (seen[r.shard]) throw cli::UsageError(r.file + ": shard " + std::to_string(r.shard) + " given twice");
-    seen[r.shard] = true;
-    for (const char* key : kRunKeys)
-      if (field(r.root, key) != field(first.root, key))
-        throw cli::UsageError(r.file + ": \"" + key + "\" differs from " + first.file + "'s: not the same run");
     const Value& ops = *r.root.find("ops");
     const Value& ops0 = *first.root.find("ops");
     bool same = ops.items.size() == ops0.items.size();
@@ -147,9 +62,6 @@ void check_same_run(const std::vector<Report>& reports) {
              serialize(member(first, ops0.items[i], "op", Type::string));
     if (!same) throw cli::UsageError(r.file + ": ops differ from " + first.file + "'s: not the same run");
   }
-  for (std::uint64_t k = 1; k <= first.shards; ++k)
-    if (!seen[k])
-      throw cli::UsageError("shard " + std::to_string(k) + "/" + std::to_string(first.shards) + " missing");
 }
 
 void add_op(const Report& r, Value& into, const Value& op) {
@@ -229,33 +141,9 @@ std::string summary(const Value& merged, std::size_t shards) {
 }
 
 // The merged report in the layout fp24-regress writes: one op a line.
-std::string layout(const Value& merged) {
-  std::string j = "{\n";
-  for (std::size_t i = 0; i < merged.members.size(); ++i) {
-    const auto& [key, v] = merged.members[i];
-    j += "  " + json::quote(key) + ": ";
-    if (key == "ops") {
-      j += "[\n";
-      for (std::size_t k = 0; k < v.items.size(); ++k)
-        j += "    " + serialize(v.items[k]) + (k + 1 < v.items.size() ? ",\n" : "\n");
-      j += "  ]";
-    } else {
-      j += serialize(v);
-    }
-    j += i + 1 < merged.members.size() ? ",\n" : "\n";
-  }
-  return j + "}\n";
-}
+std::string layout(const Value& merged) { return shard::layout(merged, {"ops"}); }
 
-bool write(const std::string& path, const std::string& text) {
-  std::ofstream f(path);
-  f << text;
-  f.close();
-  if (f) return true;
-  std::fprintf(stderr, "fp24-regress: %s: write failed\n", path.c_str());
-  std::remove(path.c_str());
-  return false;
-}
+bool write(const std::string& path, const std::string& text) { return shard::write_text(path, text, "fp24-regress"); }
 
 }  // namespace
 

@@ -4,10 +4,12 @@
 # and slurmd in a temporary directory), a 4-shard fp24-regress sweep as a job
 # array with its merge job after it (tools/slurm/fp24-sweep.sh --wait), the
 # merged report compared with the unsharded run's; a sweep whose shards fail
-# exits non-zero with no merged report; the daemons stopped.
-#   tests/cluster_test.sh FP24_REGRESS SOURCE_DIR
+# exits non-zero with no merged report; then a 3-shard `mc1 sweep` of a
+# 16-point grid (tools/slurm/mc1-sweep.sh --wait), its merged report
+# checked against the unsharded run's; the daemons stopped.
+#   tests/cluster_test.sh FP24_REGRESS SOURCE_DIR MC1
 set -eu
-regress=$1 src=$2
+regress=$1 src=$2 mc1=$3
 # Exit 77 (CTest: skipped) where a local SLURM cannot run at all.
 if [ "$(id -u)" -ne 0 ]; then echo "cluster_test: skipped: slurmd needs root" >&2; exit 77; fi
 for p in munged mungekey slurmctld slurmd sbatch; do
@@ -39,3 +41,20 @@ if "$src/tools/slurm/fp24-sweep.sh" --wait 2 "$dir/bad" "$regress" --ops fma >/d
 fi
 grep -q "no merged report: a shard failed" "$dir/bad.err" || { cat "$dir/bad.err" >&2; exit 1; }
 grep -q "unknown op 'fma'" "$dir/bad/shard-1.log"
+
+# mc1 sweep as a job array: 16 points in 3 shards, the merge equal to the
+# whole run's but for host figures.
+grid="--scene $src/scenes/tiny.json --size 32x32 --orbit 2 --nodes 1,4 --schedules lpt,static --blocks 8,16x8"
+# shellcheck disable=SC2086
+"$src/tools/slurm/mc1-sweep.sh" --wait 3 "$dir/sweep" "$mc1" $grid >/dev/null
+# shellcheck disable=SC2086
+nice "$mc1" sweep $grid --threads 2 --quiet --out-dir "$dir" --json "$dir/sweep-whole.json"
+"$mc1" sweep --merge "$dir/sweep-whole.json" --json "$dir/sweep-whole-merged.json" --quiet
+sim() { grep -v -e '"shard"' -e wall_seconds -e '"threads"' "$1" | sed 's/, "host_seconds": [0-9.e+-]*//'; }
+sim "$dir/sweep-whole-merged.json" >"$dir/a.sim"
+sim "$dir/sweep/merged.json" >"$dir/b.sim"
+cmp "$dir/a.sim" "$dir/b.sim" || { echo "cluster_test: mc1 sweep's merge differs from the whole run" >&2; exit 1; }
+grep -q '"shard": "all/3"' "$dir/sweep/merged.json"
+[ "$(ls "$dir/sweep/points" | grep -c '^point-.*\.json$')" -eq 16 ] ||
+  { echo "cluster_test: mc1 sweep wrote $(ls "$dir/sweep/points" | wc -l) point files, not 16" >&2; exit 1; }
+echo "cluster_test: mc1 sweep of 16 points in 3 shards merged, equal to the whole run"

@@ -124,6 +124,22 @@ TEST(Mc1RenderProtocol, SceneAndKernelDownloads) {
   // objects of 10 bytes + 6 words, 5 primitives of 3 bytes + 21 words.
   EXPECT_EQ(bytes.size(), 14u * 3 + 5 + (1 + 18) + (1 + 3 * 99) + (2 + 3 * 28) + (4 + 5 * 66));
   EXPECT_THROW(render_nc::decode_scene(rc::Bytes(bytes.begin(), bytes.end() - 1)), rc::ProtocolError);
+  {
+    // A solid of revolution's frustums: their slab (4 words) follows, flagged by
+    // bit 7 of the type byte; the other primitives' records are as before.
+    const render::SceneImage lathe = render::make_scene_image(scene::load_scene(scenes_dir() + "/lathe.json"));
+    const rc::Bytes lb = render_nc::encode_scene(lathe);
+    const render::SceneImage lback = render_nc::decode_scene(lb);
+    EXPECT_EQ(render_nc::encode_scene(lback), lb);
+    std::size_t slabs = 0;
+    for (std::size_t i = 0; i < lathe.prims.size(); ++i) {
+      EXPECT_EQ(lback.prims[i].type, lathe.prims[i].type);
+      EXPECT_EQ(lback.prims[i].w, lathe.prims[i].w);
+      EXPECT_EQ(lback.prims[i].slab, lathe.prims[i].slab);
+      slabs += lathe.prims[i].slab != decltype(lathe.prims[i].slab){};
+    }
+    EXPECT_EQ(slabs, 29u);  // every frustum (docs/scene-format.md "Standard scenes")
+  }
 
   const rc::FramePlan plan = render_nc::frame_plan(img, 8, 8);
   const std::size_t kernels = render::kernel_images().size();
@@ -171,11 +187,12 @@ TEST_F(Mc1Render, SamePngForEveryNodeCountAndSchedule) {
     }
 }
 
-// Section 7's scenes (CSG, solids of revolution), small: the same PNG for
-// 1, 4, 16 and 64 NCs under every schedule, and on the RTL engine.
+// Section 7's scenes (CSG, solids of revolution; tilted: about axes along
+// no world axis), small: the same PNG for 1, 4, 16 and 64 NCs under every
+// schedule, and on the RTL engine.
 TEST_F(Mc1Render, Section7ScenesSamePngForEveryNodeCountScheduleAndEngine) {
   const unsigned w = 32, h = 24;
-  for (const char* scene : {"csg", "lathe"}) {
+  for (const char* scene : {"csg", "lathe", "../tests/scenes/tilted"}) {
     SCOPED_TRACE(scene);
     const FrameReport ref = render_frame(config(1), scene, w, h).report;
     expect_complete(ref);
@@ -653,7 +670,7 @@ TEST_F(Mc1Render, WithinPsnr35OfTheReferenceOnEveryStandardScene) {
     const char* scene;
     unsigned w, h;
   } cases[] = {{"tiny", 32, 32}, {"whitted", 48, 36}, {"room", 48, 36}, {"smooth", 32, 24}, {"teapot", 32, 24},
-               {"csg", 48, 36},  {"lathe", 48, 36}};
+               {"csg", 48, 36},  {"lathe", 48, 36}, {"../tests/scenes/tilted", 48, 36}};
   for (const auto& c : cases) {
     SCOPED_TRACE(c.scene);
     const FrameReport r = render_frame(config(4, rc::Schedule::Lpt, 16), c.scene, c.w, c.h).report;

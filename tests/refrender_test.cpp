@@ -265,6 +265,24 @@ TEST(RefRevolution, ConeAndCylinderFrustums) {
   EXPECT_FALSE(Renderer(s).nearest_hit({{-5, 0, 2.5}, {1, 0, 0}}, hit));  // above the profile
 }
 
+TEST(RefRevolution, TiltedAxisIsClippedToItsSlab) {
+  // A cylinder of radius 1 from height 0 to 2 about the direction (0, 1, 1)
+  // through the origin: a ray along -a meets the end cap's plane only (no
+  // caps); a ray across the axis at height 1 meets the side at distance 1
+  // from the axis; one at height 2.5 misses (beyond the slab, inside the box).
+  scene::Scene s = one_pixel("\"colour\": [1, 1, 1], \"ko\": 1",
+                             "{\"type\": \"revolution\", \"axis\": [0, 1, 1], \"base\": [0, 0, 0], "
+                             "\"profile\": [[1, 0], [1, 2]]}",
+                             "surface");
+  const glm::dvec3 a = glm::normalize(glm::dvec3(0, 1, 1));
+  refrender::Hit hit;
+  ASSERT_TRUE(Renderer(s).nearest_hit({a - glm::dvec3(5, 0, 0), {1, 0, 0}}, hit));
+  EXPECT_NEAR(hit.t, 4.0, 1e-12);
+  expect_colour(hit.normal, {-1, 0, 0});
+  EXPECT_FALSE(Renderer(s).nearest_hit({2.5 * a - glm::dvec3(5, 0, 0), {1, 0, 0}}, hit));
+  EXPECT_FALSE(Renderer(s).nearest_hit({-0.5 * a - glm::dvec3(5, 0, 0), {1, 0, 0}}, hit));
+}
+
 TEST(ImgcmpPsnr, IdenticalIsInfinite) {
   imgcmp::Image a(4, 4);
   EXPECT_TRUE(std::isinf(imgcmp::psnr(a, a)));

@@ -305,7 +305,59 @@ TEST(SceneRevolution, FrustumsOfTheProfile) {
   EXPECT_EQ(error("[[0, 0], [0, 1]]"), "t.json:9: objects[0].primitives[0].profile[1]: a segment on the axis (both radii 0)");
   EXPECT_EQ(error("[[-1, 0], [0, 1]]"), "t.json:9: objects[0].primitives[0].profile[0][0]: must not be negative");
   EXPECT_EQ(error("[[1, 0]]"), "t.json:9: objects[0].primitives[0].profile: expected at least 2 [radius, height] points");
-  EXPECT_EQ(error("[[1, 0], [0, 1]]", "w"), "t.json:9: objects[0].primitives[0].axis: expected \"x\", \"y\" or \"z\"");
+  EXPECT_EQ(error("[[1, 0], [0, 1]]", "w"),
+            "t.json:9: objects[0].primitives[0].axis: expected \"x\", \"y\", \"z\" or a direction [x, y, z]");
+  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"revolution\", \"axis\": [0, 0, 0], \"base\": [0, 0, 0], "
+                                           "\"profile\": [[1, 0], [0, 1]]}"))),
+            "t.json:9: objects[0].primitives[0].axis: the direction must not be 0");
+  // Every segment's slab: the unit axis, half its height, about the box's centre.
+  EXPECT_EQ(cone.slab_axis, glm::dvec3(0, 1, 0));
+  EXPECT_EQ(cone.slab_half, 1.0);
+  EXPECT_EQ(prims[1].slab_half, 0.5);
+}
+
+TEST(SceneRevolution, AnyAxisDirection) {
+  // The same profile about the direction (1, 2, 2) / 3 through (2, 1, -1):
+  // the frustum is the set of x with |x - b|^2 - H^2 <= (H / 2)^2,
+  // H = (x - b).a, on 1 <= H <= 3; its box bounds the end discs of radius
+  // 1.25 * 1.5.
+  Scene s = parse_scene(scene_text(object_with("{\"type\": \"revolution\", \"axis\": [1, 2, 2], \"base\": [2, 1, -1], "
+                                               "\"profile\": [[0.5, 1], [1.5, 3]]}")),
+                        "t.json", "");
+  const Primitive& p = s.objects[0].primitives.at(0);
+  const glm::dvec3 a(1.0 / 3, 2.0 / 3, 2.0 / 3), b(2, 1, -1);
+  EXPECT_NEAR(glm::length(p.slab_axis - a), 0.0, 1e-15);
+  EXPECT_DOUBLE_EQ(p.slab_half, 1.0);
+  const glm::dvec3 centre = 0.5 * (p.box_min + p.box_max);
+  EXPECT_NEAR(glm::length(centre - (b + 2.0 * a)), 0.0, 1e-14);  // on the axis at H = 2
+  auto q = [&](const glm::dvec3& x) {
+    const auto& c = p.coefficients;
+    return c[0] * x.x * x.x + c[1] * x.y * x.y + c[2] * x.z * x.z + c[3] * x.x * x.y + c[4] * x.x * x.z +
+           c[5] * x.y * x.z + c[6] * x.x + c[7] * x.y + c[8] * x.z + c[9];
+  };
+  auto centred = [&](const glm::dvec3& y) {
+    const auto& c = p.coefficients;
+    const auto& l = p.centred_linear;
+    return c[0] * y.x * y.x + c[1] * y.y * y.y + c[2] * y.z * y.z + c[3] * y.x * y.y + c[4] * y.x * y.z +
+           c[5] * y.y * y.z + l[0] * y.x + l[1] * y.y + l[2] * y.z + l[3];
+  };
+  const glm::dvec3 u = glm::normalize(glm::cross(a, glm::dvec3(1, 0, 0)));
+  for (double h : {1.0, 1.7, 3.0})
+    for (double r : {0.0, h / 2, 2.0}) {
+      const glm::dvec3 x = b + h * a + r * u;
+      const double want = r * r - h * h / 4;
+      EXPECT_NEAR(q(x), want, 1e-12) << h << " " << r;
+      EXPECT_NEAR(centred(x - centre), want, 1e-12) << h << " " << r;
+    }
+  for (const glm::dvec3& e : {b + a, b + 3.0 * a})
+    for (const glm::dvec3& v : {glm::normalize(glm::cross(a, glm::dvec3(0, 0, 1))), u})
+      for (double sgn : {-1.0, 1.0}) {
+        const glm::dvec3 x = e + sgn * 1.875 * v;  // on the slab's cylinder: within the box
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_GE(x[k], p.box_min[k] - 1e-12);
+          EXPECT_LE(x[k], p.box_max[k] + 1e-12);
+        }
+      }
 }
 
 TEST(SceneErrors, MeshFile) {

@@ -30,6 +30,17 @@ StepCost& StepCost::operator+=(const StepCost& o) {
   return *this;
 }
 
+KernelCost& KernelCost::operator+=(const KernelCost& o) {
+  apu_cycles += o.apu_cycles;
+  apu_runs += o.apu_runs;
+  batches += o.batches;
+  apu_issued += o.apu_issued;
+  apu_bank_stalls += o.apu_bank_stalls;
+  apu_dependence_stalls += o.apu_dependence_stalls;
+  for (std::size_t u = 0; u < unit_ops.size(); ++u) unit_ops[u] += o.unit_ops[u];
+  return *this;
+}
+
 const char* step_name(Step s) {
   static const char* names[kSteps] = {"step1 transform", "step2 block lists", "s1 hidden surface",
                                       "s2 shadows", "s3 shading", "s4 reflection/transmission",

@@ -76,6 +76,7 @@ struct KernelCost {
   std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
   std::uint64_t apu_dependence_stalls = 0;  // RAW, WAW, CC and drain stalls
   std::array<std::uint64_t, 3> unit_ops{};   // multiplier, adder, function unit
+  KernelCost& operator+=(const KernelCost& o);
 };
 
 enum class Step { Transform, BlockLists, HiddenSurface, Shadows, Shading, Secondary, Output };

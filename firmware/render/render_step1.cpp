@@ -27,6 +27,7 @@ static_assert(image_words::kBMin - image_words::kQ == P_BMIN - P_Q &&
                   image_words::kBMax - image_words::kQ == P_BMAX - P_Q &&
                   image_words::kQL - image_words::kQ == P_QL - P_Q,
               "quadric record");
+static_assert(P_SLABH - P_SLABA == image_words::kSlabH - image_words::kSlabA, "quadric slab record");
 static_assert(XB_MAX - XB_MIN == 3, "view box min xyz, max xyz");
 
 void check_limits(std::size_t lights, std::size_t materials) {
@@ -149,6 +150,10 @@ void add_prims(ViewScene& v, const SceneImage& img, const XformItems& x) {
       std::copy(it.begin() + XE_A, it.begin() + XE_B + 3, w.begin() + P_A);  // A, b
     } else {
       std::copy(p.w.begin() + image_words::kQ, p.w.begin() + image_words::kQL + 4, w.begin() + P_Q);  // a1..a10, box, centred
+      if (p.slab != decltype(p.slab){}) {
+        std::copy(p.slab.begin(), p.slab.end(), w.begin() + P_SLABA);  // axis, half height
+        w[P_SLAB] = 1;
+      }
     }
     v.prims.push_back(w);
     v.prim_object.push_back(p.object);

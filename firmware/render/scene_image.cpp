@@ -127,6 +127,10 @@ SceneImage make_scene_image(const scene::Scene& s) {
           put(pi.w, kBMin, p.box_min);
           put(pi.w, kBMax, p.box_max);
           for (int k = 0; k < 4; ++k) pi.w[kQL + k] = fp24_from_double(p.centred_linear[k]);
+          if (p.slab_half > 0) {
+            for (int k = 0; k < 3; ++k) pi.slab[kSlabA + k] = fp24_from_double(p.slab_axis[k]);
+            pi.slab[kSlabH] = fp24_from_double(p.slab_half);
+          }
           break;
       }
       img.prims.push_back(pi);

@@ -39,6 +39,7 @@ constexpr int kLightPos = 0, kLightI = 3, kLightWords = 6;  // position, intensi
 constexpr int kV0 = 0, kN = 9, kVN = 12, kTriWords = 21;    // triangle: v0 v1 v2, normal, 3 vertex normals
 constexpr int kEllA = 0, kEllB = 9;                         // ellipsoid: A row-major, centre b
 constexpr int kQ = 0, kBMin = 10, kBMax = 13, kQL = 16;     // quadric: a1..a10, clip box, a7..a10 about its centre
+constexpr int kSlabA = 0, kSlabH = 3, kSlabWords = 4;        // PrimImage::slab: axis, half height
 }  // namespace image_words
 
 // World-coordinate primitive as broadcast: polygons are split into triangles
@@ -47,6 +48,9 @@ struct PrimImage {
   int type = kTriangle;
   int object = 0;
   std::array<Word, image_words::kTriWords> w{};  // image_words
+  // Quadric: a solid of revolution's slab, unit axis and half height about
+  // the clip box's centre (all 0: none; broadcast only when present).
+  std::array<Word, image_words::kSlabWords> slab{};
 };
 
 struct MaterialImage {

@@ -8,6 +8,8 @@
 namespace mc1::render_nc {
 namespace {
 
+constexpr unsigned kSlabFollows = 0x80;  // a primitive's type byte: its slab words follow
+
 class Writer {
  public:
   void u8(unsigned v) { b_.push_back(static_cast<std::uint8_t>(v)); }
@@ -111,10 +113,13 @@ rc::Bytes encode_scene(const render::SceneImage& s) {
     w.words(o.box_max);
   }
   w.u32(static_cast<std::uint32_t>(s.prims.size()));
+  // Type byte, bit 7: a solid of revolution's slab follows the words.
   for (const auto& p : s.prims) {
-    w.u8(static_cast<unsigned>(p.type));
+    const bool slab = p.slab != decltype(p.slab){};
+    w.u8(static_cast<unsigned>(p.type) | (slab ? kSlabFollows : 0u));
     w.u16(static_cast<unsigned>(p.object));
     w.words(p.w);
+    if (slab) w.words(p.slab);
   }
   return w.take();
 }
@@ -158,9 +163,11 @@ render::SceneImage decode_scene(const rc::Bytes& b) {
   r.count_check(prims, 3 + 3 * render::image_words::kTriWords);
   s.prims.resize(prims);
   for (auto& p : s.prims) {
-    p.type = static_cast<int>(r.u8());
+    const unsigned type = r.u8();
+    p.type = static_cast<int>(type & ~kSlabFollows);
     p.object = static_cast<int>(r.u16());
     r.words(p.w);
+    if (type & kSlabFollows) r.words(p.slab);
   }
   r.end();
   for (const auto& o : s.objects)

@@ -117,25 +117,24 @@ std::vector<unsigned> parse_list(const std::string& opt, const std::string& text
   return out;
 }
 
-NodeKill parse_kill(const std::string& text) {
-  const std::string opt = "--kill-node";
+namespace {
+
+// K@TIME, the NC and the time of a --kill-node or --cut-line.
+template <class Event>
+Event parse_nc_at(const std::string& opt, const std::string& text) {
   const auto at = text.find('@');
   if (at == std::string::npos) throw CliError(opt + ": bad value '" + text + "' (expected K@TIME, e.g. 3@20ms)");
-  NodeKill k;
-  k.nc = parse_unsigned(opt + " (NC)", text.substr(0, at), 1, 1u << 20);
-  k.time = parse_time(opt, text.substr(at + 1));
-  return k;
+  Event e;
+  e.nc = parse_unsigned(opt + " (NC)", text.substr(0, at), 1, 1u << 20);
+  e.time = parse_time(opt, text.substr(at + 1));
+  return e;
 }
 
-CutLine parse_cut_line(const std::string& text) {
-  const std::string opt = "--cut-line";
-  const auto at = text.find('@');
-  if (at == std::string::npos) throw CliError(opt + ": bad value '" + text + "' (expected K@TIME, e.g. 3@20ms)");
-  CutLine c;
-  c.nc = parse_unsigned(opt + " (NC)", text.substr(0, at), 1, 1u << 20);
-  c.time = parse_time(opt, text.substr(at + 1));
-  return c;
-}
+}  // namespace
+
+NodeKill parse_kill(const std::string& text) { return parse_nc_at<NodeKill>("--kill-node", text); }
+
+CutLine parse_cut_line(const std::string& text) { return parse_nc_at<CutLine>("--cut-line", text); }
 
 void add_fault_options(CLI::App& cmd) {
   value_option(cmd, "ber", "X", "HDLC bit error rate on every line end, both directions (default 0)");
@@ -174,6 +173,16 @@ void add_report_options(CLI::App& cmd) {
   value_option(cmd, "stats", "FILE.json", "write statistics (docs/platform.md \"Statistics\")");
   value_option(cmd, "gantt", "FILE.svg", "write the activity chart of every NC and the RC's dispatches");
   value_option(cmd, "vcd", "FILE.vcd", "trace platform signals (HDLC line busy, image-bus grant/owner)");
+}
+
+void add_threads_option(CLI::App& cmd) {
+  value_option(cmd, "threads", "N",
+               "host threads clocking the NCs' APUs, 1..1024 (default: the machine's cores); the frame, the "
+               "statistics and every simulated time are the same for any N");
+}
+
+void threads_option(const Parsed& a, SystemConfig& cfg) {
+  if (a.has("threads")) cfg.threads = parse_unsigned("--threads", a.get("threads"), 1, 1024);
 }
 
 EngineKind parse_engine(const std::string& s) {

@@ -64,6 +64,9 @@ void add_fault_options(CLI::App& cmd);
 void fault_options(const Parsed& a, SystemConfig& cfg);
 // The files a frame command writes: --out, --stats, --gantt, --vcd.
 void add_report_options(CLI::App& cmd);
+// --threads N (SystemConfig::threads).
+void add_threads_option(CLI::App& cmd);
+void threads_option(const Parsed& a, SystemConfig& cfg);
 // "iss" or "rtl".
 EngineKind parse_engine(const std::string& text);
 // A machine of the default configuration whose NCs can run either engine

@@ -19,6 +19,7 @@
 #include "mc1_cli.hpp"
 #include "mc1_diag.hpp"
 #include "mc1_render_cmd.hpp"
+#include "mc1_sweep_cmd.hpp"
 #include "mc1_system.hpp"
 #include "png_writer.hpp"
 #include "report_writers.hpp"
@@ -56,6 +57,7 @@ void add_frame_options(CLI::App& cmd, const std::string& block_help) {
   cli::value_option(cmd, "engine", "iss|rtl", "APU engine: C++ ISS or verilated RTL core (default iss)");
   cli::value_option(cmd, "size", "WxH", "frame size (default 256x256)");
   cli::value_option(cmd, "block", "B|WxH", block_help);
+  cli::add_threads_option(cmd);
   cli::add_param_options(cmd);
 }
 
@@ -77,6 +79,7 @@ void add_bench_options(CLI::App& cmd) {
 using cli::parse_engine;
 
 void frame_options(const cli::Parsed& a, SystemConfig& cfg) {
+  cli::threads_option(a, cfg);
   if (a.has("engine")) cfg.engine = parse_engine(a.get("engine"));
   if (a.has("size")) std::tie(cfg.width, cfg.height) = cli::parse_size("--size", a.get("size"), false);
   if (a.has("block")) std::tie(cfg.block_w, cfg.block_h) = cli::parse_size("--block", a.get("block"), true);
@@ -231,6 +234,7 @@ void add_commands(CLI::App& app) {
   app.add_subcommand("help", "this text; `mc1 COMMAND --help` for a command's options");
   cli::add_render_options(*app.add_subcommand("render", cli::kRenderDescription));
   cli::add_bench_render_options(*app.add_subcommand("bench-render", cli::kBenchRenderDescription));
+  cli::add_sweep_options(*app.add_subcommand("sweep", cli::kSweepDescription));
   add_diag_options(*app.add_subcommand("diag", kDiagDescription));
   add_bench_options(*app.add_subcommand("bench", kBenchDescription));
   cli::add_param_options(*app.add_subcommand("params", kParamsDescription));
@@ -247,6 +251,7 @@ int run_command(const CLI::App& app, const CLI::App& cmd) {
   if (name == "render") return cli::cmd_render(cmd);
   if (name == "bench-render") return cli::cmd_bench_render(cmd);
   if (name == "bench") return cmd_bench(cmd);
+  if (name == "sweep") return cli::cmd_sweep(cmd);
   return cmd_params(cmd);
 }
 

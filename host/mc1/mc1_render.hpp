@@ -17,6 +17,9 @@ namespace mc1 {
 struct RenderJob {
   std::string scene;               // JSON scene file (docs/scene-format.md)
   unsigned width = 0, height = 0;  // frame size; 0: the scene's camera size
+  // The camera's eye turned about its look-at point around its up vector
+  // (a frame of mc1 sweep --orbit), degrees.
+  double orbit_deg = 0;
 };
 
 struct RenderRun {

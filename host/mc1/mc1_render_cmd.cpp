@@ -54,6 +54,7 @@ void add_render_options(CLI::App& cmd) {
   value_option(cmd, "schedule", "S",
                "lpt: heaviest predicted load first (the paper's, default); fifo: screen order as NCs ask; "
                "static: block i to NC (i mod N) + 1");
+  add_threads_option(cmd);
   add_fault_options(cmd);
   add_param_options(cmd);
   add_report_options(cmd);
@@ -79,6 +80,7 @@ void add_bench_render_options(CLI::App& cmd) {
   value_option(cmd, "big", "WxH|0", "(default 512x512; 0 skips part 3)");
   value_option(cmd, "big-nodes", "N", "(default 64)");
   flag_option(cmd, "rtl", "also run part 4");
+  add_threads_option(cmd);
   add_param_options(cmd);
   value_option(cmd, "json", "FILE", "also write the figures as JSON");
 }
@@ -210,6 +212,7 @@ int cmd_render(const CLI::App& cmd) {
   if (a.has("scene")) job.scene = a.get("scene");
   if (job.scene.empty()) throw CliError("missing SCENE (see --help)");
   frame_options(a, cfg, job);
+  threads_option(a, cfg);
   fault_options(a, cfg);
   if (a.has("trace")) {
     cfg.trace_path = a.get("trace");
@@ -263,6 +266,7 @@ int cmd_bench_render(const CLI::App& cmd) {
   SystemConfig base = machine_config();
   apply_params(cmd, base.timing);
   const Parsed a(cmd);
+  threads_option(a, base);
   const std::string scene = a.get("scene", MC1_SOURCE_DIR "/scenes/whitted.json");
   const auto size = parse_size("--size", a.get("size", "256x256"), false);
   const std::vector<unsigned> nodes = parse_list("--nodes", a.get("nodes", "1,4,16,64"), 1, 4096);

@@ -38,41 +38,43 @@ double apu_utilization_mean(const FrameReport& r) {
   return sum / static_cast<double>(r.ncs.size());
 }
 
-std::string stats_json(const FrameReport& r) {
-  std::ostringstream o;
-  const Picos T = r.frame_time;
-  o << "{\n  \"schema\": \"mc1-stats/1\",\n";
-  o << "  \"engine\": \"" << r.engine << "\",\n  \"nodes\": " << r.nodes << ",\n";
-  if (!r.schedule.empty()) o << "  \"schedule\": \"" << r.schedule << "\",\n";
-  if (!r.scene.empty()) o << "  \"scene\": " << quote(r.scene) << ",\n";
-  o << "  \"image\": {\"width\": " << r.width << ", \"height\": " << r.height << ", \"block_width\": " << r.block_w
-    << ", \"block_height\": " << r.block_h << ", \"blocks\": " << r.blocks
-    << ", \"fm_pixels_written\": " << r.fm_pixels_written << "},\n";
-  o << "  \"faults\": {\"ber\": " << num(r.ber) << ", \"dead_links\": [";
-  for (std::size_t i = 0; i < r.dead_links.size(); ++i)
-    o << (i ? ", " : "") << "{\"nc\": " << r.dead_links[i].nc << ", \"begin_ps\": " << r.dead_links[i].begin
-      << ", \"end_ps\": " << r.dead_links[i].end << "}";
-  o << "], \"kills\": [";
-  for (std::size_t i = 0; i < r.kills.size(); ++i)
-    o << (i ? ", " : "") << "{\"nc\": " << r.kills[i].nc << ", \"time_ps\": " << r.kills[i].time << "}";
-  o << "], \"cut_lines\": [";
-  for (std::size_t i = 0; i < r.cut_lines.size(); ++i)
-    o << (i ? ", " : "") << "{\"nc\": " << r.cut_lines[i].nc << ", \"time_ps\": " << r.cut_lines[i].time << "}";
-  o << "], \"link_downs\": [";
-  for (std::size_t i = 0; i < r.link_downs.size(); ++i) {
-    const rc::LinkDown& x = r.link_downs[i];
-    o << (i ? ", " : "") << "{\"time_ps\": " << x.time << ", \"taken_ps\": " << x.taken << ", \"nc\": " << x.nc
-      << ", \"reason\": " << quote(hdlc::link_down_reason_name(x.reason)) << ", \"requeued\": " << x.requeued << "}";
-  }
-  o << "], \"timeouts\": [";
-  for (std::size_t i = 0; i < r.timeouts.size(); ++i) {
-    const rc::Timeout& x = r.timeouts[i];
-    o << (i ? ", " : "") << "{\"time_ps\": " << x.time << ", \"nc\": " << x.nc << ", \"" << (x.list_job ? "list_job" : "block")
-      << "\": " << x.block << ", \"requeued\": " << x.requeued << "}";
-  }
-  o << "]},\n";
-  o << "  \"simulated_time_ps\": " << T << ",\n  \"simulated_time_s\": " << num(T * 1e-12) << ",\n";
+namespace {
 
+// One "name": [ ... ] list of objects, each written by `item`.
+template <class T, class F>
+void json_list(std::ostream& o, const char* name, const std::vector<T>& v, F item) {
+  o << "\"" << name << "\": [";
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    o << (i ? ", " : "");
+    item(v[i]);
+  }
+  o << "]";
+}
+
+void faults_json(std::ostream& o, const FrameReport& r) {
+  o << "  \"faults\": {\"ber\": " << num(r.ber) << ", ";
+  json_list(o, "dead_links", r.dead_links, [&](const auto& x) {
+    o << "{\"nc\": " << x.nc << ", \"begin_ps\": " << x.begin << ", \"end_ps\": " << x.end << "}";
+  });
+  o << ", ";
+  json_list(o, "kills", r.kills, [&](const auto& x) { o << "{\"nc\": " << x.nc << ", \"time_ps\": " << x.time << "}"; });
+  o << ", ";
+  json_list(o, "cut_lines", r.cut_lines,
+            [&](const auto& x) { o << "{\"nc\": " << x.nc << ", \"time_ps\": " << x.time << "}"; });
+  o << ", ";
+  json_list(o, "link_downs", r.link_downs, [&](const rc::LinkDown& x) {
+    o << "{\"time_ps\": " << x.time << ", \"taken_ps\": " << x.taken << ", \"nc\": " << x.nc
+      << ", \"reason\": " << quote(hdlc::link_down_reason_name(x.reason)) << ", \"requeued\": " << x.requeued << "}";
+  });
+  o << ", ";
+  json_list(o, "timeouts", r.timeouts, [&](const rc::Timeout& x) {
+    o << "{\"time_ps\": " << x.time << ", \"nc\": " << x.nc << ", \"" << (x.list_job ? "list_job" : "block")
+      << "\": " << x.block << ", \"requeued\": " << x.requeued << "}";
+  });
+  o << "},\n";
+}
+
+void host_json(std::ostream& o, const FrameReport& r) {
   double apu_host = 0;
   std::uint64_t apu_cycles = 0;
   for (const NcReport& n : r.ncs) {
@@ -82,9 +84,13 @@ std::string stats_json(const FrameReport& r) {
   o << "  \"host\": {\"seconds\": " << num(r.host_seconds) << ", \"apu_engine_seconds\": " << num(apu_host)
     << ", \"apu_engine_share\": " << num(r.host_seconds > 0 ? apu_host / r.host_seconds : 0)
     << ", \"apu_cycles\": " << apu_cycles << "},\n";
+}
 
-  // Where the frame's time went: the serial download, step 1, step 2 (the
-  // block lists) and step 3 (the blocks), as the slowest NC saw them.
+// Where the frame's time went: the serial download, step 1, step 2 (the
+// block lists) and step 3 (the blocks), as the slowest NC saw them; then the
+// per-step counters and the ray counts.
+void phases_json(std::ostream& o, const FrameReport& r) {
+  const Picos T = r.frame_time;
   const Picos downloaded = milestone_time(r, "downloaded"), step1 = milestone_time(r, "step1");
   o << "  \"phases\": {";
   bool first = true;
@@ -97,19 +103,20 @@ std::string stats_json(const FrameReport& r) {
   phase("step1_done", step1);
   phase("lists_done", r.rc.lists_done);
   o << (first ? "" : ", ") << "\"apu_utilization_mean\": " << num(apu_utilization_mean(r)) << "},\n";
-  if (!r.steps.empty()) {
-    o << "  \"steps\": [\n";
-    for (std::size_t i = 0; i < r.steps.size(); ++i) {
-      const StepReport& x = r.steps[i];
-      o << "    {\"step\": " << quote(x.name) << ", \"apu_cycles\": " << x.apu_cycles << ", \"apu_runs\": " << x.apu_runs
-        << ", \"batches\": " << x.batches << ", \"word_copies\": " << x.word_copies
-        << ", \"list_elements\": " << x.list_elements << ", \"sort_compares\": " << x.sort_compares
-        << ", \"apu_commands\": " << x.apu_commands << "}" << (i + 1 < r.steps.size() ? "," : "") << "\n";
-    }
-    o << "  ],\n  \"rays\": {\"eye\": " << r.rays << ", \"shadow\": " << r.shadow_rays
-      << ", \"secondary\": " << r.secondary_rays << "},\n";
+  if (r.steps.empty()) return;
+  o << "  \"steps\": [\n";
+  for (std::size_t i = 0; i < r.steps.size(); ++i) {
+    const StepReport& x = r.steps[i];
+    o << "    {\"step\": " << quote(x.name) << ", \"apu_cycles\": " << x.apu_cycles << ", \"apu_runs\": " << x.apu_runs
+      << ", \"batches\": " << x.batches << ", \"word_copies\": " << x.word_copies
+      << ", \"list_elements\": " << x.list_elements << ", \"sort_compares\": " << x.sort_compares
+      << ", \"apu_commands\": " << x.apu_commands << "}" << (i + 1 < r.steps.size() ? "," : "") << "\n";
   }
+  o << "  ],\n  \"rays\": {\"eye\": " << r.rays << ", \"shadow\": " << r.shadow_rays
+    << ", \"secondary\": " << r.secondary_rays << "},\n";
+}
 
+void rc_json(std::ostream& o, const FrameReport& r) {
   o << "  \"rc\": {\"busy_ps\": " << r.rc.busy << ", \"messages_sent\": " << r.rc.messages_sent
     << ", \"messages_received\": " << r.rc.messages_received << ", \"bytes_sent\": " << r.rc.bytes_sent
     << ", \"bytes_received\": " << r.rc.bytes_received << ", \"setup_done_ps\": " << r.rc.setup_done
@@ -117,42 +124,44 @@ std::string stats_json(const FrameReport& r) {
     << ", \"download_bytes\": " << r.rc.download_bytes << ", \"lists_done_ps\": " << r.rc.lists_done
     << ", \"sort_compares\": " << r.rc.sort_compares << ", \"late_reports\": " << r.rc.late_reports
     << ", \"reassigned\": " << r.rc.reassigned << ", \"revived\": " << r.rc.revived << "},\n";
+}
 
-  o << "  \"nc\": [\n";
-  for (std::size_t i = 0; i < r.ncs.size(); ++i) {
-    const NcReport& n = r.ncs[i];
-    o << "    {\"id\": " << n.id << ", \"busy_ps\": " << n.busy << ", \"waiting_ps\": " << n.wait_rc + n.wait_bus
-      << ", \"wait_rc_ps\": " << n.wait_rc << ", \"wait_bus_ps\": " << n.wait_bus << ", \"idle_ps\": " << n.idle
-      << ", \"dead_ps\": " << n.dead << ", \"apu_busy_ps\": " << n.apu_busy << ", \"apu_utilization\": " << num(ratio(n.apu_busy, T))
-      << ", \"apu_cycles\": " << n.apu_cycles;
-    if (n.apu_counted)
-      o << ", \"apu_issued\": " << n.apu_issued << ", \"apu_bank_stall_cycles\": " << n.apu_bank_stalls
-        << ", \"apu_issue_utilization\": "
-        << num(T ? static_cast<double>(n.apu_issued) * static_cast<double>(r.apu_cycle_ps) / static_cast<double>(T) : 0.0);
-    o << ", \"mpu_busy_ps\": " << n.mpu_busy
-      << ", \"blocks\": " << n.blocks << ", \"pixels\": " << n.pixels << ", \"runs\": " << n.runs
-      << ", \"finished_ps\": " << n.finished_at;
-    if (n.killed) o << ", \"killed_ps\": " << n.killed_at;
-    if (n.watchdog) o << ", \"watchdog\": " << quote(n.fault);
-    if (n.link_down) o << ", \"link_down_ps\": " << n.link_down;
-    if (!n.phases.empty()) {  // fig. 3's steps: the NC's time in each (frame_steps.hpp)
-      const std::vector<StepTime> t = step_times(n);
-      o << ", \"steps\": {";
-      for (std::size_t k = 0; k < t.size(); ++k)
-        o << (k ? ", " : "") << "\"" << frame_steps()[k].key << "\": {\"busy_ps\": " << t[k].busy
-          << ", \"waiting_ps\": " << t[k].waiting << "}";
-      o << "}";
-    }
-    if (!n.milestones.empty()) {
-      o << ", \"milestones\": {";
-      for (std::size_t m = 0; m < n.milestones.size(); ++m)
-        o << (m ? ", " : "") << quote(n.milestones[m].first) << ": " << n.milestones[m].second;
-      o << "}";
-    }
-    o << "}" << (i + 1 < r.ncs.size() ? "," : "") << "\n";
+void nc_json(std::ostream& o, const FrameReport& r, const NcReport& n) {
+  const Picos T = r.frame_time;
+  o << "    {\"id\": " << n.id << ", \"busy_ps\": " << n.busy << ", \"waiting_ps\": " << n.wait_rc + n.wait_bus
+    << ", \"wait_rc_ps\": " << n.wait_rc << ", \"wait_bus_ps\": " << n.wait_bus << ", \"idle_ps\": " << n.idle
+    << ", \"dead_ps\": " << n.dead << ", \"apu_busy_ps\": " << n.apu_busy << ", \"apu_utilization\": " << num(ratio(n.apu_busy, T))
+    << ", \"apu_cycles\": " << n.apu_cycles;
+  if (n.apu_counted)
+    o << ", \"apu_issued\": " << n.apu_issued << ", \"apu_bank_stall_cycles\": " << n.apu_bank_stalls
+      << ", \"apu_issue_utilization\": "
+      << num(T ? static_cast<double>(n.apu_issued) * static_cast<double>(r.apu_cycle_ps) / static_cast<double>(T) : 0.0);
+  o << ", \"mpu_busy_ps\": " << n.mpu_busy
+    << ", \"blocks\": " << n.blocks << ", \"pixels\": " << n.pixels << ", \"runs\": " << n.runs
+    << ", \"finished_ps\": " << n.finished_at;
+  if (n.killed) o << ", \"killed_ps\": " << n.killed_at;
+  if (n.watchdog) o << ", \"watchdog\": " << quote(n.fault);
+  if (n.link_down) o << ", \"link_down_ps\": " << n.link_down;
+  if (!n.phases.empty()) {  // fig. 3's steps: the NC's time in each (frame_steps.hpp)
+    const std::vector<StepTime> t = step_times(n);
+    o << ", \"steps\": {";
+    for (std::size_t k = 0; k < t.size(); ++k)
+      o << (k ? ", " : "") << "\"" << frame_steps()[k].key << "\": {\"busy_ps\": " << t[k].busy
+        << ", \"waiting_ps\": " << t[k].waiting << "}";
+    o << "}";
   }
-  o << "  ],\n";
+  if (!n.milestones.empty()) {
+    o << ", \"milestones\": {";
+    for (std::size_t m = 0; m < n.milestones.size(); ++m)
+      o << (m ? ", " : "") << quote(n.milestones[m].first) << ": " << n.milestones[m].second;
+    o << "}";
+  }
+  o << "}";
+}
 
+// The HDLC lines, each direction's list and the totals over both.
+void hdlc_json(std::ostream& o, const FrameReport& r) {
+  const Picos T = r.frame_time;
   const HdlcReport& h = r.hdlc;
   std::uint64_t info = 0, wire = 0, retx = 0, frames = 0;
   Picos up_busy = 0, down_busy = 0;
@@ -185,28 +194,54 @@ std::string stats_json(const FrameReport& r) {
     << ",\n    \"down_utilization\": " << num(ratio(down_busy, T * std::max<std::size_t>(1, h.down.size())))
     << ", \"up_utilization_mean\": " << num(ratio(up_busy, T * std::max<std::size_t>(1, h.up.size())))
     << ",\n    \"down\": [\n      " << down << "],\n    \"up\": [\n      " << up << "]},\n";
+}
 
-  // Per block: who did it, when it went out to that NC and when the RC
-  // learned it was done (schedules and load prediction can be judged).
-  {
-    std::vector<Picos> sent(r.blocks, 0);
-    std::vector<const rc::Completion*> done(r.blocks, nullptr);
-    for (const rc::Completion& c : r.completions)
-      if (c.block < r.blocks && !done[c.block]) done[c.block] = &c;
-    for (const rc::Dispatch& d : r.dispatches)
-      if (!d.list_job && d.block < r.blocks && done[d.block] && done[d.block]->nc == d.nc &&
-          d.time <= done[d.block]->time)
-        sent[d.block] = d.time;
-    o << "  \"blocks\": [";
-    for (unsigned b = 0; b < r.blocks; ++b) {
-      o << (b ? ",\n    " : "\n    ") << "{\"id\": " << b;
-      if (b < r.block_loads.size()) o << ", \"load\": " << r.block_loads[b];
-      if (done[b])
-        o << ", \"nc\": " << done[b]->nc << ", \"dispatched_ps\": " << sent[b] << ", \"reported_ps\": " << done[b]->time;
-      o << "}";
-    }
-    o << "],\n";
+// Per block: who did it, when it went out to that NC and when the RC
+// learned it was done (schedules and load prediction can be judged).
+void blocks_json(std::ostream& o, const FrameReport& r) {
+  std::vector<Picos> sent(r.blocks, 0);
+  std::vector<const rc::Completion*> done(r.blocks, nullptr);
+  for (const rc::Completion& c : r.completions)
+    if (c.block < r.blocks && !done[c.block]) done[c.block] = &c;
+  for (const rc::Dispatch& d : r.dispatches)
+    if (!d.list_job && d.block < r.blocks && done[d.block] && done[d.block]->nc == d.nc && d.time <= done[d.block]->time)
+      sent[d.block] = d.time;
+  o << "  \"blocks\": [";
+  for (unsigned b = 0; b < r.blocks; ++b) {
+    o << (b ? ",\n    " : "\n    ") << "{\"id\": " << b;
+    if (b < r.block_loads.size()) o << ", \"load\": " << r.block_loads[b];
+    if (done[b])
+      o << ", \"nc\": " << done[b]->nc << ", \"dispatched_ps\": " << sent[b] << ", \"reported_ps\": " << done[b]->time;
+    o << "}";
   }
+  o << "],\n";
+}
+
+}  // namespace
+
+std::string stats_json(const FrameReport& r) {
+  std::ostringstream o;
+  const Picos T = r.frame_time;
+  o << "{\n  \"schema\": \"mc1-stats/1\",\n";
+  o << "  \"engine\": \"" << r.engine << "\",\n  \"nodes\": " << r.nodes << ",\n";
+  if (!r.schedule.empty()) o << "  \"schedule\": \"" << r.schedule << "\",\n";
+  if (!r.scene.empty()) o << "  \"scene\": " << quote(r.scene) << ",\n";
+  o << "  \"image\": {\"width\": " << r.width << ", \"height\": " << r.height << ", \"block_width\": " << r.block_w
+    << ", \"block_height\": " << r.block_h << ", \"blocks\": " << r.blocks
+    << ", \"fm_pixels_written\": " << r.fm_pixels_written << "},\n";
+  faults_json(o, r);
+  o << "  \"simulated_time_ps\": " << T << ",\n  \"simulated_time_s\": " << num(T * 1e-12) << ",\n";
+  host_json(o, r);
+  phases_json(o, r);
+  rc_json(o, r);
+  o << "  \"nc\": [\n";
+  for (std::size_t i = 0; i < r.ncs.size(); ++i) {
+    nc_json(o, r, r.ncs[i]);
+    o << (i + 1 < r.ncs.size() ? "," : "") << "\n";
+  }
+  o << "  ],\n";
+  hdlc_json(o, r);
+  blocks_json(o, r);
   o << "  \"image_bus\": {\"runs\": " << r.bus.runs << ", \"bytes\": " << r.bus.bytes << ", \"pixels\": " << r.bus.pixels
     << ", \"busy_ps\": " << r.bus.busy << ", \"utilization\": " << num(ratio(r.bus.busy, T))
     << ", \"waiting_ps\": " << r.bus.waiting << ", \"duplicate_runs\": " << r.bus.duplicate_runs

@@ -79,10 +79,12 @@ double quadric_value(const Primitive& p, const glm::dvec3& x) {
          a[5] * x.y * x.z + a[6] * x.x + a[7] * x.y + a[8] * x.z + a[9];
 }
 
+// The clip box, and a solid of revolution's slab about the box's centre.
 bool in_box(const Primitive& p, const glm::dvec3& x, double pad) {
   for (int i = 0; i < 3; ++i)
     if (x[i] < p.box_min[i] - pad || x[i] > p.box_max[i] + pad) return false;
-  return true;
+  return p.slab_half == 0 ||
+         std::abs(glm::dot(x - 0.5 * (p.box_min + p.box_max), p.slab_axis)) <= p.slab_half + pad;
 }
 
 int region(const Primitive& p, const glm::dvec3& o, const glm::dvec3& d, double t_min, Crossing out[2]) {

@@ -1,6 +1,6 @@
 // Solids of revolution (paper section 7): a profile of straight segments
-// revolved about an axis parallel to a world axis, as one quadric frustum
-// per segment (docs/scene-format.md "Solids of revolution").
+// revolved about an axis of any direction, as one quadric frustum per
+// segment (docs/scene-format.md "Solids of revolution").
 #include <algorithm>
 #include <cmath>
 
@@ -9,41 +9,46 @@
 namespace mc1::scene {
 
 // Segment (r0, h0) - (r1, h1), h1 > h0, about the line through `base` along
-// world axis k: the radius at height h (above base[k]) is c + s h with
+// the unit vector `a`: the radius at height H = (x - base).a is c + s H with
 // s = (r1 - r0) / (h1 - h0), c = r0 - s h0, so the cone is
-//   q = (x_i - b_i)^2 + (x_j - b_j)^2 - (c + s (x_k - b_k))^2 <= 0
-// (i, j the other two axes), expanded into a1..a10, and clipped to the slab
-// h0 <= x_k - b_k <= h1. The box's sides lie a quarter of the largest radius
-// outside the cone, so only its two slab faces cut the surface. The NC's
-// form about the box's centre (Primitive::centred_linear) comes from the
-// axis frame directly.
-Primitive revolved_segment(int k, const glm::dvec3& base, const glm::dvec2& p0, const glm::dvec2& p1) {
-  const double s = (p1.x - p0.x) / (p1.y - p0.y), c = p0.x - s * p0.y;
-  const int i = (k + 1) % 3, j = (k + 2) % 3;
+//   q = |x - base|^2 - H^2 - (c + s H)^2 <= 0,
+// a quadratic form with the matrix M = I - (1 + s^2) a a^T, expanded into
+// a1..a10 (for an axis along a world axis the cross terms are 0 and the
+// form is the axis-frame one). The segment is the slab h0 <= H <= h1
+// (slab_axis, slab_half about the box's centre, which lies on the axis at
+// the slab's middle height); the box bounds the slab's cylinder of a
+// quarter more than the largest radius, so its sides never meet the
+// surface and for a world axis its end faces are the slab's. The NC's form
+// about the box's centre (Primitive::centred_linear) comes from the axis
+// frame directly.
+Primitive revolved_segment(const glm::dvec3& a, const glm::dvec3& base, const glm::dvec2& p0, const glm::dvec2& p1) {
+  const double s = (p1.x - p0.x) / (p1.y - p0.y), c = p0.x - s * p0.y, k = 1 + s * s;
   Primitive p;
   p.kind = PrimitiveKind::quadric;
-  auto& a = p.coefficients;
-  a.fill(0.0);
-  a[i] = a[j] = 1.0;  // a1, a2, a3 are x^2, y^2, z^2
-  a[k] = -s * s;
-  a[6 + i] = -2 * base[i];
-  a[6 + j] = -2 * base[j];
-  a[6 + k] = 2 * s * s * base[k] - 2 * c * s;
-  a[9] = base[i] * base[i] + base[j] * base[j] - s * s * base[k] * base[k] + 2 * c * s * base[k] - c * c;
+  glm::dmat3 m(1.0);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m[j][i] -= k * a[i] * a[j];
+  // q(x) = (x - b)^T M (x - b) - 2 c s a.(x - b) - c^2.
+  const glm::dvec3 g = -2 * c * s * a, mb = m * base, lin = -2.0 * mb + g;
+  auto& q = p.coefficients;
+  q = {m[0][0], m[1][1], m[2][2], 2 * m[1][0], 2 * m[2][0], 2 * m[2][1], lin.x, lin.y, lin.z,
+       glm::dot(base, mb) - glm::dot(g, base) - c * c};
   const double side = 1.25 * std::max(p0.x, p1.x);
-  p.box_min = p.box_max = base;
-  p.box_min[i] -= side;
-  p.box_max[i] += side;
-  p.box_min[j] -= side;
-  p.box_max[j] += side;
-  p.box_min[k] += p0.y;
-  p.box_max[k] += p1.y;
-  // About the box's centre (base + hm along the axis, hm the slab's middle
-  // height) the cone is y_i^2 + y_j^2 - (rm + s y_k)^2, rm = c + s hm the
-  // radius there: a7..a10 exactly, with no far-away coordinate in them.
-  const double rm = c + s * 0.5 * (p0.y + p1.y);
-  p.centred_linear = {0.0, 0.0, 0.0, -rm * rm};
-  p.centred_linear[k] = -2 * s * rm;
+  const glm::dvec3 e0 = base + p0.y * a, e1 = base + p1.y * a;
+  for (int i = 0; i < 3; ++i) {
+    const double across = side * std::sqrt(std::max(0.0, 1 - a[i] * a[i]));
+    p.box_min[i] = std::min(e0[i], e1[i]) - across;
+    p.box_max[i] = std::max(e0[i], e1[i]) + across;
+  }
+  p.slab_axis = a;
+  p.slab_half = 0.5 * (p1.y - p0.y);
+  // About the box's centre m (on the axis at height hm) the cone is
+  // |y|^2 - (y.a)^2 - (rm + s y.a)^2, rm = c + s hm the radius there.
+  const glm::dvec3 centre = 0.5 * (p.box_min + p.box_max);
+  const double rm = c + s * glm::dot(centre - base, a);
+  p.centred_linear = {-2 * s * rm * a.x, -2 * s * rm * a.y, -2 * s * rm * a.z, -rm * rm};
+  for (double& v : q) v += 0.0;  // no -0 (the FP24 words of an axis-frame form)
+  for (double& v : p.centred_linear) v += 0.0;
   return p;
 }
 

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <iosfwd>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -85,6 +86,10 @@ struct Primitive {
   // (a1..a6 are the same): near the box its terms are small, so FP24 evaluates
   // it without the cancellation of far-away world coordinates (loader-filled).
   std::array<double, 4> centred_linear{};
+  // Quadric: also clipped to the slab |(x - c).slab_axis| <= slab_half, c the
+  // clip box's centre (a solid of revolution's segment; slab_half 0: none).
+  glm::dvec3 slab_axis{0.0};
+  double slab_half = 0.0;
   glm::dvec3 box_min{0.0};                   // quadric clip box; for every kind, the
   glm::dvec3 box_max{0.0};                   // primitive's bounding box (loader-filled)
 
@@ -166,11 +171,14 @@ enum class Basis { bezier, bspline };
 // collapsed edge becomes a pseudo-triangle; a cell collapsed further is dropped).
 void tessellate_patch(const BicubicNet& net, Basis basis, int level,
                       std::vector<Primitive>& out);
+// A patch file ("patches N", N lines of 16 control-point indices, "points M",
+// M lines "x y z"); throws SceneError "file:line: message" for bad content.
+std::vector<BicubicNet> read_bezier_file(std::istream& in, const std::string& file);
 
 // Solid of revolution: the quadric frustum of one profile segment (radius,
 // height) p0 - p1 (p1.y > p0.y, radii >= 0, not both 0) about the line
-// through `base` along world axis `axis` (0 x, 1 y, 2 z); heights from base.
-Primitive revolved_segment(int axis, const glm::dvec3& base, const glm::dvec2& p0, const glm::dvec2& p1);
+// through `base` along the unit vector `axis`; heights from base.
+Primitive revolved_segment(const glm::dvec3& axis, const glm::dvec3& base, const glm::dvec2& p0, const glm::dvec2& p1);
 
 // The loader's derived data, shared with tests and tools.
 void finish_polygon(Primitive& p);  // plane normal and box from the vertices

@@ -7,6 +7,7 @@
 #include <initializer_list>
 #include <sstream>
 
+#include "fp24_range.hpp"
 #include "json.hpp"
 #include "scene.hpp"
 
@@ -62,26 +63,6 @@ glm::dvec3 checker_colour(const Checker& c, const glm::dvec3& p) {
 }
 
 namespace {
-
-// FP24's magnitudes (docs/fp24.md): largest finite (2 - 2^-16) 2^63, smallest
-// normal 2^-62. A scene value outside them would become inf or 0 on the NC.
-const double kFp24Max = std::ldexp(2.0 - std::ldexp(1.0, -16), 63);
-const double kFp24MinNormal = std::ldexp(1.0, -62);
-const char* const kFp24Range = "0 or a magnitude in [2.168e-19, 1.8447e19], FP24's range";
-
-bool in_fp24_range(double d) {
-  double a = std::abs(d);
-  return a == 0 || (a >= kFp24MinNormal && a <= kFp24Max);
-}
-bool below_fp24_max(const glm::dvec3& v) {
-  return std::abs(v.x) <= kFp24Max && std::abs(v.y) <= kFp24Max && std::abs(v.z) <= kFp24Max;
-}
-
-std::string shortest(double d) {
-  std::ostringstream o;
-  o << d;
-  return o.str();
-}
 
 const char* const kTooManyPrimitives =
     "more than 65535 primitives (a quad counts as two triangles), the NC's limit";
@@ -499,13 +480,28 @@ class Loader {
     return p;
   }
 
+  // A revolution's axis: "x", "y", "z" or a direction [x, y, z] (not 0),
+  // as a unit vector.
+  glm::dvec3 revolution_axis(const Value& av, const std::string& path) const {
+    if (av.type == Type::string) {
+      const std::string axis = text(av, path);
+      if (axis != "x" && axis != "y" && axis != "z") fail(av, path, "expected \"x\", \"y\", \"z\" or a direction [x, y, z]");
+      glm::dvec3 a(0.0);
+      a[axis[0] - 'x'] = 1.0;
+      return a;
+    }
+    const glm::dvec3 a = vec3(av, path);
+    const double n = glm::length(a);
+    if (!(n > 0) || !std::isfinite(n)) fail(av, path, "the direction must not be 0");
+    return a / n;
+  }
+
   // A profile of [radius, height] points revolved about an axis: one
   // quadric frustum per segment (revolved_segment).
   void revolution(const Value& v, const std::string& path, std::vector<Primitive>& out) {
     expect_object(v, path, {"type", "axis", "base", "profile"});
     const Value& av = required(v, path, "axis");
-    const std::string axis = text(av, join(path, "axis"));
-    if (axis != "x" && axis != "y" && axis != "z") fail(av, join(path, "axis"), "expected \"x\", \"y\" or \"z\"");
+    const glm::dvec3 axis = revolution_axis(av, join(path, "axis"));
     const glm::dvec3 base = vec3(required(v, path, "base"), join(path, "base"));
     const Value& pv = required(v, path, "profile");
     const std::string ppath = join(path, "profile");
@@ -521,7 +517,7 @@ class Loader {
     }
     const std::size_t before = out.size();
     for (std::size_t i = 1; i < pts.size(); ++i) {
-      Primitive p = revolved_segment(axis[0] - 'x', base, pts[i - 1], pts[i]);
+      Primitive p = revolved_segment(axis, base, pts[i - 1], pts[i]);
       for (double a : p.coefficients)
         if (!in_fp24_range(a)) fail(pv.items[i], index(ppath, i), "a coefficient of its quadric, " + shortest(a) + ", outside FP24's range");
       for (double a : p.centred_linear)
@@ -601,63 +597,6 @@ class Loader {
       tessellate_patch(net, Basis::bezier, lv, out);
       count_ids(v, path, out, before);
     }
-  }
-
-  // "patches N", N lines of 16 zero-based indices, "points M", M lines "x y z";
-  // '#' starts a comment (scenes/data/utah-teapot.txt).
-  static std::vector<BicubicNet> read_bezier_file(std::istream& in, const std::string& file) {
-    std::vector<std::array<long, 16>> idx;
-    std::vector<glm::dvec3> pts;
-    std::string raw;
-    int line = 0;
-    std::size_t want_patches = 0, want_points = 0;
-    int state = 0;  // 0: expect "patches", 1: indices, 2: expect "points", 3: points
-    auto bad = [&](const std::string& msg) { throw SceneError(file + ":" + std::to_string(line) + ": " + msg); };
-    while (std::getline(in, raw)) {
-      ++line;
-      std::string body = raw.substr(0, raw.find('#'));
-      std::istringstream ls(body);
-      std::string first;
-      if (!(ls >> first)) continue;
-      ls.seekg(0);
-      if (state == 0 || state == 2) {
-        std::string word;
-        long n = -1;
-        ls >> word >> n;
-        const char* expect = state == 0 ? "patches" : "points";
-        if (word != expect || n < 1) bad(std::string("expected '") + expect + " N'");
-        (state == 0 ? want_patches : want_points) = static_cast<std::size_t>(n);
-        state += 1;
-      } else if (state == 1) {
-        std::array<long, 16> a;
-        for (auto& i : a)
-          if (!(ls >> i) || i < 0) bad("expected 16 control-point indices");
-        idx.push_back(a);
-        if (idx.size() == want_patches) state = 2;
-      } else {
-        glm::dvec3 p;
-        if (!(ls >> p.x >> p.y >> p.z)) bad("expected 'x y z'");
-        for (int i = 0; i < 3; ++i)
-          if (!in_fp24_range(p[i])) bad("expected " + std::string(kFp24Range) + ", got " + shortest(p[i]));
-        pts.push_back(p);
-        if (pts.size() == want_points) state = 4;
-      } 
-      if (state == 4) break;
-    }
-    if (state != 4) bad("file ends early");
-    std::vector<BicubicNet> nets;
-    for (const auto& a : idx) {
-      BicubicNet net;
-      for (int k = 0; k < 16; ++k) {
-        if (static_cast<std::size_t>(a[k]) >= pts.size()) {
-          line = 0;
-          bad("control-point index " + std::to_string(a[k]) + " out of range");
-        }
-        net[k] = pts[a[k]];
-      }
-      nets.push_back(net);
-    }
-    return nets;
   }
 };
 

@@ -31,6 +31,7 @@ ApuDriver::ApuDriver(ApuEngine& engine) : engine_(engine), iss_(dynamic_cast<Iss
 }
 
 void ApuDriver::load_program(const std::vector<Encoded>& words, std::uint16_t base) {
+  access();
   if (base + words.size() > static_cast<std::size_t>(kProgramWords))
     fail(ApuError::Kind::Usage, "load_program: " + std::to_string(words.size()) + " words at " +
                                     std::to_string(base) + " do not fit the 1024-word bank");
@@ -43,6 +44,7 @@ void ApuDriver::load_program(const std::vector<Encoded>& words, std::uint16_t ba
 }
 
 void ApuDriver::load_data(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
+  access();
   if (addr + n > static_cast<std::size_t>(kDataWords))
     fail(ApuError::Kind::Usage, "load_data: " + std::to_string(n) + " words at " + std::to_string(addr) +
                                     " do not fit the 4096-word bank");
@@ -50,6 +52,7 @@ void ApuDriver::load_data(std::uint16_t addr, const std::uint32_t* values, std::
 }
 
 std::vector<std::uint32_t> ApuDriver::read_results(std::uint16_t addr, std::size_t n) const {
+  access();
   if (addr + n > static_cast<std::size_t>(kDataWords))
     fail(ApuError::Kind::Usage, "read_results: " + std::to_string(n) + " words at " + std::to_string(addr) +
                                     " do not fit the 4096-word bank");
@@ -59,6 +62,7 @@ std::vector<std::uint32_t> ApuDriver::read_results(std::uint16_t addr, std::size
 }
 
 void ApuDriver::start(std::uint16_t pc) {
+  access();
   if (engine_.state() == RunState::Running) fail(ApuError::Kind::Usage, "start: the APU is running");
   if (engine_.program_ready()) psel_ ^= 1;
   engine_.start(pc);
@@ -96,10 +100,14 @@ std::uint64_t ApuDriver::clock(std::uint64_t cycles) {
   return n;
 }
 
-std::uint64_t ApuDriver::run(std::uint64_t cycles) { return clock(cycles); }
+std::uint64_t ApuDriver::run(std::uint64_t cycles) {
+  access();
+  return clock(cycles);
+}
 
 std::uint64_t ApuDriver::run_until_done(std::uint64_t max_cycles, const std::function<void()>& mpu,
                                         std::uint64_t mpu_interval) {
+  access();
   if (engine_.state() != RunState::Running)
     fail(ApuError::Kind::NotRunning, "run_until_done: the APU was not started");
   probe_cycle_ = 0;

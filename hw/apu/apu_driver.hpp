@@ -50,10 +50,22 @@ class ApuDriver {
   void load_data(std::uint16_t addr, const std::vector<std::uint32_t>& values) {
     load_data(addr, values.data(), values.size());
   }
-  void hand_over_program() { engine_.hand_over_program(); }
-  void hand_over_data() { engine_.hand_over_data(); }
-  bool program_ready() const { return engine_.program_ready(); }
-  bool data_ready() const { return engine_.data_ready(); }
+  void hand_over_program() {
+    access();
+    engine_.hand_over_program();
+  }
+  void hand_over_data() {
+    access();
+    engine_.hand_over_data();
+  }
+  bool program_ready() const {
+    access();
+    return engine_.program_ready();
+  }
+  bool data_ready() const {
+    access();
+    return engine_.data_ready();
+  }
 
   // Starts the idle APU at pc; throws ApuError(Usage) if it is running.
   void start(std::uint16_t pc = 0);
@@ -77,23 +89,45 @@ class ApuDriver {
   // its fast path (records are built every cycle).
   void set_observer(std::function<void(const CycleRecord&)> observer) { observer_ = std::move(observer); }
 
-  ApuEngine& engine() { return engine_; }
-  RunState state() const { return engine_.state(); }
+  ApuEngine& engine() {
+    access();
+    return engine_;
+  }
+  RunState state() const {
+    access();
+    return engine_.state();
+  }
   // The word the driver loaded at (bank, addr), as far as it knows (profiles
   // and error messages disassemble it).
   const Encoded& program_word(int bank, std::uint16_t addr) const {
+    access();
     return shadow_[bank & 1][addr % kProgramWords];
   }
-  int psel() const { return psel_; }
-  std::uint16_t pc() const { return pc_; }
+  int psel() const {
+    access();
+    return psel_;
+  }
+  std::uint16_t pc() const {
+    access();
+    return pc_;
+  }
+
+  // Called before every call above reaches the engine: the NC clocks the
+  // APU lazily, on other threads (hw/nc/apu_pool.hpp), and brings it up to
+  // date here, before the MPU touches it.
+  void set_access_hook(std::function<void()> hook) { hook_ = std::move(hook); }
 
  private:
+  void access() const {
+    if (hook_) hook_();
+  }
   std::uint64_t clock(std::uint64_t cycles);  // stops when not running
   [[noreturn]] void fail(ApuError::Kind kind, const std::string& why) const;
 
   ApuEngine& engine_;
   Iss* iss_;  // the ISS when engine_ is one: its bank and pc without records
   std::function<void(const CycleRecord&)> observer_;
+  std::function<void()> hook_;
   CycleRecord rec_;
   int psel_ = 0;  // the APU's program bank as seen by the driver
   std::uint16_t pc_ = 0;

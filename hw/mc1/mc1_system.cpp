@@ -57,6 +57,7 @@ Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::
   tlm_utils::tlm_quantumkeeper::set_global_quantum(to_sc_time(cfg.timing.tlm_quantum_ns * 1000));
   const TimingParams& t = cfg.timing;
 
+  pool_ = std::make_unique<nc::ApuPool>(cfg.threads ? cfg.threads : nc::ApuPool::default_threads());
   plan.schedule = cfg.schedule;
   rc_ = std::make_unique<RootComputer>("rc", t, cfg.nodes, std::move(plan));
   hdlc_ = std::make_unique<HdlcChannel>("hdlc", t, cfg.nodes);
@@ -76,6 +77,7 @@ Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::
     ncs_.push_back(std::make_unique<nc::NodeComputer>(("nc" + std::to_string(k)).c_str(), t, k,
                                                       cfg.engines(cfg.engine, fst), firmware));
     nc::NodeComputer& n = *ncs_.back();
+    n.use_pool(pool_.get());
     n.nc2rc_hdlc.bind(hdlc_->nc2rc_hdlc);
     hdlc_->hdlc2nc.bind(n.hdlc2nc);
     n.nc2bus_pixels.bind(bus_->nc2bus_pixels);

@@ -66,6 +66,9 @@ struct SystemConfig {
   // waveform (whatever `engine` is: both engines are cycle- and bit-exact).
   unsigned trace_node = 0;
   std::string trace_path;
+  // Host threads clocking the NCs' APUs (nc::ApuPool); 0: the machine's
+  // cores. No simulated figure depends on it.
+  unsigned threads = 0;
   TimingParams timing;
 };
 
@@ -91,6 +94,7 @@ class Mc1System : public sc_core::sc_module {
 
  private:
   SystemConfig cfg_;
+  std::unique_ptr<nc::ApuPool> pool_;  // before the NCs, which wait for its jobs when they go
   std::unique_ptr<RootComputer> rc_;
   std::unique_ptr<HdlcChannel> hdlc_;
   std::vector<std::unique_ptr<nc::NodeComputer>> ncs_;

@@ -55,11 +55,38 @@ NodeComputer::NodeComputer(sc_core::sc_module_name name, const TimingParams& t, 
       firmware_(std::move(firmware)),
       cycle_ps_(t.apu_cycle_ps()) {
   hdlc2nc.register_b_transport(this, &NodeComputer::b_transport);
+  driver_.set_access_hook([this] { settle_apu(); });
   SC_HAS_PROCESS(NodeComputer);
   SC_THREAD(run);
 }
 
-NodeComputer::~NodeComputer() = default;
+NodeComputer::~NodeComputer() {
+  if (job_) job_->wait_done();  // the simulation ended while the NC waited: the run still uses the engine
+}
+
+// The APU run the MPU waits for, from apu_time_ on, clocked by the pool's
+// threads. Meanwhile the NC waits in simulated time, kPoolStepCycles at a
+// step, each step only once the run is known to last past it (a step stays
+// inside the run, the NC does nothing visible in it) and never up to the
+// kill time: the other NCs run their firmware and hand their APU runs to
+// the pool. The steps depend on the run's length alone, so the simulation
+// is the same for any number of threads; the caller then advances to the
+// run's end as without a pool.
+std::uint64_t NodeComputer::run_on_pool(ApuJob::Work work) {
+  settle_apu();
+  job_ = (pool_ ? *pool_ : inline_).post(std::move(work));
+  const Picos start = apu_time_;
+  for (std::uint64_t step = kPoolStepCycles;; step += kPoolStepCycles) {
+    const Picos target = start + step * cycle_ps_;
+    if (target >= kill_at_ || !job_->lasts(step)) break;
+    const Picos t = now();
+    if (target <= t) continue;
+    qk_.inc(to_sc_time(target - t));
+    qk_.sync();
+  }
+  const std::shared_ptr<ApuJob> job = std::move(job_);
+  return job->result();
+}
 
 Picos NodeComputer::now() const {
   return to_picos(sc_core::sc_time_stamp()) + to_picos(qk_.get_local_time());
@@ -94,7 +121,32 @@ void NodeComputer::check_fault() const {
 }
 
 void NodeComputer::catch_up() {
-  const Picos t = now();
+  settle_apu();
+  catch_up_to(now());
+}
+
+// The MPU's work only moves the NC's time (advance): the APU's catch-up to
+// it waits, in apu_due_ or as a job on the pool, until the APU is next
+// looked at: here, through the driver's access hook or the NC's own calls.
+// One catch-up to t2 clocks what catch-ups to t1 <= t2 and then t2 do.
+void NodeComputer::settle_apu() {
+  if (settling_ || ApuJob::in_job()) return;
+  struct Guard {
+    bool& flag;
+    explicit Guard(bool& f) : flag(f) { flag = true; }
+    ~Guard() { flag = false; }
+  } guard(settling_);
+  if (job_) {
+    const std::shared_ptr<ApuJob> job = std::move(job_);
+    job->result();  // an APU fault: the error, as from catch_up()
+  }
+  if (apu_due_set_) {
+    apu_due_set_ = false;
+    catch_up_to(apu_due_);
+  }
+}
+
+void NodeComputer::catch_up_to(Picos t) {
   if (engine_->state() != apu::RunState::Running) {
     apu_stopped(apu_time_);
     apu_time_ = t;
@@ -136,8 +188,27 @@ void NodeComputer::advance(Picos ps) {
     throw Killed{};
   }
   qk_.inc(to_sc_time(ps));
-  catch_up();
-  if (qk_.need_sync()) qk_.sync();
+  apu_due_ = now();
+  apu_due_set_ = true;
+  if (!qk_.need_sync()) return;
+  // At a synchronisation, what the APU owes goes to the pool and the NC
+  // syncs: the kernel runs the others (their APUs on the pool too), and the
+  // firmware goes on until it next looks at the APU. A short catch-up is not
+  // worth a host thread's hand-over: it waits for the next.
+  if (job_) {
+    const std::shared_ptr<ApuJob> job = std::move(job_);
+    job->result();
+  }
+  const Picos until = apu_due_;
+  if (engine_->state() == apu::RunState::Running && until > apu_time_ &&
+      (until - apu_time_) / cycle_ps_ >= kPoolStepCycles) {
+    apu_due_set_ = false;
+    job_ = (pool_ ? *pool_ : inline_).post([this, until](ApuJob&) -> std::uint64_t {
+      catch_up_to(until);
+      return 0;
+    });
+  }
+  qk_.sync();
 }
 
 void NodeComputer::mpu_work(std::uint64_t cycles) {
@@ -204,12 +275,17 @@ void NodeComputer::apu_wait_swap() {
   const std::uint64_t to_kill =
       kill_at_ == ~Picos{0} ? ~std::uint64_t{0} : kill_at_ > apu_time_ ? (kill_at_ - apu_time_) / cycle_ps_ : 0;
   const std::uint64_t limit = std::min(to_kill, t_.apu_watchdog_cycles);
-  std::uint64_t n = 0;
-  {
+  const std::uint64_t n = run_on_pool([this, limit](ApuJob& job) {
     // Cycle by cycle: the swap interrupt comes in the cycle the APU takes the bank.
     HostTimer timer(stats_.apu_host_seconds);
-    while (driver_.data_ready() && engine_->state() == apu::RunState::Running && n < limit) n += driver_.run(1);
-  }
+    std::uint64_t k = 0;
+    const auto waiting = [&] { return driver_.data_ready() && engine_->state() == apu::RunState::Running && k < limit; };
+    while (waiting()) {
+      k += driver_.run(1);
+      if (waiting()) job.reached(k + 1);
+    }
+    return k;
+  });
   stats_.apu_cycles += n;
   apu_time_ += n * cycle_ps_;
   if (driver_.data_ready() && engine_->state() == apu::RunState::Running) {
@@ -230,19 +306,21 @@ void NodeComputer::apu_wait_halt() {
   mark(Activity::Busy, now());
   catch_up();
   if (engine_->state() != apu::RunState::Running) return;
-  std::uint64_t n = 0;
   std::string runaway;  // the driver's account of a run the watchdog stops
-  {
+  const std::uint64_t n = run_on_pool([this, &runaway](ApuJob& job) -> std::uint64_t {
     HostTimer timer(stats_.apu_host_seconds);
+    const std::uint64_t c0 = engine_->cycle();
+    // Called before every kPoolStepCycles-th cycle, the APU still running.
+    const auto progress = [&] { job.reached(engine_->cycle() - c0 + 1); };
     try {
-      n = driver_.run_until_done(t_.apu_watchdog_cycles);
+      return driver_.run_until_done(t_.apu_watchdog_cycles, progress, kPoolStepCycles);
     } catch (const apu::ApuError& e) {
       if (e.kind() != apu::ApuError::Kind::CycleLimit)
         throw std::runtime_error("NC " + std::to_string(id_) + ": " + e.what());
-      n = t_.apu_watchdog_cycles;
       runaway = e.what();
+      return t_.apu_watchdog_cycles;
     }
-  }
+  });
   stats_.apu_cycles += n;
   apu_time_ += n * cycle_ps_;
   if (!runaway.empty()) watchdog_expired("no HALT: " + runaway);
@@ -308,6 +386,7 @@ void NodeComputer::milestone(const std::string& name) { stats_.milestones.emplac
 void NodeComputer::phase(const std::string& name) { stats_.phases.emplace_back(now(), name); }
 
 void NodeComputer::die() {
+  settle_apu();
   const Picos t = std::max(since_, std::min(now(), kill_at_));
   apu_stopped(std::max(apu_begin_, std::min(apu_time_, t)));
   block_ = 0xFFFFFFFF;
@@ -330,6 +409,7 @@ void NodeComputer::watchdog_expired(const std::string& what) {
 }
 
 void NodeComputer::close(Picos frame_end) {
+  settle_apu();
   if (!stats_.killed) catch_up();
   apu_stopped(std::min(apu_time_, frame_end));
   mark(current_, frame_end);
@@ -347,7 +427,14 @@ void NodeComputer::run() {
     firmware_(*this);
     finished();
   } catch (const Killed&) {
-    die();
+    try {
+      die();
+    } catch (const sc_core::sc_unwind_exception&) {
+      throw;
+    } catch (const std::exception& e) {  // an APU fault in a catch-up not yet clocked (settle_apu)
+      unwind_threads();
+      SC_REPORT_ERROR(name(), e.what());
+    }
   } catch (const sc_core::sc_unwind_exception&) {
     throw;  // killed at the end of the simulation (unwind_threads): not a failure
   } catch (const std::exception& e) {

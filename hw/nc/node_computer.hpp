@@ -39,6 +39,7 @@
 
 #include "apu_driver.hpp"
 #include "apu_engine.hpp"
+#include "apu_pool.hpp"
 #include "hdlc_mailbox.hpp"
 #include "nc_extension.hpp"
 #include "nc_port.hpp"
@@ -97,6 +98,14 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   // so that the machine can stop the NC's HDLC station with it.
   void on_stop(std::function<void(Picos)> f) { on_stop_ = std::move(f); }
   bool killed() const { return stats_.killed; }
+  // The host threads that clock the APU while the MPU waits for it
+  // (apu_wait_swap, apu_wait_halt); none (the default): this thread.
+  void use_pool(ApuPool* pool) { pool_ = pool; }
+  // How far an NC waiting for its APU on the pool moves in simulated time at
+  // a step (NodeComputer::run_on_pool): a trade between the overlap of the
+  // NCs' runs and the number of synchronisations. Not a hardware figure, and
+  // no simulated time depends on it.
+  static constexpr std::uint64_t kPoolStepCycles = 256;
 
   // After the simulation: the last span runs to `frame_end` (>= finished_at).
   void close(Picos frame_end);  // also reads the ISS's counters
@@ -128,12 +137,15 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   Picos now() const;
   void advance(Picos ps);              // local time + APU catch-up
   void catch_up();                     // clock the APU up to now()
+  void catch_up_to(Picos t);           // ... up to t (on any thread: no SystemC)
+  void settle_apu();                   // the lazy catch-up done: the engine up to date
   void apu_stopped(Picos at);
   void check_fault() const;
   void mark(Activity a, Picos at);     // from `at` on, the NC does `a`
   void check_alive();                  // throws Killed at or after the kill time
   void die();
   [[noreturn]] void watchdog_expired(const std::string& what);
+  std::uint64_t run_on_pool(ApuJob::Work work);
 
   TimingParams t_;
   unsigned id_;
@@ -158,6 +170,12 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   bool finished_ = false;
   Picos kill_at_ = ~Picos{0};
   std::function<void(Picos)> on_stop_;
+  ApuPool* pool_ = nullptr;
+  ApuPool inline_{1};
+  std::shared_ptr<ApuJob> job_;  // the run on the pool, until the NC has its result
+  Picos apu_due_ = 0;            // the APU is to be clocked up to here (advance(): lazily)
+  bool apu_due_set_ = false;
+  bool settling_ = false;
 
   tlm::tlm_generic_payload pixels_;
   std::vector<std::uint8_t> pixel_bytes_;

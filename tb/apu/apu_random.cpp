@@ -254,78 +254,68 @@ std::uint64_t case_seed(std::uint64_t seed, std::uint64_t i) {
   return r.next();
 }
 
-RandomCase make_random_case(std::uint64_t seed, const RandomOptions& opt) {
-  Rng rng(seed);
-  RandomCase c;
-  c.seed = seed;
-  const int nimages = rng.chance(70) ? 1 : rng.range(2, 3);
-  const bool fault = rng.below(100) < opt.fault_percent;
+namespace {
 
-  for (int img = 0; img < nimages; ++img) {
-    ProgramGen g(rng, opt.max_words);
-    // Junk before the entry point: never executed.
-    const int entry = rng.range(0, 4);
-    for (int i = 0; i < entry; ++i) {
-      MicroWord w;
-      w.s = {SeqOp::Reserved13, 0, 0};
-      g.emit(w);
-    }
-    for (int b = 0; b < 3; ++b) {
-      MicroWord w = g.body(false);
-      w.i = {IntOp::Li, static_cast<std::uint8_t>(kBaseRegs[b]), 0, 0, kBaseValues[b]};
-      g.emit(w);
-    }
-    const int nsubs = rng.range(0, 3);
-    g.block(0, 2, 1, 0, nsubs, true, rng.range(6, 20));
-
-    const bool last = img + 1 == nimages;
-    if (!last) {
-      MicroWord w = g.body();
-      w.s = {SeqOp::Swapp, 0, 0};  // target patched below: the next image's entry
-      g.emit(w);
-    } else if (fault) {
-      c.planned_fault = fault_ending(rng, g);
-    } else {
-      MicroWord w = rng.chance(30) ? g.body() : MicroWord{};
-      w.s = {SeqOp::Halt, 0, 0};
-      g.emit(w);
-    }
-    // Subroutines: sub k calls only subs above k; loops only in leaves-to-be
-    // (no CALL inside a subroutine loop), counted in A3.
-    std::vector<std::uint16_t> sub_addr;
-    for (int k = 0; k < nsubs; ++k) {
-      sub_addr.push_back(static_cast<std::uint16_t>(g.words.size()));
-      g.block(0, 1, 3, k + 1, nsubs, false, rng.range(1, 3));
-      if (k + 1 < nsubs && rng.chance(50)) {
-        MicroWord w = g.body();
-        w.s = {SeqOp::Call, 0, 0};
-        g.calls.push_back({g.emit(w), rng.range(k + 1, nsubs - 1)});
-      }
-      MicroWord ret = g.body();
-      ret.s = {SeqOp::Ret, 0, 0};
-      g.emit(ret);
-    }
-    for (const auto& fx : g.calls) g.words[fx.at].s.target = sub_addr[fx.sub];
-    if (last && c.planned_fault == Fault::PcOverflow) {
-      g.words.resize(kProgramWords);
-      for (int i = kProgramWords - 3; i < kProgramWords; ++i) g.words[i] = g.body();
-    }
-    std::vector<Encoded> image;
-    image.reserve(g.words.size());
-    for (const auto& w : g.words) image.push_back(w.encode());
-    c.images.push_back(std::move(image));
-    c.entry.push_back(static_cast<std::uint16_t>(entry));
+// One program image: junk before the entry point, the base registers, the main
+// block, its ending (SWAPP to the next image, a planned fault, or HALT), then the
+// subroutines it calls. Appends the image and its entry to `c`.
+void random_image(Rng& rng, const RandomOptions& opt, bool last, bool fault, RandomCase& c) {
+  ProgramGen g(rng, opt.max_words);
+  const int entry = rng.range(0, 4);  // never executed
+  for (int i = 0; i < entry; ++i) {
+    MicroWord w;
+    w.s = {SeqOp::Reserved13, 0, 0};
+    g.emit(w);
   }
-  // SWAPP k continues at the entry of image k + 1.
-  for (int img = 0; img + 1 < nimages; ++img)
-    for (auto& e : c.images[img]) {
-      MicroWord w = MicroWord::decode(e);
-      if (w.s.op == SeqOp::Swapp) {
-        w.s.target = c.entry[img + 1];
-        e = w.encode();
-      }
-    }
+  for (int b = 0; b < 3; ++b) {
+    MicroWord w = g.body(false);
+    w.i = {IntOp::Li, static_cast<std::uint8_t>(kBaseRegs[b]), 0, 0, kBaseValues[b]};
+    g.emit(w);
+  }
+  const int nsubs = rng.range(0, 3);
+  g.block(0, 2, 1, 0, nsubs, true, rng.range(6, 20));
 
+  if (!last) {
+    MicroWord w = g.body();
+    w.s = {SeqOp::Swapp, 0, 0};  // target patched by the caller: the next image's entry
+    g.emit(w);
+  } else if (fault) {
+    c.planned_fault = fault_ending(rng, g);
+  } else {
+    MicroWord w = rng.chance(30) ? g.body() : MicroWord{};
+    w.s = {SeqOp::Halt, 0, 0};
+    g.emit(w);
+  }
+  // Subroutines: sub k calls only subs above k; loops only in leaves-to-be
+  // (no CALL inside a subroutine loop), counted in A3.
+  std::vector<std::uint16_t> sub_addr;
+  for (int k = 0; k < nsubs; ++k) {
+    sub_addr.push_back(static_cast<std::uint16_t>(g.words.size()));
+    g.block(0, 1, 3, k + 1, nsubs, false, rng.range(1, 3));
+    if (k + 1 < nsubs && rng.chance(50)) {
+      MicroWord w = g.body();
+      w.s = {SeqOp::Call, 0, 0};
+      g.calls.push_back({g.emit(w), rng.range(k + 1, nsubs - 1)});
+    }
+    MicroWord ret = g.body();
+    ret.s = {SeqOp::Ret, 0, 0};
+    g.emit(ret);
+  }
+  for (const auto& fx : g.calls) g.words[fx.at].s.target = sub_addr[fx.sub];
+  if (last && c.planned_fault == Fault::PcOverflow) {
+    g.words.resize(kProgramWords);
+    for (int i = kProgramWords - 3; i < kProgramWords; ++i) g.words[i] = g.body();
+  }
+  std::vector<Encoded> image;
+  image.reserve(g.words.size());
+  for (const auto& w : g.words) image.push_back(w.encode());
+  c.images.push_back(std::move(image));
+  c.entry.push_back(static_cast<std::uint16_t>(entry));
+}
+
+// The data blocks (a window at 0 and around each base register) and the
+// per-transfer bus delays.
+void random_data(Rng& rng, const RandomOptions& opt, RandomCase& c) {
   const int nblocks = rng.range(2, 4);
   for (int b = 0; b < nblocks; ++b) {
     std::vector<std::pair<std::uint16_t, std::uint32_t>> block;
@@ -339,6 +329,27 @@ RandomCase make_random_case(std::uint64_t seed, const RandomOptions& opt) {
     c.data_delays.push_back(static_cast<std::uint16_t>(rng.range(0, opt.max_delay)));
     c.program_delays.push_back(static_cast<std::uint16_t>(rng.range(0, opt.max_delay)));
   }
+}
+
+}  // namespace
+
+RandomCase make_random_case(std::uint64_t seed, const RandomOptions& opt) {
+  Rng rng(seed);
+  RandomCase c;
+  c.seed = seed;
+  const int nimages = rng.chance(70) ? 1 : rng.range(2, 3);
+  const bool fault = rng.below(100) < opt.fault_percent;
+  for (int img = 0; img < nimages; ++img) random_image(rng, opt, img + 1 == nimages, fault, c);
+  // SWAPP k continues at the entry of image k + 1.
+  for (int img = 0; img + 1 < nimages; ++img)
+    for (auto& e : c.images[img]) {
+      MicroWord w = MicroWord::decode(e);
+      if (w.s.op == SeqOp::Swapp) {
+        w.s.target = c.entry[img + 1];
+        e = w.encode();
+      }
+    }
+  random_data(rng, opt, c);
   return c;
 }
 

@@ -1,0 +1,349 @@
+#include "mc1_sweep_cmd.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+#include "atomic_file.hpp"
+#include "json.hpp"
+#include "mc1_cli.hpp"
+#include "mc1_render.hpp"
+#include "png_writer.hpp"
+#include "report_writers.hpp"
+#include "scene.hpp"
+#include "shard_report.hpp"
+
+namespace mc1::cli {
+
+const char* const kSweepDescription =
+    "a grid of rendered frames, sharded: nodes x schedule x block size x scene (x camera orbit)\n\n"
+    "Renders every point of the grid --scene x --orbit frames x --nodes x --schedules x --blocks\n"
+    "(in that order of nesting, the last fastest; point i of P) and writes each point's statistics\n"
+    "JSON (and with --png its frame) into --out-dir, and a report of the points run (--json,\n"
+    "schema mc1-sweep/1). --shard K/N runs points [P(K-1)/N, PK/N) only; --merge REPORT.json...\n"
+    "combines the reports of shards 1..N of one grid into the grid's report, which checks that\n"
+    "every point's frame equals the other points' of its scene and orbit frame bit for bit.\n"
+    "Exit 0 when every frame is complete and equal, 1 if not, 2 on a usage error or a bad report.";
+
+void add_sweep_options(CLI::App& cmd) {
+  list_option(cmd, "scene", "FILE", "a scene of the grid; repeatable (default scenes/whitted.json)");
+  value_option(cmd, "nodes", "LIST", "node counts (default 16)");
+  value_option(cmd, "schedules", "LIST", "schedules: lpt, fifo, static (default lpt)");
+  value_option(cmd, "blocks", "LIST", "block sizes B or WxH (default 16)");
+  value_option(cmd, "size", "WxH", "frame size (default: each scene's camera size)");
+  value_option(cmd, "orbit", "K",
+               "the frames of a camera path: K frames of the camera turned about its look-at point around its "
+               "up vector, frame f by 360 f / K degrees (default 1: the scene's camera)");
+  value_option(cmd, "engine", "iss|rtl", "APU engine (default iss)");
+  add_threads_option(cmd);
+  add_param_options(cmd);
+  value_option(cmd, "shard", "K/N", "run slice K of N of the points (default 1/1)");
+  value_option(cmd, "out-dir", "DIR", "write point-I.json (statistics) there (default: .)");
+  flag_option(cmd, "png", "also write each point's frame as point-I.png");
+  value_option(cmd, "json", "FILE", "the report of the points run, or with --merge the merged report");
+  cmd.add_option("--merge", "merge the --json reports of shards 1..N of one grid (nothing is run)")
+      ->type_name("REPORT.json ...")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(true)
+      ->expected(1, CLI::detail::expected_max_vector_size);
+  flag_option(cmd, "list", "print the grid's points (of the shard) and run nothing");
+  flag_option(cmd, "quiet", "print nothing but errors");
+}
+
+namespace {
+
+namespace json = mc1::scene::json;
+using json::Type;
+using json::Value;
+
+struct Block {
+  unsigned w = 16, h = 16;
+};
+
+struct Grid {
+  std::vector<std::string> scenes;
+  unsigned orbit = 1;
+  std::vector<unsigned> nodes;
+  std::vector<rc::Schedule> schedules;
+  std::vector<Block> blocks;
+  unsigned width = 0, height = 0;  // 0: the scene's
+  EngineKind engine = EngineKind::Iss;
+  std::uint64_t points() const {
+    return std::uint64_t{scenes.size()} * orbit * nodes.size() * schedules.size() * blocks.size();
+  }
+};
+
+struct Point {
+  std::uint64_t index = 0;
+  std::string scene;
+  unsigned frame = 0;
+  unsigned nodes = 0;
+  rc::Schedule schedule = rc::Schedule::Lpt;
+  Block block;
+};
+
+// Point i: the last list of the grid varies fastest.
+Point point(const Grid& g, std::uint64_t i) {
+  Point p;
+  p.index = i;
+  p.block = g.blocks[i % g.blocks.size()];
+  i /= g.blocks.size();
+  p.schedule = g.schedules[i % g.schedules.size()];
+  i /= g.schedules.size();
+  p.nodes = g.nodes[i % g.nodes.size()];
+  i /= g.nodes.size();
+  p.frame = static_cast<unsigned>(i % g.orbit);
+  p.scene = g.scenes[i / g.orbit];
+  return p;
+}
+
+double orbit_deg(const Grid& g, unsigned frame) { return 360.0 * frame / g.orbit; }
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+std::string block_name(const Block& b) { return std::to_string(b.w) + "x" + std::to_string(b.h); }
+
+// FNV-1a of the frame's RGB bytes: equal frames, equal hashes.
+std::string image_hash(const std::vector<std::uint8_t>& rgb) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (std::uint8_t b : rgb) h = (h ^ b) * 1099511628211ull;
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+std::string timing_hash(const TimingParams& t) {
+  const std::string text = t.to_text();
+  return image_hash(std::vector<std::uint8_t>(text.begin(), text.end()));
+}
+
+Grid read_grid(const Parsed& a, const CLI::App& cmd) {
+  Grid g;
+  g.scenes = a.all("scene");
+  if (g.scenes.empty()) g.scenes.push_back(MC1_SOURCE_DIR "/scenes/whitted.json");
+  if (a.has("orbit")) g.orbit = parse_unsigned("--orbit", a.get("orbit"), 1, 100000);
+  g.nodes = parse_list("--nodes", a.get("nodes", "16"), 1, 4096);
+  for (const std::string& s : split(a.get("schedules", "lpt"))) {
+    const auto x = rc::parse_schedule(s);
+    if (!x) throw CliError("--schedules: bad value '" + s + "' (expected lpt, fifo or static)");
+    g.schedules.push_back(*x);
+  }
+  for (const std::string& b : split(a.get("blocks", "16"))) {
+    Block x;
+    std::tie(x.w, x.h) = parse_size("--blocks", b, true);
+    g.blocks.push_back(x);
+  }
+  if (g.nodes.empty() || g.schedules.empty() || g.blocks.empty()) throw CliError("an empty grid");
+  if (a.has("size")) std::tie(g.width, g.height) = parse_size("--size", a.get("size"), false);
+  if (a.has("engine")) g.engine = parse_engine(a.get("engine"));
+  (void)cmd;
+  return g;
+}
+
+std::string quote(const std::string& s) { return json::quote(s); }
+
+template <typename T, typename F>
+std::string json_list(const std::vector<T>& v, F f) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + f(v[i]);
+  return s + "]";
+}
+
+// What makes two reports shards of one grid.
+const std::vector<std::string> kRunKeys = {"grid", "points_total"};
+
+std::string grid_json(const Grid& g, const TimingParams& t) {
+  return "{\"scenes\": " + json_list(g.scenes, quote) + ", \"orbit\": " + std::to_string(g.orbit) +
+         ", \"nodes\": " + json_list(g.nodes, [](unsigned n) { return std::to_string(n); }) +
+         ", \"schedules\": " +
+         json_list(g.schedules, [](rc::Schedule s) { return quote(rc::schedule_name(s)); }) +
+         ", \"blocks\": " + json_list(g.blocks, [](const Block& b) { return quote(block_name(b)); }) +
+         ", \"size\": " + (g.width ? quote(std::to_string(g.width) + "x" + std::to_string(g.height)) : "null") +
+         ", \"engine\": " + quote(engine_name(g.engine)) + ", \"timing_fnv1a\": " + quote(timing_hash(t)) + "}";
+}
+
+std::string num(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.9g", x);
+  return b;
+}
+
+int run_sweep(const CLI::App& cmd, const Parsed& a) {
+  SystemConfig base = machine_config();
+  apply_params(cmd, base.timing);
+  threads_option(a, base);
+  const Grid g = read_grid(a, cmd);
+  std::uint64_t k = 1, n = 1;
+  if (a.has("shard")) std::tie(k, n) = shard::parse_shard("--shard", a.get("shard"));
+  const auto [first, end] = shard::shard_range(g.points(), k, n);
+  const std::string dir = a.get("out-dir", ".");
+  const bool quiet = a.has("quiet");
+  if (a.has("list")) {
+    for (std::uint64_t i = first; i < end; ++i) {
+      const Point p = point(g, i);
+      std::printf("%llu %s frame %u (%.6g deg) %u NCs %s %s\n", static_cast<unsigned long long>(i), p.scene.c_str(),
+                  p.frame, orbit_deg(g, p.frame), p.nodes, rc::schedule_name(p.schedule), block_name(p.block).c_str());
+    }
+    return 0;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  std::ostringstream points;
+  bool passed = true, any = false;
+  for (std::uint64_t i = first; i < end; ++i) {
+    const Point p = point(g, i);
+    if (any) fresh_systemc_kernel();
+    any = true;
+    SystemConfig cfg = base;
+    cfg.nodes = p.nodes;
+    cfg.schedule = p.schedule;
+    cfg.block_w = p.block.w;
+    cfg.block_h = p.block.h;
+    cfg.engine = g.engine;
+    RenderJob job{p.scene, g.width, g.height};
+    job.orbit_deg = orbit_deg(g, p.frame);
+    const FrameReport r = run_render(job, cfg).report;
+    const bool complete = r.fm_pixels_written == std::uint64_t{r.width} * r.height;
+    passed = passed && complete;
+    char name[32];
+    std::snprintf(name, sizeof name, "point-%04llu", static_cast<unsigned long long>(i));
+    Outputs out;
+    out.add(dir + "/" + name + ".json", stats_json(r));
+    if (a.has("png")) out.add(dir + "/" + name + ".png", encode_png_rgb8(r.width, r.height, r.rgb.data()));
+    out.commit();
+    points << (i > first ? ",\n" : "") << "    {\"index\": " << i << ", \"scene\": " << quote(p.scene)
+           << ", \"frame\": " << p.frame << ", \"orbit_deg\": " << num(orbit_deg(g, p.frame))
+           << ", \"nodes\": " << p.nodes << ", \"schedule\": " << quote(rc::schedule_name(p.schedule))
+           << ", \"block\": " << quote(block_name(p.block)) << ", \"width\": " << r.width
+           << ", \"height\": " << r.height << ", \"simulated_time_ps\": " << r.frame_time
+           << ", \"download_done_ps\": " << milestone_time(r, "downloaded")
+           << ", \"apu_utilization\": " << num(apu_utilization_mean(r)) << ", \"complete\": "
+           << (complete ? "true" : "false") << ", \"image_fnv1a\": " << quote(image_hash(r.rgb))
+           << ", \"stats\": " << quote(std::string(name) + ".json") << ", \"host_seconds\": " << num(r.host_seconds)
+           << "}";
+    if (!quiet)
+      std::printf("point %llu/%llu: %s frame %u, %u NCs, %s, blocks %s: %.3f ms simulated, %.2f s host%s\n",
+                  static_cast<unsigned long long>(i), static_cast<unsigned long long>(g.points()),
+                  p.scene.c_str(), p.frame, p.nodes, rc::schedule_name(p.schedule), block_name(p.block).c_str(),
+                  r.frame_time * 1e-9, r.host_seconds, complete ? "" : " INCOMPLETE");
+    std::fflush(stdout);
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::ostringstream j;
+  j << "{\n  \"schema\": \"mc1-sweep/1\",\n  \"grid\": " << grid_json(g, base.timing)
+    << ",\n  \"points_total\": " << g.points() << ",\n  \"shard\": \"" << k << "/" << n << "\",\n  \"threads\": "
+    << (base.threads ? base.threads : nc::ApuPool::default_threads()) << ",\n  \"wall_seconds\": " << num(wall)
+    << ",\n  \"points\": [\n"
+    << points.str() << (end > first ? "\n" : "") << "  ],\n  \"passed\": " << (passed ? "true" : "false") << "\n}\n";
+  if (a.has("json")) write_file_atomically(a.get("json"), j.str());
+  return passed ? cmdline::kExitOk : cmdline::kExitFailed;
+}
+
+// --merge: the shards' points in index order, every point once; the frames
+// of one scene and orbit frame compared.
+int merge_sweep(const CLI::App& cmd, const Parsed& a) {
+  const std::vector<std::string> files = cmd.get_option("--merge")->as<std::vector<std::string>>();
+  std::vector<shard::Report> reports;
+  for (const std::string& f : files) {
+    shard::Report r = shard::read_report(f, "mc1-sweep/1");
+    shard::member(r, r.root, "grid", Type::object);
+    shard::member(r, r.root, "points_total", Type::number);
+    shard::member(r, r.root, "passed", Type::boolean);
+    for (const Value& p : shard::member(r, r.root, "points", Type::array).items) {
+      shard::member(r, p, "index", Type::number);
+      shard::member(r, p, "scene", Type::string);
+      shard::member(r, p, "frame", Type::number);
+      shard::member(r, p, "complete", Type::boolean);
+      shard::member(r, p, "image_fnv1a", Type::string);
+    }
+    reports.push_back(std::move(r));
+  }
+  shard::check_same_run(reports, kRunKeys);
+  std::sort(reports.begin(), reports.end(), [](const auto& x, const auto& y) { return x.shard < y.shard; });
+  const auto total = static_cast<std::uint64_t>(reports.front().root.find("points_total")->number);
+  Value merged = reports.front().root;
+  *shard::mutable_member(merged, "shard") = shard::string_value("all/" + std::to_string(reports.front().shards));
+  *shard::mutable_member(merged, "threads") = Value{};
+  double wall = 0;
+  Value& points = *shard::mutable_member(merged, "points");
+  points.items.clear();
+  bool passed = true;
+  for (const shard::Report& r : reports) {
+    const auto [first, end] = shard::shard_range(total, r.shard, r.shards);
+    const Value& mine = *r.root.find("points");
+    if (mine.items.size() != end - first)
+      throw CliError(r.file + ": " + std::to_string(mine.items.size()) + " points, shard " + std::to_string(r.shard) +
+                     "/" + std::to_string(r.shards) + " has " + std::to_string(end - first));
+    for (std::size_t i = 0; i < mine.items.size(); ++i)
+      if (mine.items[i].find("index")->number != static_cast<double>(first + i))
+        throw CliError(shard::where(r, mine.items[i]) + ": point " + shard::serialize(*mine.items[i].find("index")) +
+                       ", expected " + std::to_string(first + i));
+    points.items.insert(points.items.end(), mine.items.begin(), mine.items.end());
+    passed = passed && r.root.find("passed")->boolean;
+    wall += shard::member(r, r.root, "wall_seconds", Type::number).number;
+  }
+  *shard::mutable_member(merged, "wall_seconds") = shard::number_value(wall);
+  // One image per scene and orbit frame.
+  std::map<std::pair<std::string, double>, std::pair<std::string, unsigned>> frames;
+  std::vector<std::pair<std::string, double>> order;
+  bool equal = true;
+  for (const Value& p : points.items) {
+    const auto key = std::make_pair(p.find("scene")->string, p.find("frame")->number);
+    auto it = frames.find(key);
+    if (it == frames.end()) {
+      frames[key] = {p.find("image_fnv1a")->string, 1};
+      order.push_back(key);
+    } else {
+      equal = equal && it->second.first == p.find("image_fnv1a")->string;
+      if (it->second.first != p.find("image_fnv1a")->string) it->second.first = "differs";
+      ++it->second.second;
+    }
+  }
+  Value list;
+  list.type = Type::array;
+  for (const auto& key : order) {
+    const auto& [hash, count] = frames[key];
+    Value f = json::parse("{\"scene\": " + json::quote(key.first) + ", \"frame\": " + shard::serialize(shard::number_value(key.second)) +
+                              ", \"points\": " + std::to_string(count) + ", \"image_fnv1a\": " + json::quote(hash) +
+                              ", \"equal\": " + (hash == "differs" ? "false" : "true") + "}",
+                          "merge");
+    list.items.push_back(std::move(f));
+  }
+  const bool ok = passed && equal;
+  shard::mutable_member(merged, "passed")->boolean = ok;
+  merged.members.insert(merged.members.end() - 1, {"frames", list});
+  const std::string text = shard::layout(merged, {"points", "frames"});
+  if (a.has("json")) write_file_atomically(a.get("json"), text);
+  else std::fputs(text.c_str(), stdout);
+  if (!a.has("quiet"))
+    std::fprintf(a.has("json") ? stdout : stderr, "mc1 sweep: merged %zu shards, %llu points, %zu frames: %s\n",
+                 reports.size(), static_cast<unsigned long long>(total), order.size(),
+                 !passed ? "a point is incomplete" : equal ? "every frame equal across its points" : "FRAMES DIFFER");
+  return ok ? cmdline::kExitOk : cmdline::kExitFailed;
+}
+
+}  // namespace
+
+int cmd_sweep(const CLI::App& cmd) {
+  const Parsed a(cmd);
+  if (cmd.count("--merge")) {
+    try {
+      return merge_sweep(cmd, a);
+    } catch (const scene::SceneError& e) {
+      throw CliError(std::string("--merge: ") + e.what());
+    } catch (const CliError& e) {
+      throw CliError(std::string("--merge: ") + e.what());
+    }
+  }
+  return run_sweep(cmd, a);
+}
+
+}  // namespace mc1::cli
