@@ -78,6 +78,7 @@ struct Bench {
     bus->bus2dc.bind(dc->bus2dc);
     dc->dc2fm.bind(fm->dc2fm);
   }
+  ~Bench() { mc1::unwind_threads(); }  // before the modules go (sc_kernel.hpp)
 };
 
 class ImageBusTest : public test::SystemCTest {};

@@ -70,6 +70,7 @@ struct OneNc {
     bus->bus2dc.bind(dc->bus2dc);
     dc->dc2fm.bind(fm->dc2fm);
   }
+  ~OneNc() { mc1::unwind_threads(); }  // before the modules go (sc_kernel.hpp)
 };
 
 // Takes the RC's broadcasts and its Finish, so that the RC completes.

@@ -109,6 +109,7 @@ struct DispatchBench {
     bus->bus2dc.bind(dc->bus2dc);
     dc->dc2fm.bind(fm->dc2fm);
   }
+  ~DispatchBench() { mc1::unwind_threads(); }  // before the modules go (sc_kernel.hpp)
 };
 
 class RcDispatch : public test::SystemCTest {};

@@ -13,6 +13,8 @@
 #include <string>
 #include <systemc>
 
+#include "sc_kernel.hpp"
+
 namespace mc1::test {
 
 inline void report_to_gtest(const sc_core::sc_report& r, const sc_core::sc_actions& actions) {
@@ -26,10 +28,12 @@ inline void report_to_gtest(const sc_core::sc_report& r, const sc_core::sc_actio
                      sc_core::SC_INTERRUPT | sc_core::SC_DISPLAY | sc_core::SC_LOG));
 }
 
-// SystemC cannot elaborate twice in one kernel; a test starts a new one.
+// SystemC cannot elaborate twice in one kernel; a test starts a new one (the
+// previous kernel is deleted). A test that runs its own modules with
+// sc_start() calls mc1::unwind_threads() before they go, if their threads
+// may still be waiting (sc_kernel.hpp).
 inline void fresh_kernel() {
-  sc_core::sc_curr_simcontext = new sc_core::sc_simcontext();
-  sc_core::sc_default_global_context = sc_core::sc_curr_simcontext;
+  mc1::fresh_kernel();
   sc_core::sc_report_handler::set_handler(report_to_gtest);
 }
 

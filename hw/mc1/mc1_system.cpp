@@ -7,6 +7,7 @@
 
 #include "apu_iss.hpp"
 #include "rc_protocol.hpp"
+#include "sc_kernel.hpp"
 #include "sc_time_conv.hpp"
 
 namespace mc1 {
@@ -35,6 +36,15 @@ rc::FramePlan diag_plan(const SystemConfig& cfg, std::vector<apu::Encoded> progr
 }
 
 }  // namespace
+
+// The threads still waiting when the frame ended (the NCs' firmware, the
+// HDLC pump, the bus arbiter) are unwound while their modules exist.
+Mc1System::~Mc1System() {
+  try {
+    unwind_threads(this);
+  } catch (...) {  // outside any process: no sc_unwind_exception comes here
+  }
+}
 
 Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg,
                      std::vector<apu::Encoded> program, nc::Firmware firmware)
@@ -290,7 +300,7 @@ FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_pa
   }
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    sc_core::sc_start();
+    sc_run();
   } catch (const std::exception& e) {
     throw std::runtime_error(e.what() + nc_faults(*sys));
   }
@@ -304,9 +314,6 @@ FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_pa
 
 }  // namespace
 
-void fresh_systemc_kernel() {
-  sc_core::sc_curr_simcontext = new sc_core::sc_simcontext();
-  sc_core::sc_default_global_context = sc_core::sc_curr_simcontext;
-}
+void fresh_systemc_kernel() { fresh_kernel(); }
 
 }  // namespace mc1

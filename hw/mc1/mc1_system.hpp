@@ -83,6 +83,7 @@ class Mc1System : public sc_core::sc_module {
             nc::Firmware firmware);
   // Any frame: the RC follows `plan` (its schedule is cfg.schedule).
   Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::FramePlan plan, nc::Firmware firmware);
+  ~Mc1System() override;  // unwinds the threads still waiting (sc_kernel.hpp)
 
   const SystemConfig& config() const { return cfg_; }
   RootComputer& rc() { return *rc_; }

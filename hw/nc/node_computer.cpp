@@ -7,6 +7,7 @@
 
 #include "apu_iss.hpp"
 #include "sc_time_conv.hpp"
+#include "sc_kernel.hpp"
 
 namespace mc1::nc {
 namespace {
@@ -433,10 +434,16 @@ void NodeComputer::run() {
   } catch (const Killed&) {
     try {
       die();
+    } catch (const sc_core::sc_unwind_exception&) {
+      throw;
     } catch (const std::exception& e) {  // an APU fault in a catch-up not yet clocked (settle_apu)
+      unwind_threads();
       SC_REPORT_ERROR(name(), e.what());
     }
+  } catch (const sc_core::sc_unwind_exception&) {
+    throw;  // killed at the end of the simulation (unwind_threads): not a failure
   } catch (const std::exception& e) {
+    unwind_threads();  // the error ends the simulation: nothing waits on
     SC_REPORT_ERROR(name(), e.what());
   }
 }

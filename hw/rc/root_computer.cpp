@@ -3,6 +3,8 @@
 #include <exception>
 #include <utility>
 
+#include "sc_kernel.hpp"
+
 namespace mc1 {
 
 namespace {
@@ -95,8 +97,11 @@ void RootComputer::run() {
     transport_.supervise_links(false);  // nothing to watch for any more: the simulation can end
     transport_.sync();
     finish_stragglers();
+  } catch (const sc_core::sc_unwind_exception&) {
+    throw;  // killed at the end of the simulation (unwind_threads): not a failure
   } catch (const std::exception& e) {
     transport_.supervise_links(false);  // no polls for ever after a failed frame
+    unwind_threads();                   // the error ends the simulation: nothing waits on
     SC_REPORT_ERROR(name(), e.what());
   }
 }
