@@ -286,6 +286,33 @@ struct BenchRun {
   FrameReport r;
 };
 
+// The double-precision reference renderer's host time for the frame: the
+// best of three (it is short, so the best is the least disturbed by other load).
+double reference_host_seconds(const std::string& scene, std::pair<unsigned, unsigned> size) {
+  const scene::Scene sc = scene::load_scene(scene);
+  const refrender::Renderer ref(sc);
+  double best = 0;
+  for (int i = 0; i < 3; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const imgcmp::Image img = ref.render(static_cast<int>(size.first), static_cast<int>(size.second));
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (i == 0 || t < best) best = t;
+    if (img.width != static_cast<int>(size.first)) throw std::runtime_error("reference renderer: wrong size");
+  }
+  return best;
+}
+
+void runs_json(std::ostream& json, const std::vector<BenchRun>& runs) {
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const BenchRun& b = runs[i];
+    json << (i ? ", " : "") << "{\"label\": \"" << b.label << "\", \"nodes\": " << b.nodes << ", \"width\": " << b.width
+         << ", \"height\": " << b.height << ", \"schedule\": \"" << rc::schedule_name(b.schedule)
+         << "\", \"engine\": \"" << engine_name(b.engine) << "\", \"simulated_time_s\": " << b.r.frame_time * 1e-12
+         << ", \"host_seconds\": " << b.r.host_seconds << ", \"apu_utilization\": " << apu_utilization_mean(b.r)
+         << ", \"download_done_s\": " << milestone_time(b.r, "downloaded") * 1e-12 << "}";
+  }
+}
+
 }  // namespace
 
 int cmd_bench_render(const CLI::App& cmd) {
@@ -357,8 +384,7 @@ int cmd_bench_render(const CLI::App& cmd) {
     rtl_host = run_one("RTL engine", static_nodes, size, rc::Schedule::Lpt, EngineKind::Rtl).host_seconds;
   }
   // The co-simulation against the reference renderer on the same frame: the
-  // ISS run on --static-nodes NCs (lpt) over the best of three reference
-  // renders (it is short, so the best is the least disturbed by other load).
+  // ISS run on --static-nodes NCs (lpt) over the reference's best of three.
   double iss_host = 0;
   for (const BenchRun& b : runs)
     if (b.engine == EngineKind::Iss && b.nodes == static_nodes && b.schedule == rc::Schedule::Lpt &&
@@ -366,26 +392,8 @@ int cmd_bench_render(const CLI::App& cmd) {
       iss_host = b.r.host_seconds;
       break;
     }
-  double ref_host = 0;
-  {
-    const scene::Scene sc = scene::load_scene(scene);
-    const refrender::Renderer ref(sc);
-    for (int i = 0; i < 3; ++i) {
-      const auto t0 = std::chrono::steady_clock::now();
-      const imgcmp::Image img = ref.render(static_cast<int>(size.first), static_cast<int>(size.second));
-      const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (i == 0 || t < ref_host) ref_host = t;
-      if (img.width != static_cast<int>(size.first)) throw std::runtime_error("reference renderer: wrong size");
-    }
-  }
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    const BenchRun& b = runs[i];
-    json << (i ? ", " : "") << "{\"label\": \"" << b.label << "\", \"nodes\": " << b.nodes << ", \"width\": " << b.width
-         << ", \"height\": " << b.height << ", \"schedule\": \"" << rc::schedule_name(b.schedule)
-         << "\", \"engine\": \"" << engine_name(b.engine) << "\", \"simulated_time_s\": " << b.r.frame_time * 1e-12
-         << ", \"host_seconds\": " << b.r.host_seconds << ", \"apu_utilization\": " << apu_utilization_mean(b.r)
-         << ", \"download_done_s\": " << milestone_time(b.r, "downloaded") * 1e-12 << "}";
-  }
+  const double ref_host = reference_host_seconds(scene, size);
+  runs_json(json, runs);
   json << "], \"speedup\": {";
 
   std::printf("\n%ux%u, lpt:", size.first, size.second);
