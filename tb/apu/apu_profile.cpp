@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "disasm.hpp"
+#include "report_text.hpp"
 
 namespace mc1::apu {
 namespace {
@@ -16,26 +17,8 @@ std::uint8_t unit_mask(const Encoded& e) {
   return static_cast<std::uint8_t>((w.m.en ? 1 : 0) | (w.a.en ? 2 : 0) | (w.f.en ? 4 : 0));
 }
 
-std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-std::string format(const char* fmt, ...) {
-  char buf[512];
-  va_list ap;
-  va_start(ap, fmt);
-  std::vsnprintf(buf, sizeof buf, fmt, ap);
-  va_end(ap);
-  return buf;
-}
-
-// A JSON string's body: quotes, backslashes and control characters escaped.
-std::string json_escape(const std::string& text) {
-  std::string o;
-  for (unsigned char c : text) {
-    if (c == '"' || c == '\\') o += '\\';
-    if (c < 0x20) o += format("\\u%04x", c);
-    else o += static_cast<char>(c);
-  }
-  return o;
-}
+using report_text::format;
+using report_text::json_escape;
 
 double percent(std::uint64_t part, std::uint64_t whole) { return whole ? 100.0 * part / whole : 0.0; }
 

@@ -6,29 +6,13 @@
 #include <cstdio>
 
 #include "disasm.hpp"
+#include "report_text.hpp"
 
 namespace mc1::apu {
 namespace {
 
-std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-std::string format(const char* fmt, ...) {
-  char buf[512];
-  va_list ap;
-  va_start(ap, fmt);
-  std::vsnprintf(buf, sizeof buf, fmt, ap);
-  va_end(ap);
-  return buf;
-}
-
-std::string json_escape(const std::string& text) {
-  std::string o;
-  for (unsigned char c : text) {
-    if (c == '"' || c == '\\') o += '\\';
-    if (c < 0x20) o += format("\\u%04x", c);
-    else o += static_cast<char>(c);
-  }
-  return o;
-}
+using report_text::format;
+using report_text::json_escape;
 
 using ull = unsigned long long;
 
