@@ -106,7 +106,7 @@ TEST_P(ApuTlmTest, HaltsInTheDriversCycleAndRaisesTheIrqWithinAQuantum) {
     EXPECT_EQ(sc_time_stamp(), irq_at) << "the ack lowers the irq at once";
   });
   mpu.mpu2apu.bind(apu.mpu2apu);
-  sc_start(1, SC_MS);
+  mc1::sc_run(1, SC_MS);
   const double halt_us = n * t.apu_cycle_ps() * 1e-6;
   EXPECT_GE(irq_at.to_seconds() * 1e6, halt_us);
   EXPECT_LE(irq_at.to_seconds() * 1e6, halt_us + 1.0);
@@ -147,7 +147,7 @@ loop:   ld f1, [a1+0]
     EXPECT_EQ(m.read(map::kAreg + 4 * 1), 6u);
   });
   mpu.mpu2apu.bind(apu.mpu2apu);
-  sc_start(1, SC_MS);
+  mc1::sc_run(1, SC_MS);
   EXPECT_EQ(apu.engine().state(), RunState::Halted);
 }
 
@@ -179,7 +179,7 @@ TEST_P(ApuTlmTest, RefusesMalformedAccesses) {
     EXPECT_EQ(m.read(map::kData + 4 * 5), 0x123456u);
   });
   mpu.mpu2apu.bind(apu.mpu2apu);
-  sc_start(20, SC_US);
+  mc1::sc_run(20, SC_US);
 }
 
 // Benches hold several RTL engines (an ApuTlm and NCs): destroyed newest

@@ -105,7 +105,7 @@ TEST_F(ImageBusTest, RoundRobinNotFifoAndExactTimes) {
   b.nc[2]->jobs.push_back({sc_time(0, SC_NS), sc_time(0, SC_NS), encode_run(make_run(0, 3, 10, 3))});
   b.nc[1]->jobs.push_back({sc_time(0, SC_NS), sc_time(1, SC_US), encode_run(make_run(0, 2, 10, 2))});
   b.nc[0]->jobs.push_back({sc_time(2, SC_US), sc_time(0, SC_NS), encode_run(make_run(0, 1, 10, 1))});
-  sc_core::sc_start();
+  mc1::sc_run();
   const auto& g = b.bus->grants();
   ASSERT_EQ(g.size(), 3u);
   // NC 3 first (alone at t=0). At 3.8 us NC 2 (asked at 1 us) and NC 1 (at
@@ -143,7 +143,7 @@ TEST_F(ImageBusTest, EveryNcGetsItsTurnUnderLoad) {
                                    encode_run(make_run(static_cast<std::uint16_t>(i * 8),
                                                        static_cast<std::uint16_t>(k), 8,
                                                        static_cast<std::uint8_t>(k)))});
-  sc_core::sc_start();
+  mc1::sc_run();
   const auto& g = b.bus->grants();
   ASSERT_EQ(g.size(), 20u);
   for (std::size_t i = 0; i < g.size(); ++i) EXPECT_EQ(g[i].nc, 1 + i % 4) << "grant " << i;
@@ -160,7 +160,7 @@ TEST_F(ImageBusTest, FrameMemoryBoundRunHoldsTheBus) {
   // 100 pixels: bus 306 bytes = 30.6 us; DC 0.4 + 100 * 0.5 = 50.4 us.
   b.nc[0]->jobs.push_back({sc_time(0, SC_NS), sc_time(0, SC_NS), encode_run(make_run(0, 0, 60, 1))});
   b.nc[0]->jobs.push_back({sc_time(0, SC_NS), sc_time(0, SC_NS), encode_run(make_run(0, 1, 40, 1))});
-  sc_core::sc_start();
+  mc1::sc_run();
   const auto& g = b.bus->grants();
   ASSERT_EQ(g.size(), 2u);
   // Run 1: 60 px, bus 18.6 us, DC 30.4 us; run 2: 40 px, bus 12.6 us, DC 20.4 us.
@@ -177,7 +177,7 @@ TEST_F(ImageBusTest, RunsOutsideTheFrameAreRefused) {
   b.nc[0]->jobs.push_back({sc_time(0, SC_NS), sc_time(0, SC_NS), encode_run(make_run(0, 16, 1, 1))});
   b.nc[0]->jobs.push_back({sc_time(0, SC_NS), sc_time(0, SC_NS), cut});
   b.nc[0]->jobs.push_back({sc_time(0, SC_NS), sc_time(0, SC_NS), encode_run(make_run(59, 15, 5, 7))});
-  sc_core::sc_start();
+  mc1::sc_run();
   EXPECT_EQ(b.nc[0]->status,
             (std::vector<tlm::tlm_response_status>{
                 tlm::TLM_ADDRESS_ERROR_RESPONSE, tlm::TLM_ADDRESS_ERROR_RESPONSE,

@@ -114,7 +114,7 @@ TEST_F(NcTest, WatchdogStopsARunawayKernelWaitedForToHalt) {
         returned = true;
       },
       std::make_unique<apu::Iss>(), watchdog_of(10'000));
-  sc_core::sc_start();
+  mc1::sc_run();
   const auto& s = b.nc->stats();
   EXPECT_FALSE(returned);
   EXPECT_TRUE(s.watchdog);
@@ -136,7 +136,7 @@ TEST_F(NcTest, WatchdogStopsAKernelThatNeverTakesTheDataBank) {
         port.apu_wait_swap();
       },
       std::make_unique<apu::Iss>(), watchdog_of(4'000));
-  sc_core::sc_start();
+  mc1::sc_run();
   const auto& s = b.nc->stats();
   EXPECT_TRUE(s.watchdog);
   EXPECT_NE(s.fault.find("took no data bank in 4000 cycles"), std::string::npos) << s.fault;
@@ -155,7 +155,7 @@ TEST_F(NcTest, WatchdogLeavesARunWithinItsBudget) {
         port.apu_wait_halt();
       },
       std::make_unique<apu::Iss>(), watchdog_of(n + 1));
-  sc_core::sc_start();
+  mc1::sc_run();
   EXPECT_FALSE(b.nc->stats().watchdog);
   EXPECT_FALSE(b.nc->stats().killed);
   EXPECT_EQ(b.nc->stats().apu_cycles, n);
@@ -174,7 +174,7 @@ TEST_F(NcTest, ApuTimeIsCyclesTimesTheApuClock) {
     started = sc_core::sc_time_stamp().value();  // with no local offset: synced by the receive
     port.apu_wait_halt();
   });
-  sc_core::sc_start();
+  mc1::sc_run();
   const auto& s = b.nc->stats();
   ASSERT_EQ(b.nc->apu_spans().size(), 1u);
   const nc::ApuSpan a = b.nc->apu_spans()[0];
@@ -198,7 +198,7 @@ TEST_F(NcTest, MpuWorkOverlapsTheApu) {
     port.apu_wait_halt();
     port.mpu_work(4000);  // 500 us with the APU idle
   });
-  sc_core::sc_start();
+  mc1::sc_run();
   const auto& s = b.nc->stats();
   ASSERT_EQ(b.nc->apu_spans().size(), 1u);
   const nc::ApuSpan a = b.nc->apu_spans()[0];
@@ -218,7 +218,7 @@ TEST_F(NcTest, ActivityPartitionsTheTimeline) {
     port.send_pixels(PixelRun{0, 0, {Rgb8{1, 2, 3}, Rgb8{4, 5, 6}}});
     port.block_end();
   });
-  sc_core::sc_start();
+  mc1::sc_run();
   const Picos end = b.nc->stats().finished_at + 1'000'000;  // 1 us idle after
   b.nc->close(end);
   const auto& spans = b.nc->spans();
@@ -252,7 +252,7 @@ TEST_F(NcTest, ApuFaultIsAnError) {
       error = e.what();
     }
   });
-  sc_core::sc_start();
+  mc1::sc_run();
   EXPECT_EQ(error.rfind("NC 1: APU fault data-address at cycle", 0), 0u) << error;
 }
 

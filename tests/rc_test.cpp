@@ -121,7 +121,7 @@ TEST_F(RcDispatch, EveryBlockExactlyOnceHeaviestFirst) {
   std::vector<std::uint32_t> load(blocks.size());
   for (std::size_t i = 0; i < load.size(); ++i) load[i] = static_cast<std::uint32_t>((i * 37) % 11);
   DispatchBench b(4, blocks, load);
-  sc_core::sc_start();
+  mc1::sc_run();
   ASSERT_TRUE(b.rc->done());
 
   // The schedule: loads non-increasing, ties in list order.
@@ -166,7 +166,7 @@ TEST_F(RcDispatch, EveryBlockExactlyOnceHeaviestFirst) {
 
 TEST_F(RcDispatch, MoreNcsThanBlocks) {
   DispatchBench b(5, rc::split_screen(16, 8, 8, 8), {});  // 2 blocks, 5 NCs
-  sc_core::sc_start();
+  mc1::sc_run();
   ASSERT_TRUE(b.rc->done());
   EXPECT_EQ(b.rc->completions().size(), 2u);
   EXPECT_EQ(b.rc->dispatches().size(), 2u + 5u);
@@ -182,7 +182,7 @@ TEST_F(RcDispatch, PostedMessagesOverlapOnIndependentLines) {
   EXPECT_EQ(b.hdlc->port_of(150), 0u);
   EXPECT_EQ(b.hdlc->port_of(151), 1u);
   EXPECT_EQ(b.hdlc->address_of(151), 1u);
-  sc_core::sc_start();
+  mc1::sc_run();
   ASSERT_TRUE(b.rc->done());
   ASSERT_EQ(b.rc->dispatches().size(), 301u);
   // Every NC's first request (about 30 us on the wire) travels on its own

@@ -30,16 +30,23 @@ inline void report_to_gtest(const sc_core::sc_report& r, const sc_core::sc_actio
 
 // SystemC cannot elaborate twice in one kernel; a test starts a new one (the
 // previous kernel is deleted). A test that runs its own modules with
-// sc_start() calls mc1::unwind_threads() before they go, if their threads
+// mc1::sc_run() calls mc1::unwind_threads() before they go, if their threads
 // may still be waiting (sc_kernel.hpp).
 inline void fresh_kernel() {
   mc1::fresh_kernel();
   sc_core::sc_report_handler::set_handler(report_to_gtest);
 }
 
+// After the test: a simulation run by sc_start() itself, not mc1::sc_run(),
+// leaves AddressSanitizer on the stack of a SystemC thread (sc_kernel.hpp);
+// the test fails, and the thread's own stack is announced again.
 class SystemCTest : public ::testing::Test {
  protected:
   void SetUp() override { fresh_kernel(); }
+  void TearDown() override {
+    if (mc1::sanitizer_on_own_stack())
+      ADD_FAILURE() << "ASan was left on a SystemC thread's stack: run simulations with mc1::sc_run(), not sc_start()";
+  }
 };
 
 }  // namespace mc1::test
