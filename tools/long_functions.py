@@ -162,7 +162,7 @@ def classify(head):
     if last in CONTROL:
         return ("data", None)
     prefix = before[:m.start()]
-    if re.search(r"(^|[^=!<>])=\s*$|=[^=]", prefix.replace("operator=", "")) and "operator" not in name:
+    if re.search(r"(?<![=!<>])=(?!=)", prefix) and "operator" not in name:
         return ("data", None)  # an initializer: x = f(...) { ... } is not a definition
     close = matching(h, p, "(", ")")
     if close < 0:
