@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "atomic_file.hpp"
+#include "cmdline.hpp"
 #include "json.hpp"
 #include "mc1_cli.hpp"
 #include "mc1_render.hpp"
@@ -229,11 +230,15 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
            << (complete ? "true" : "false") << ", \"image_fnv1a\": " << quote(image_hash(r.rgb))
            << ", \"stats\": " << quote(std::string(name) + ".json") << ", \"host_seconds\": " << num(r.host_seconds)
            << "}";
-    if (!quiet)
-      std::printf("point %llu/%llu: %s frame %u, %u NCs, %s, blocks %s: %.3f ms simulated, %.2f s host%s\n",
+    if (!quiet) {
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double done = static_cast<double>(i + 1 - first) / static_cast<double>(end - first);
+      std::printf("point %llu/%llu: %s frame %u, %u NCs, %s, blocks %s: %.3f ms simulated, %.2f s host%s (%s)\n",
                   static_cast<unsigned long long>(i), static_cast<unsigned long long>(g.points()),
                   p.scene.c_str(), p.frame, p.nodes, rc::schedule_name(p.schedule), block_name(p.block).c_str(),
-                  r.frame_time * 1e-9, r.host_seconds, complete ? "" : " INCOMPLETE");
+                  r.frame_time * 1e-9, r.host_seconds, complete ? "" : " INCOMPLETE",
+                  cmdline::progress_times(elapsed, done).c_str());
+    }
     std::fflush(stdout);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
