@@ -9,12 +9,16 @@
 // (kernel_id, pc) as one value, so that one GTKWave translate filter
 // (TRACE.kpc.txt) maps it to the word that kernel holds at pc. In hex, as
 // GTKWave prints kpc[27:0]: four digits of kernel id, then three of pc.
+/* verilator lint_off DECLFILENAME */  // named mc1 for the waveform's TOP.mc1
 module mc1 (
     input logic [15:0] bank0_kernel,  // kernel id of program bank 0 (0: not known)
     input logic [15:0] bank1_kernel
 );
   logic [15:0] kernel_id;
+  /* verilator lint_off UNUSEDSIGNAL */  // for the trace only
   logic [27:0] kpc;
+  /* verilator lint_on UNUSEDSIGNAL */
   assign kernel_id = apu_core.psel ? bank1_kernel : bank0_kernel;
   assign kpc = {kernel_id, {(12 - apu_pkg::PC_W){1'b0}}, apu_core.pc};
 endmodule
+/* verilator lint_on DECLFILENAME */
