@@ -51,7 +51,8 @@ std::optional<std::uint8_t> parse_flags(std::string_view text) {
   }
   std::uint8_t flags = 0;
   std::stringstream names(t);
-  for (std::string name; std::getline(names, name, name.find(',') != std::string::npos ? ',' : '|');) {
+  const char separator = t.find(',') != std::string::npos ? ',' : '|';  // NV,NX or NV|NX
+  for (std::string name; std::getline(names, name, separator);) {
     std::size_t i = 0;
     while (i < kFlagNames.size() && name != kFlagNames[i]) ++i;
     if (i == kFlagNames.size()) return std::nullopt;

@@ -40,11 +40,10 @@ class FrameProfiler {
   std::vector<std::unique_ptr<NcTrack>> tracks_;
 };
 
-// Writes TRACE.kernel.txt (kernel id -> name), TRACE.pc.txt (pc -> word of
-// every kernel) and TRACE.gtkw (docs/apu-core.gtkw with absolute filter
-// paths, the kernel id, and markers at the traced NC's top stall sites when
-// a profile was collected). Returns the files written, for the caller's
-// outputs. Throws std::runtime_error when a file cannot be written.
+// The files beside the trace (apu::trace_side_files: TRACE.kernel.txt,
+// TRACE.kpc.txt, TRACE.gtkw), the save file with markers at the traced NC's
+// top stall sites in the trace's window. Returns them as (path, text), for
+// the caller's outputs.
 std::vector<std::pair<std::string, std::string>> trace_side_files(const std::string& trace, FrameProfiler& p,
                                                                   unsigned trace_node);
 

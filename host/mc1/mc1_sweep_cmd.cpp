@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "atomic_file.hpp"
+#include "cmdline.hpp"
 #include "json.hpp"
 #include "mc1_cli.hpp"
 #include "mc1_render.hpp"
@@ -177,6 +178,12 @@ std::string num(double x) {
   return b;
 }
 
+// The progress line's time part: host time since t0, and what is left of total points after done.
+std::string times_so_far(std::chrono::steady_clock::time_point t0, std::uint64_t done, std::uint64_t total) {
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return cmdline::progress_times(elapsed, static_cast<double>(done) / static_cast<double>(total));
+}
+
 int run_sweep(const CLI::App& cmd, const Parsed& a) {
   SystemConfig base = machine_config();
   apply_params(cmd, base.timing);
@@ -230,10 +237,11 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
            << ", \"stats\": " << quote(std::string(name) + ".json") << ", \"host_seconds\": " << num(r.host_seconds)
            << "}";
     if (!quiet)
-      std::printf("point %llu/%llu: %s frame %u, %u NCs, %s, blocks %s: %.3f ms simulated, %.2f s host%s\n",
+      std::printf("point %llu/%llu: %s frame %u, %u NCs, %s, blocks %s: %.3f ms simulated, %.2f s host%s (%s)\n",
                   static_cast<unsigned long long>(i), static_cast<unsigned long long>(g.points()),
                   p.scene.c_str(), p.frame, p.nodes, rc::schedule_name(p.schedule), block_name(p.block).c_str(),
-                  r.frame_time * 1e-9, r.host_seconds, complete ? "" : " INCOMPLETE");
+                  r.frame_time * 1e-9, r.host_seconds, complete ? "" : " INCOMPLETE",
+                  times_so_far(t0, i + 1 - first, end - first).c_str());
     std::fflush(stdout);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -1,6 +1,7 @@
 // apu-cosim: two APU engines in lockstep (default ISS vs RTL), stopping at
 // the first cycle they disagree on (docs/apu-tools.md).
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -153,6 +154,7 @@ int run_program(const Options& o) {
 
 int run_random(const Options& o) {
   std::uint64_t total_cycles = 0, stalls[kStallKinds] = {}, halted = 0, faulted = 0, handovers = 0, failed = 0;
+  const auto t0 = std::chrono::steady_clock::now();
   for (long n = 0; n < o.random; ++n) {
     const std::uint64_t index = o.first + static_cast<std::uint64_t>(n);
     const RandomCase c = make_random_case(case_seed(o.seed, index));
@@ -192,7 +194,10 @@ int run_random(const Options& o) {
     (e.a->state() == RunState::Halted ? halted : faulted) += 1;
     handovers += mpu.data_handovers() + mpu.program_handovers();
     if ((n + 1) % 100 == 0 || n + 1 == o.random)
-      std::cerr << "apu-cosim: " << (n + 1) << "/" << o.random << " cases, " << total_cycles << " cycles\n";
+      std::cerr << "apu-cosim: " << (n + 1) << "/" << o.random << " cases, " << total_cycles << " cycles, "
+                << cli::progress_times(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                                       static_cast<double>(n + 1) / static_cast<double>(o.random))
+                << "\n";
   }
   if (failed) {
     std::cout << "apu-cosim: " << failed << " of " << o.random << " random programs failed\n";

@@ -47,31 +47,13 @@ RtlEngine::RtlEngine(const char* fst_path) : ctx_(std::make_unique<VerilatedCont
   if (fst_path) {
     fst_ = std::make_unique<VerilatedFstC>();
     t.trace(fst_.get(), 99);
-    // TOP.mc1.kernel_id through Verilator's trace callbacks (the API its
-    // generated trace code uses, verilated_trace.h of 5.006).
-    fst_->spTrace()->addInitCb(&RtlEngine::kernel_init, this);
-    fst_->spTrace()->addFullCb(&RtlEngine::kernel_full, this);
-    fst_->spTrace()->addChgCb(&RtlEngine::kernel_change, this);
     fst_->open(fst_path);
   }
 }
 
-void RtlEngine::kernel_init(void* self, VerilatedFst* tracep, std::uint32_t code) {
-  static_cast<RtlEngine*>(self)->kernel_code_ = code;
-  tracep->pushNamePrefix("TOP ");
-  tracep->pushNamePrefix("mc1 ");
-  tracep->declBus(code, "kernel_id", -1, FST_VD_IMPLICIT, FST_VT_VCD_WIRE, false, -1, 15, 0);
-  tracep->popNamePrefix(2);
-}
-
-void RtlEngine::kernel_full(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp) {
-  const RtlEngine& e = *static_cast<RtlEngine*>(self);
-  bufp->fullSData(bufp->oldp(e.kernel_code_), e.bank_kernel_[e.top_->apu2mpu_psel & 1], 16);
-}
-
-void RtlEngine::kernel_change(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp) {
-  const RtlEngine& e = *static_cast<RtlEngine*>(self);
-  bufp->chgSData(bufp->oldp(e.kernel_code_), e.bank_kernel_[e.top_->apu2mpu_psel & 1], 16);
+void RtlEngine::trace_kernel(int bank, std::uint16_t id) {
+  (bank & 1 ? top_->bank1_kernel : top_->bank0_kernel) = id;
+  changed_ = true;
 }
 
 void RtlEngine::trace_window(std::uint64_t from_ps, std::uint64_t to_ps) {

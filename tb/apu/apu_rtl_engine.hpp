@@ -20,10 +20,6 @@
 class Vapu_core;
 class VerilatedContext;
 class VerilatedFstC;
-class VerilatedFst;
-class VerilatedFstBuffer;
-template <class T_Buffer>
-class VerilatedTraceBuffer;
 
 namespace mc1::apu {
 
@@ -61,9 +57,11 @@ class RtlEngine final : public ApuEngine {
 
   // Dumps only simulated times in [from_ps, to_ps) (mc1 render --trace-from/--trace-to).
   void trace_window(std::uint64_t from_ps, std::uint64_t to_ps) override;
-  // TOP.mc1.kernel_id, a signal beside the core's: the kernel id of the
-  // program in the APU's program bank (apu2mpu_psel); 0 until one is named.
-  void trace_kernel(int bank, std::uint16_t id) override { bank_kernel_[bank & 1] = id; }
+  // Bank `bank` holds kernel `id`: input of the test bench's trace module
+  // (tb/apu/apu_trace_top.sv), whose TOP.mc1.kernel_id is the id of the
+  // bank the core runs from and TOP.mc1.kpc the pair (kernel_id, pc); 0
+  // until one is named.
+  void trace_kernel(int bank, std::uint16_t id) override;
 
   // True if a unit's out_valid / out_trig_valid ever disagreed with the core's
   // interlock mirror of the pipelines (a unit latency other than the doc's).
@@ -73,9 +71,6 @@ class RtlEngine final : public ApuEngine {
   void clock();        // one rising edge and the falling edge after it
   void settle();       // re-evaluate after an MPU-side input change
   void dump(std::uint64_t ps);  // at simulated time ps, if in the window (times strictly increase)
-  static void kernel_init(void* self, VerilatedFst* tracep, std::uint32_t code);
-  static void kernel_full(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp);
-  static void kernel_change(void* self, VerilatedTraceBuffer<VerilatedFstBuffer>* bufp);
 
   std::unique_ptr<VerilatedContext> ctx_;
   std::unique_ptr<Vapu_core> top_;
@@ -87,8 +82,6 @@ class RtlEngine final : public ApuEngine {
   std::uint64_t from_ = 0, to_ = ~std::uint64_t{0};  // the dump window (ps)
   bool dumped_ = false;        // a dump was written; last_dump_ is its time
   std::uint64_t last_dump_ = 0;
-  std::uint16_t bank_kernel_[2] = {0, 0};
-  std::uint32_t kernel_code_ = 0;  // the FST code of TOP.mc1.kernel_id
   // An MPU call changed an input or a bank word since the last eval(): the
   // next edge is a full eval() (clock()).
   bool changed_ = true;

@@ -13,6 +13,7 @@
 #include "apu_lockstep.hpp"
 #include "apu_profile.hpp"
 #include "apu_stall_profile.hpp"
+#include "apu_trace_files.hpp"
 #include "apu_tools.hpp"
 
 namespace {
@@ -94,16 +95,6 @@ void print_state(const ApuEngine& e) {
   print_regs("A", 1, kNumARegs, 8, 4, [&](int i) { return std::uint32_t{e.areg(i)}; });
 }
 
-// Beside an FST trace: TRACE.pc.txt, a GTKWave translate filter from the pc
-// (3 hex digits, as GTKWave prints TOP.apu_core.pc[9:0]) to the word the
-// program holds there, disassembled.
-std::string pc_filter(const std::string& trace, const std::vector<Encoded>& words) {
-  std::string text = "# pc -> word of the program traced in " + trace + " (apu-run --trace)\n";
-  for (std::size_t pc = 0; pc < words.size(); ++pc)
-    text += hex_text(static_cast<std::uint32_t>(pc), 3).substr(2) + " " + disassemble(words[pc]) + "\n";
-  return text;
-}
-
 // An output file written whole (host/common/atomic_file.hpp); false, said
 // on stderr, when it could not be.
 bool write_output(const std::string& option, const std::string& path, const std::string& text) {
@@ -137,14 +128,15 @@ int run(const Options& o) {
   drv.hand_over_program();
   drv.start(o.start);
   std::unique_ptr<Profile> profile;
-  StallProfile stalls;
-  if (o.profile || !o.profile_json.empty()) {
+  if (o.profile || !o.profile_json.empty())
     profile = std::make_unique<Profile>([&drv](int bank, std::uint16_t pc) { return drv.program_word(bank, pc); });
+  // The stall profile: for --profile-json, and for a trace's markers.
+  StallProfile stalls;
+  if (profile || !o.trace.empty())
     drv.set_observer([&](const CycleRecord& r) {
-      profile->add(r);
+      if (profile) profile->add(r);
       stalls.add(1, 1, r, engine->time_of(r.cycle));
     });
-  }
   int rc = 0;
   try {
     // The MPU's side of a stream: poll every 16 cycles.
@@ -167,12 +159,14 @@ int run(const Options& o) {
                 << hex_text(v[i], 6);
     std::cout << "\n";
   }
-  if (!o.trace.empty() && (!write_output("--trace", o.trace + ".pc.txt", pc_filter(o.trace, words)) ||
-                           !write_output("--trace", o.trace + ".kernel.txt", kernels.id_filter())))
-    rc = 1;
+  stalls.finish();
+  if (!o.trace.empty()) {
+    const std::string markers = stalls.nc_totals(1).cycles ? stalls.gtkw_markers(kernels, 1, 26) : "";
+    for (const auto& [path, text] : trace_side_files(o.trace, kernels, markers, "apu-run --trace"))
+      if (!write_output("--trace", path, text)) rc = 1;
+  }
   if (profile && o.profile) std::cout << profile->report(o.top);
   if (profile && !o.profile_json.empty()) {
-    stalls.finish();
     std::string extra = ", \"program\": " + json_quote(o.program) + ", \"engine\": " + json_quote(o.engine) + ", \"unit_ops\": {";
     for (int u = 0; u < kFpUnits; ++u)
       extra += std::string(u ? ", " : "") + "\"" + unit_name(u) + "\": " + std::to_string(profile->unit_ops(u));

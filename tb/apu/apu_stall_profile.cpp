@@ -86,17 +86,14 @@ std::string KernelTable::id_filter() const {
   return s;
 }
 
-std::string KernelTable::pc_filter() const {
-  std::string s = "# pc -> kernel: word, for every kernel with a word there (GTKWave translate filter for pc[9:0])\n";
+std::string KernelTable::kpc_filter() const {
+  std::string s = "# (kernel id, pc) -> the kernel's word there (GTKWave translate filter for TOP.mc1.kpc[27:0])\n";
   const bool any_seen = std::any_of(kernels_.begin(), kernels_.end(), [](const Kernel& k) { return k.seen; });
-  std::size_t longest = 0;
-  for (const Kernel& k : kernels_)
-    if (k.seen || !any_seen) longest = std::max(longest, k.words.size());
-  for (std::size_t pc = 0; pc < longest; ++pc) {
-    std::string line;
-    for (const Kernel& k : kernels_)
-      if ((k.seen || !any_seen) && pc < k.words.size()) line += (line.empty() ? "" : " | ") + k.name + ": " + disassemble(k.words[pc]);
-    s += format("%03X ", static_cast<unsigned>(pc)) + line + "\n";
+  for (std::size_t i = 0; i < kernels_.size(); ++i) {
+    const Kernel& k = kernels_[i];
+    if (!k.seen && any_seen) continue;
+    for (std::size_t pc = 0; pc < k.words.size(); ++pc)
+      s += format("%04X%03X ", static_cast<unsigned>(i + 1), static_cast<unsigned>(pc)) + disassemble(k.words[pc]) + "\n";
   }
   return s;
 }
@@ -325,7 +322,8 @@ std::string StallProfile::gtkw_markers(const KernelTable& kernels, unsigned nc, 
   if (static_cast<int>(hot.size()) > top_n) hot.resize(static_cast<std::size_t>(top_n));
   std::string s = format("[*] Markers A.. : the top %zu stall sites of NC %u in the trace, each at the start of its worst run there\n",
                          hot.size(), nc);
-  std::string line = "*-21.000000 " + (hot.empty() ? std::string("-1") : std::to_string(hot[0].worst.time_ps));
+  // Zoom -19: one 250 ns cycle is about 100 pixels, wide enough for a word's disassembly (TOP.mc1.kpc).
+  std::string line = "*-19.000000 " + (hot.empty() ? std::string("-1") : std::to_string(hot[0].worst.time_ps));
   for (int i = 0; i < 26; ++i) {
     if (i < static_cast<int>(hot.size())) {
       const Hot& h = hot[static_cast<std::size_t>(i)];

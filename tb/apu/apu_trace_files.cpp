@@ -1,0 +1,80 @@
+// The files beside an FST trace of the RTL core (apu_trace_files.hpp).
+#include "apu_trace_files.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <sstream>
+
+#ifndef MC1_GTKW_FILTER_DIR
+#define MC1_GTKW_FILTER_DIR ""
+#endif
+
+namespace mc1::apu {
+
+extern const char* const kApuCoreGtkw;  // docs/apu-core.gtkw (apu_core_gtkw.cpp, generated)
+
+namespace {
+
+std::string absolute(const std::string& path) {
+  if (!path.empty() && path[0] == '/') return path;
+  char buf[4096];
+  if (!getcwd(buf, sizeof buf)) return path;
+  return std::string(buf) + "/" + path;
+}
+
+// The first marker's time in a gtkw_markers() text ("*-zoom A B ..."), or -1.
+long long first_marker(const std::string& markers) {
+  const auto star = markers.find("\n*-");
+  if (star == std::string::npos) return -1;
+  std::istringstream f(markers.substr(star + 1));
+  std::string zoom;
+  long long t = -1;
+  f >> zoom >> t;
+  return t;
+}
+
+}  // namespace
+
+std::string trace_save_file(const std::string& trace, const std::string& kpc_filter,
+                            const std::string& kernel_filter, const std::string& markers,
+                            const std::string& writer) {
+  std::string out = "[*] GTKWave save file written by " + writer + " for " + trace + "\n[dumpfile] \"" + trace + "\"\n";
+  out += markers;
+  // The view opens 1 us (4 cycles) before the first marker (the top stall site).
+  const long long marker = first_marker(markers);
+  const long long start = marker < 0 ? 0 : std::max(0LL, marker - 1000000);
+  std::istringstream lines(kApuCoreGtkw);
+  std::string line, flags;  // flags: the last "@..." line, which holds for the signals after it
+  bool restore = false;     // a signal was added: the next signal needs `flags` again
+  const std::string rel = "build/generated/gtkwave/";
+  const auto add_signal = [&](int filter_no, const std::string& filter, const std::string& name) {
+    out += "@2022\n^" + std::to_string(filter_no) + " " + filter + "\n" + name + "\n";  // hex, filtered
+    restore = true;
+  };
+  while (std::getline(lines, line)) {
+    if (marker >= 0 && line.rfind("*-", 0) == 0) continue;  // the markers' line replaces the zoom line
+    if (line.rfind("[timestart]", 0) == 0) line = "[timestart] " + std::to_string(start);
+    if (line.size() > 1 && line[0] == '^' && line.find(rel) != std::string::npos)
+      line.replace(line.find(rel), rel.size(), std::string(MC1_GTKW_FILTER_DIR) + "/");
+    if (line.rfind("@", 0) == 0) flags = line;
+    else if (restore && !flags.empty()) out += flags + "\n";
+    restore = false;
+    out += line + "\n";
+    if (line == "-Sequencer" && out.find("TOP.mc1.kernel_id") == std::string::npos)
+      add_signal(16, kernel_filter, "TOP.mc1.kernel_id[15:0]");
+    if (line == "TOP.apu_core.pc[9:0]") add_signal(15, kpc_filter, "TOP.mc1.kpc[27:0]");
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, std::string>> trace_side_files(const std::string& trace, const KernelTable& kernels,
+                                                                  const std::string& markers,
+                                                                  const std::string& writer) {
+  const std::string abs = absolute(trace);
+  return {{trace + ".kernel.txt", kernels.id_filter()},
+          {trace + ".kpc.txt", kernels.kpc_filter()},
+          {trace + ".gtkw", trace_save_file(abs, abs + ".kpc.txt", abs + ".kernel.txt", markers, writer)}};
+}
+
+}  // namespace mc1::apu
