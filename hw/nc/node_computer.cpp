@@ -278,12 +278,13 @@ void NodeComputer::apu_wait_swap() {
   const std::uint64_t limit = std::min(to_kill, t_.apu_watchdog_cycles);
   const std::uint64_t n = run_on_pool([this, limit](ApuJob& job) {
     engine_->set_time(apu_time_, cycle_ps_);  // the run starts at apu_time_ (waveforms, profiles)
-    // Cycle by cycle: the swap interrupt comes in the cycle the APU takes the bank.
+    // Up to the cycle the APU takes the bank (the swap interrupt comes in
+    // it), in stretches that end where the NC's steps on the pool do.
     HostTimer timer(stats_.apu_host_seconds);
     std::uint64_t k = 0;
     const auto waiting = [&] { return driver_.data_ready() && engine_->state() == apu::RunState::Running && k < limit; };
     while (waiting()) {
-      k += driver_.run(1);
+      k += driver_.run_until_data_taken(std::min(limit - k, kPoolStepCycles - (k + 1) % kPoolStepCycles));
       if (waiting()) job.reached(k + 1);
     }
     return k;
