@@ -150,10 +150,11 @@ void Iss::start(std::uint16_t pc) {
   fetching_ = kStartFetchCycles;
 }
 
-MC1_HOT void Iss::push_f(int latency, std::uint32_t index, std::uint32_t value) {
+MC1_HOT void Iss::push_f(int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags) {
   const std::uint64_t at = cycle_ + latency;
   Bucket& b = ring_[at % kRing];
   b.f[b.nf++] = {index, value};
+  b.flags |= flags;
   pending_ |= bit(index);
   land_[index] = std::max(land_[index], at);
 }
@@ -163,8 +164,6 @@ MC1_HOT void Iss::push_a(int latency, std::uint32_t index, std::uint16_t value) 
   Bucket& b = ring_[(cycle_ + latency) % kRing];
   b.a[b.na++] = {index, value};
 }
-
-MC1_HOT void Iss::push_flags(int latency, std::uint32_t flags) { ring_[(cycle_ + latency) % kRing].flags |= flags; }
 
 // End of a cycle: the writes that become visible in the next cycle enter the
 // state now, so that between two steps the state is the one the next word
@@ -289,8 +288,7 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
   if (dw.lat_fp) fp_done_ = std::max(fp_done_, cycle_ + dw.lat_fp);
   if (w.m.en) {
     const fp::Result r = inl::mul(f_[w.m.a], f_[w.m.b]);
-    push_f(kMulLatency, w.m.d, r.value);
-    push_flags(kMulLatency, r.flags);
+    push_f(kMulLatency, w.m.d, r.value, r.flags);
     ++counters_.unit_ops[0];
   }
   if (w.a.en) {
@@ -310,11 +308,11 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
       Bucket& b = ring_[(cycle_ + latency_a) % kRing];
       b.cc_valid = 1;
       b.cc = r.value;
+      b.flags |= r.flags;
       cmp_done_ = cycle_ + latency_a;
     } else {
-      push_f(latency_a, w.a.d, r.value);
+      push_f(latency_a, w.a.d, r.value, r.flags);
     }
-    push_flags(latency_a, r.flags);
     ++counters_.unit_ops[1];
   }
   if (w.f.en) {
@@ -326,8 +324,7 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
       case FuncOp::Sin: r = fp::sin(x); break;
       case FuncOp::Cos: r = fp::cos(x); break;
     }
-    push_f(dw.lat_f, w.f.d, r.value);
-    push_flags(dw.lat_f, r.flags);
+    push_f(dw.lat_f, w.f.d, r.value, r.flags);
     ++counters_.unit_ops[2];
   }
 

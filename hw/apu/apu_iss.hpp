@@ -111,7 +111,7 @@ class Iss final : public ApuEngine {
   struct AWrite { std::uint32_t index, value; };
   // What becomes visible in one future cycle. At most one write per slot,
   // except the F slot: a SIN/COS and a RECIP/SQRT issued one cycle later.
-  struct Bucket {
+  struct alignas(128) Bucket {  // a power of two: a shift indexes the ring
     std::uint32_t nf = 0, na = 0;
     std::uint32_t cc_valid = 0, flags_commit = 0;
     std::uint32_t cc = 0, flags = 0;  // flags: the OR of the ops', then FLAGS once applied
@@ -140,9 +140,9 @@ class Iss final : public ApuEngine {
   void issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec);
   void int_op(const DecodedWord& dw);
   void seq_op(const DecodedWord& dw);
-  void push_f(int latency, std::uint32_t index, std::uint32_t value);
+  // An F write and the flags of the op that makes it.
+  void push_f(int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags = 0);
   void push_a(int latency, std::uint32_t index, std::uint16_t value);
-  void push_flags(int latency, std::uint32_t flags);
 
   // Hot state first: what every cycle reads.
   std::uint64_t cycle_ = 0;

@@ -52,25 +52,25 @@ namespace inl {
   b &= bits::kMask24;
   if (__builtin_expect(!(bits::is_normal(a) && bits::is_normal(b)), 0))
     return detail::mul_special(bits::flush(a), bits::flush(b));
-  // Product of two 17-bit significands: 2^32 <= p < 2^34, exact in 64 bits,
-  // so normalizing is a shift by 0 or 1: round_pack's rule with the 16 or 17
-  // bits below the result's significand (the same RNE, carry, overflow and
-  // tininess after rounding).
+  // Product of two 17-bit significands: 2^32 <= p < 2^34, exact in 64 bits.
+  // round_pack's rule without its general normalization: q is p at
+  // [2^33, 2^34), its 17 bits below the result's significand are dropped with
+  // RNE (sig = 2^17 on a carry), and the exponent field plus sig - 2^16 is
+  // the magnitude's encoding, the carry included; overflow and tininess
+  // after rounding are compares on it.
+  constexpr int kDrop = kFracBits + 1;
   const std::uint64_t p = std::uint64_t{bits::sig_of(a)} * bits::sig_of(b);
   const int hi = static_cast<int>(p >> (2 * kFracBits + 1));
-  const int drop = kFracBits + hi;
-  const std::uint64_t rem = p & ((std::uint64_t{1} << drop) - 1);
-  const std::uint64_t half = std::uint64_t{1} << (drop - 1);
-  std::uint32_t sig = static_cast<std::uint32_t>(p >> drop);
-  sig += (rem > half) | ((rem == half) & sig);
-  const int carry = static_cast<int>(sig >> (kFracBits + 1));
-  sig >>= carry;
-  const int e = bits::exp_of(a) + bits::exp_of(b) - kBias + hi + carry;
+  const std::uint64_t q = p << (hi ^ 1);
+  const auto sig = static_cast<std::int32_t>(
+      (q + ((std::uint64_t{1} << (kDrop - 1)) - 1) + ((q >> kDrop) & 1)) >> kDrop);
+  const std::int32_t mag = (bits::exp_of(a) + bits::exp_of(b) - kBias + hi - 1) * (1 << kFracBits) + sig;
   const bool s = bits::sign_of(a) != bits::sign_of(b);
-  if (__builtin_expect(e > 126, 0)) return {bits::signed_inf(s), static_cast<std::uint8_t>(kOF | kNX)};
-  if (__builtin_expect(e < 1, 0)) return {bits::signed_zero(s), static_cast<std::uint8_t>(kUF | kNX)};
-  return {bits::signed_zero(s) | (static_cast<Bits>(e) << kFracBits) | (sig & bits::kFracMask),
-          static_cast<std::uint8_t>(rem != 0 ? kNX : 0)};
+  if (__builtin_expect(mag >= static_cast<std::int32_t>(kPosInf), 0))
+    return {bits::signed_inf(s), static_cast<std::uint8_t>(kOF | kNX)};
+  if (__builtin_expect(mag < (1 << kFracBits), 0)) return {bits::signed_zero(s), static_cast<std::uint8_t>(kUF | kNX)};
+  const bool inexact = (q & ((std::uint64_t{1} << kDrop) - 1)) != 0;
+  return {bits::signed_zero(s) | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
 }
 
 [[gnu::always_inline]] inline Result add(Bits a, Bits b) {
