@@ -281,13 +281,13 @@ MC1_HOT Fault Iss::check_fault(const DecodedWord& dw, std::uint32_t next) const 
 template <bool kRecord>
 MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec) {
   namespace fp = mc1::fp24;
-  namespace inl = mc1::fp24::inl;  // mul, add, sub, cmp inline: no call per op
+  namespace inl = mc1::fp24::inl;  // mul, add, sub, cmp inline: no call per op (F registers hold 24 bits)
   const MicroWord& w = dw.w;
   // Every read below sees the state before this word's writes: FP results
   // and register writes go to future buckets; only the store is immediate.
   if (dw.lat_fp) fp_done_ = std::max(fp_done_, cycle_ + dw.lat_fp);
   if (w.m.en) {
-    const fp::Result r = inl::mul(f_[w.m.a], f_[w.m.b]);
+    const fp::Result r = inl::mul24(f_[w.m.a], f_[w.m.b]);
     push_f(kMulLatency, w.m.d, r.value, r.flags);
     ++counters_.unit_ops[0];
   }
@@ -295,8 +295,8 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
     const std::uint32_t x = f_[w.a.a], y = f_[w.a.b];
     fp::Result r{};
     switch (w.a.op) {
-      case AddOp::Add: r = inl::add(x, y); break;
-      case AddOp::Sub: r = inl::sub(x, y); break;
+      case AddOp::Add: r = inl::add24(x, y); break;
+      case AddOp::Sub: r = inl::sub24(x, y); break;
       case AddOp::Cmp: r = inl::cmp(x, y); break;
       case AddOp::Float: r = fp::from_int(static_cast<std::uint16_t>(x)); break;
       case AddOp::Fix: r = fp::to_int(x); r.value &= 0xFFFF; break;

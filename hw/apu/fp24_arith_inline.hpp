@@ -47,9 +47,9 @@ Result add_special(Bits a, Bits b);
 
 namespace inl {
 
-[[gnu::always_inline]] inline Result mul(Bits a, Bits b) {
-  a &= bits::kMask24;
-  b &= bits::kMask24;
+// The ops on operands already within 24 bits (the ISS's registers always
+// are): mul24, add24, sub24. mul, add, sub mask first.
+[[gnu::always_inline]] inline Result mul24(Bits a, Bits b) {
   if (__builtin_expect(!(bits::is_normal(a) && bits::is_normal(b)), 0))
     return detail::mul_special(bits::flush(a), bits::flush(b));
   // Product of two 17-bit significands: 2^32 <= p < 2^34, exact in 64 bits.
@@ -73,17 +73,19 @@ namespace inl {
   return {bits::signed_zero(s) | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
 }
 
-[[gnu::always_inline]] inline Result add(Bits a, Bits b) {
-  a &= bits::kMask24;
-  b &= bits::kMask24;
+[[gnu::always_inline]] inline Result add24(Bits a, Bits b) {
   if (__builtin_expect(!(bits::is_normal(a) && bits::is_normal(b)), 0))
     return detail::add_special(bits::flush(a), bits::flush(b));
   return detail::add_normal(a, b);
 }
 
+[[gnu::always_inline]] inline Result mul(Bits a, Bits b) { return mul24(a & bits::kMask24, b & bits::kMask24); }
+[[gnu::always_inline]] inline Result add(Bits a, Bits b) { return add24(a & bits::kMask24, b & bits::kMask24); }
+
 // a - b is a + (-b) exactly, signed zeros included: (-0) - (+0) = (-0) + (-0).
 // Flipping the sign of a NaN leaves a NaN, which add() turns canonical.
 [[gnu::always_inline]] inline Result sub(Bits a, Bits b) { return add(a, b ^ kSignBit); }
+[[gnu::always_inline]] inline Result sub24(Bits a, Bits b) { return add24(a, b ^ kSignBit); }
 
 [[gnu::always_inline]] inline Result cmp(Bits a, Bits b) {
   a = bits::flush(a);
