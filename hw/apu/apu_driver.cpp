@@ -79,12 +79,12 @@ void ApuDriver::start(std::uint16_t pc) {
   last_stall_ = Stall::None;
 }
 
-std::uint64_t ApuDriver::clock(std::uint64_t cycles) {
+std::uint64_t ApuDriver::clock(std::uint64_t cycles, bool until_data_taken) {
   if (!observer_) {
     // The engine's fast path. A program hand-over that was pending before
     // and is gone after was taken by a SWAPP: the APU's bank flipped.
     const bool ready_before = engine_.program_ready();
-    const std::uint64_t n = engine_.run(cycles);
+    const std::uint64_t n = until_data_taken ? engine_.run_until_data_taken(cycles) : engine_.run(cycles);
     if (iss_) {
       psel_ = iss_->psel();
       pc_ = iss_->pc();
@@ -95,7 +95,7 @@ std::uint64_t ApuDriver::clock(std::uint64_t cycles) {
     return n;
   }
   std::uint64_t n = 0;
-  while (n < cycles && engine_.state() == RunState::Running) {
+  while (n < cycles && engine_.state() == RunState::Running && (!until_data_taken || engine_.data_ready())) {
     engine_.step(rec_);
     ++n;
     pc_ = rec_.pc;
@@ -112,6 +112,11 @@ std::uint64_t ApuDriver::clock(std::uint64_t cycles) {
 std::uint64_t ApuDriver::run(std::uint64_t cycles) {
   access();
   return clock(cycles);
+}
+
+std::uint64_t ApuDriver::run_until_data_taken(std::uint64_t cycles) {
+  access();
+  return clock(cycles, true);
 }
 
 std::uint64_t ApuDriver::run_until_done(std::uint64_t max_cycles, const std::function<void()>& mpu,

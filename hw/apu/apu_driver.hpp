@@ -79,6 +79,10 @@ class ApuDriver {
   // Clocks at most `cycles` cycles, stopping early when the APU stops
   // running; returns the cycles clocked. No exception: look at state().
   std::uint64_t run(std::uint64_t cycles);
+  // As run(), and it also stops after the cycle in which the APU takes the
+  // data bank handed over (data_ready() turns false; 0 cycles if it is not
+  // set): the MPU's wait for the swap interrupt, without a call per cycle.
+  std::uint64_t run_until_data_taken(std::uint64_t cycles);
 
   std::vector<std::uint32_t> read_results(std::uint16_t addr, std::size_t n) const;
 
@@ -121,7 +125,8 @@ class ApuDriver {
   void access() const {
     if (hook_) hook_();
   }
-  std::uint64_t clock(std::uint64_t cycles);  // stops when not running
+  // Stops when not running (and, until_data_taken, once data_ready() clears).
+  std::uint64_t clock(std::uint64_t cycles, bool until_data_taken = false);
   [[noreturn]] void fail(ApuError::Kind kind, const std::string& why) const;
 
   ApuEngine& engine_;

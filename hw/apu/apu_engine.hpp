@@ -72,6 +72,14 @@ class ApuEngine {
     for (; n < max_cycles && state() == RunState::Running; ++n) step(rec);
     return n;
   }
+  // As run(), and it also stops after the cycle in which the APU takes the
+  // data bank the MPU handed over (data_ready() turns false; 0 cycles if it
+  // is not set): the MPU's wait for the swap interrupt.
+  virtual std::uint64_t run_until_data_taken(std::uint64_t max_cycles) {
+    std::uint64_t n = 0;
+    while (n < max_cycles && data_ready() && state() == RunState::Running) n += run(1);
+    return n;
+  }
 
   virtual RunState state() const = 0;
   virtual Fault fault() const = 0;

@@ -3,6 +3,8 @@
 // FP24 model calls; nothing allocates once a CycleRecord has its capacity.
 #include "apu_iss.hpp"
 
+#include <algorithm>
+
 #include "fp24.hpp"
 #include "fp24_arith_inline.hpp"
 
@@ -24,31 +26,49 @@ DecodedWord DecodedWord::from(const Encoded& e) {
   DecodedWord d;
   d.w = MicroWord::decode(e);
   const MicroWord& w = d.w;
+  const auto write = [&d](unsigned reg, int latency) {
+    d.dst |= bit(reg);
+    d.dsts[d.ndst++] = {static_cast<std::uint8_t>(reg & 63), static_cast<std::uint8_t>(latency)};
+  };
+  const auto fp = [&d](int latency) { d.lat_fp = static_cast<std::uint8_t>(std::max<int>(d.lat_fp, latency)); };
   if (w.m.en) {
     d.src |= bit(w.m.a) | bit(w.m.b);
-    d.dst_at[kMulLatency] |= bit(w.m.d);
+    write(w.m.d, kMulLatency);
+    fp(kMulLatency);
   }
   if (w.a.en) {
     if (is_reserved(w.a.op)) {
       d.kind |= kReserved;
     } else {
+      d.lat_a = static_cast<std::uint8_t>(latency(w.a.op));
       d.src |= bit(w.a.a) | (two_operand(w.a.op) ? bit(w.a.b) : 0);
-      if (w.a.op != AddOp::Cmp) d.dst_at[latency(w.a.op)] |= bit(w.a.d);
+      if (w.a.op != AddOp::Cmp) write(w.a.d, d.lat_a);
+      fp(d.lat_a);
     }
   }
   if (w.f.en) {
+    d.lat_f = static_cast<std::uint8_t>(latency(w.f.op));
     d.src |= bit(w.f.a);
-    d.dst_at[latency(w.f.op)] |= bit(w.f.d);
+    write(w.f.d, d.lat_f);
+    fp(d.lat_f);
   }
+  d.lat_d = static_cast<std::uint8_t>(latency(w.d.op));
   switch (w.d.op) {
-    case MemOp::Ld: d.dst_at[latency(w.d.op)] |= bit(w.d.f); break;
-    case MemOp::St: d.src |= bit(w.d.f); break;
+    case MemOp::Ld:
+      write(w.d.f, d.lat_d);
+      d.kind |= kMem;
+      break;
+    case MemOp::St:
+      d.src |= bit(w.d.f);
+      d.kind |= kMem;
+      break;
     case MemOp::None: break;
-    case MemOp::Reserved: d.kind |= kReserved; break;
+    case MemOp::Reserved: d.kind |= kReserved | kMem; break;
   }
+  d.lat_i = static_cast<std::uint8_t>(latency(w.i.op));
   switch (w.i.op) {
     case IntOp::Movaf:
-    case IntOp::Lif: d.dst_at[latency(w.i.op)] |= bit(w.i.d); break;
+    case IntOp::Lif: write(w.i.d, d.lat_i); break;
     case IntOp::Movfa: d.src |= bit(w.i.imm); break;
     case IntOp::Reserved: d.kind |= kReserved; break;
     default: break;
@@ -59,6 +79,8 @@ DecodedWord DecodedWord::from(const Encoded& e) {
     case SeqOp::Bcc:
     case SeqOp::Bncc: d.kind |= kCcBranch; break;
     case SeqOp::Halt: d.kind |= kHalt; break;
+    case SeqOp::Call:
+    case SeqOp::Ret: d.kind |= kStack; break;
     default:
       if (is_reserved(w.s.op)) d.kind |= kReserved;
       break;
@@ -86,6 +108,8 @@ void Iss::reset() {
     data_[b].fill(0);
   }
   ring_.fill(Bucket{});
+  pending_ = 0;
+  land_.fill(0);
   fp_done_ = cmp_done_ = 0;
   counters_ = Counters{};
 }
@@ -126,39 +150,47 @@ void Iss::start(std::uint16_t pc) {
   fetching_ = kStartFetchCycles;
 }
 
-MC1_HOT void Iss::push_f(int latency, std::uint8_t index, std::uint32_t value) {
-  Bucket& b = ring_[(cycle_ + latency) % kRing];
+MC1_HOT void Iss::push_f(int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags) {
+  const std::uint64_t at = cycle_ + latency;
+  Bucket& b = ring_[at % kRing];
   b.f[b.nf++] = {index, value};
-  b.fmask |= bit(index);
+  b.flags |= flags;
+  pending_ |= bit(index);
+  land_[index] = std::max(land_[index], at);
 }
 
-MC1_HOT void Iss::push_a(int latency, std::uint8_t index, std::uint16_t value) {
+MC1_HOT void Iss::push_a(int latency, std::uint32_t index, std::uint16_t value) {
   if (index == 0) return;  // A0 reads 0; writes to it are dropped
   Bucket& b = ring_[(cycle_ + latency) % kRing];
   b.a[b.na++] = {index, value};
 }
 
-MC1_HOT void Iss::push_flags(int latency, std::uint8_t flags) { ring_[(cycle_ + latency) % kRing].flags |= flags; }
-
-MC1_HOT void Iss::note_fp(int latency) {
-  if (cycle_ + latency > fp_done_) fp_done_ = cycle_ + latency;
-}
-
 // End of a cycle: the writes that become visible in the next cycle enter the
 // state now, so that between two steps the state is the one the next word
-// reads (as in the RTL, where they are written at the clock edge). The next
-// step records them.
+// reads (as in the RTL, where they are written at the clock edge). kKeep:
+// the bucket stays for the next step to record (take_due retires it);
+// otherwise (run's cycles but its last) it is retired at once.
+template <bool kKeep>
 MC1_HOT void Iss::apply_next() {
   Bucket& b = ring_[cycle_ % kRing];
   if (b.nf | b.na | b.cc_valid | b.flags) {
-    for (int i = 0; i < b.nf; ++i) f_[b.f[i].index] = b.f[i].value;
-    for (int i = 0; i < b.na; ++i) a_[b.a[i].index] = b.a[i].value;
+    for (std::uint32_t i = 0; i < b.nf; ++i) {
+      const std::uint32_t r = b.f[i].index;
+      f_[r] = b.f[i].value;
+      if (land_[r] == cycle_) pending_ &= ~bit(r);  // its last write in flight
+    }
+    for (std::uint32_t i = 0; i < b.na; ++i) a_[b.a[i].index] = static_cast<std::uint16_t>(b.a[i].value);
     if (b.cc_valid) cc_ = b.cc;
-    const std::uint8_t new_flags = flags_ | b.flags;
-    b.flags_commit = new_flags != flags_;
-    b.flags = new_flags;
+    const std::uint32_t new_flags = flags_ | b.flags;
+    if constexpr (kKeep) {
+      b.flags_commit = new_flags != flags_;
+      b.flags = new_flags;
+    } else {
+      b.nf = b.na = 0;
+      b.cc_valid = 0;
+      b.flags = 0;
+    }
     flags_ = new_flags;
-    b.fmask = 0;
   }
 }
 
@@ -173,20 +205,21 @@ MC1_HOT void Iss::take_due(CycleRecord* rec, int& cc, int& flags) {
       // Commits in the interface's order: FReg by index, then AReg by index.
       auto& out = rec->commits;
       const std::size_t f0 = out.size();
-      for (int i = 0; i < b.nf; ++i) {
-        const Commit c{Commit::Kind::FReg, b.f[i].index, b.f[i].value};
+      for (std::uint32_t i = 0; i < b.nf; ++i) {
+        const Commit c{Commit::Kind::FReg, static_cast<std::uint16_t>(b.f[i].index), b.f[i].value};
         std::size_t j = out.size();
         out.push_back(c);
         for (; j > f0 && out[j - 1].index > c.index; --j) out[j] = out[j - 1];
         out[j] = c;
       }
       if (b.na == 2 && b.a[1].index < b.a[0].index) std::swap(b.a[0], b.a[1]);
-      for (int i = 0; i < b.na; ++i) out.push_back({Commit::Kind::AReg, b.a[i].index, b.a[i].value});
-      if (b.cc_valid) cc = b.cc;
-      if (b.flags_commit) flags = b.flags;
+      for (std::uint32_t i = 0; i < b.na; ++i)
+        out.push_back({Commit::Kind::AReg, static_cast<std::uint16_t>(b.a[i].index), b.a[i].value});
+      if (b.cc_valid) cc = static_cast<int>(b.cc);
+      if (b.flags_commit) flags = static_cast<int>(b.flags);
     }
     b.nf = b.na = 0;
-    b.cc_valid = b.flags_commit = false;
+    b.cc_valid = b.flags_commit = 0;
     b.flags = 0;
   }
 }
@@ -197,18 +230,14 @@ MC1_HOT Stall Iss::stall_reason(const DecodedWord& dw) const {
     const bool ready = dw.w.s.op == SeqOp::Swapd ? data_ready_ : program_ready_;
     if (!ready) return Stall::Bank;
   }
-  // This cycle's bucket is applied and its mask cleared: every mask left
-  // belongs to a write that becomes visible after this cycle. late = the
-  // registers with a write visible at cycle_ + k or later, k going down: a
-  // write of latency k collides with (or would be overtaken by) those.
-  std::uint64_t late = 0, waw = 0;
-#pragma GCC unroll 16
-  for (int k = kRing - 1; k >= 1; --k) {
-    late |= ring_[(cycle_ + k) % kRing].fmask;
-    if (k <= kMaxLatency) waw |= dw.dst_at[k] & late;
+  // pending_: the registers with a write that becomes visible after this
+  // cycle. A write of latency L collides with (or would be overtaken by) one
+  // visible at cycle_ + L or later.
+  if (dw.src & pending_) return Stall::Raw;
+  if (dw.dst & pending_) {
+    for (int i = 0; i < dw.ndst; ++i)
+      if (land_[dw.dsts[i].reg] >= cycle_ + dw.dsts[i].latency) return Stall::Waw;
   }
-  if (dw.src & late) return Stall::Raw;
-  if (waw) return Stall::Waw;
   if ((k & DecodedWord::kCcBranch) && cmp_done_ > cycle_) return Stall::Cc;
   if ((k & DecodedWord::kHalt) && fp_done_ > cycle_) return Stall::Drain;
   return Stall::None;
@@ -217,6 +246,7 @@ MC1_HOT Stall Iss::stall_reason(const DecodedWord& dw) const {
 MC1_HOT std::uint32_t Iss::next_pc(const DecodedWord& dw) const {
   const SeqSlot& s = dw.w.s;
   const std::uint32_t fall = pc_ + 1u;
+  if (s.op == SeqOp::Next) return fall;
   const std::uint16_t ar = a_[s.r & 15];
   switch (s.op) {
     case SeqOp::Jmp: return s.target;
@@ -251,40 +281,38 @@ MC1_HOT Fault Iss::check_fault(const DecodedWord& dw, std::uint32_t next) const 
 template <bool kRecord>
 MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec) {
   namespace fp = mc1::fp24;
-  namespace inl = mc1::fp24::inl;  // mul, add, sub, cmp inline: no call per op
+  namespace inl = mc1::fp24::inl;  // mul, add, sub, cmp inline: no call per op (F registers hold 24 bits)
   const MicroWord& w = dw.w;
   // Every read below sees the state before this word's writes: FP results
   // and register writes go to future buckets; only the store is immediate.
+  if (dw.lat_fp) fp_done_ = std::max(fp_done_, cycle_ + dw.lat_fp);
   if (w.m.en) {
-    const fp::Result r = inl::mul(f_[w.m.a], f_[w.m.b]);
-    push_f(kMulLatency, w.m.d, r.value);
-    push_flags(kMulLatency, r.flags);
-    note_fp(kMulLatency);
+    const fp::Result r = inl::mul24(f_[w.m.a], f_[w.m.b]);
+    push_f(kMulLatency, w.m.d, r.value, r.flags);
     ++counters_.unit_ops[0];
   }
   if (w.a.en) {
     const std::uint32_t x = f_[w.a.a], y = f_[w.a.b];
     fp::Result r{};
     switch (w.a.op) {
-      case AddOp::Add: r = inl::add(x, y); break;
-      case AddOp::Sub: r = inl::sub(x, y); break;
+      case AddOp::Add: r = inl::add24(x, y); break;
+      case AddOp::Sub: r = inl::sub24(x, y); break;
       case AddOp::Cmp: r = inl::cmp(x, y); break;
       case AddOp::Float: r = fp::from_int(static_cast<std::uint16_t>(x)); break;
       case AddOp::Fix: r = fp::to_int(x); r.value &= 0xFFFF; break;
       case AddOp::Neg: r = fp::neg(x); break;
       default: r = fp::abs(x); break;
     }
-    const int latency_a = latency(w.a.op);
+    const int latency_a = dw.lat_a;
     if (w.a.op == AddOp::Cmp) {
       Bucket& b = ring_[(cycle_ + latency_a) % kRing];
-      b.cc_valid = true;
-      b.cc = static_cast<std::uint8_t>(r.value);
+      b.cc_valid = 1;
+      b.cc = r.value;
+      b.flags |= r.flags;
       cmp_done_ = cycle_ + latency_a;
     } else {
-      push_f(latency_a, w.a.d, r.value);
+      push_f(latency_a, w.a.d, r.value, r.flags);
     }
-    push_flags(latency_a, r.flags);
-    note_fp(latency_a);
     ++counters_.unit_ops[1];
   }
   if (w.f.en) {
@@ -296,27 +324,32 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
       case FuncOp::Sin: r = fp::sin(x); break;
       case FuncOp::Cos: r = fp::cos(x); break;
     }
-    const int latency_f = latency(w.f.op);
-    push_f(latency_f, w.f.d, r.value);
-    push_flags(latency_f, r.flags);
-    note_fp(latency_f);
+    push_f(dw.lat_f, w.f.d, r.value, r.flags);
     ++counters_.unit_ops[2];
   }
 
   if (w.d.op != MemOp::None) {
     const std::uint16_t addr = static_cast<std::uint16_t>(a_[w.d.base] + w.d.disp);
     if (w.d.op == MemOp::Ld) {
-      push_f(latency(w.d.op), w.d.f, data_[dsel_][addr]);
+      push_f(dw.lat_d, w.d.f, data_[dsel_][addr]);
     } else {
       data_[dsel_][addr] = f_[w.d.f];
       if constexpr (kRecord) rec->commits.push_back({Commit::Kind::Mem, addr, f_[w.d.f]});
     }
   }
 
-  const IntSlot& i = w.i;
+  if (w.i.op != IntOp::None) int_op(dw);
+  if (w.s.op != SeqOp::Next) seq_op(dw);
+  pc_ = static_cast<std::uint16_t>(next);
+  ++counters_.issued;
+}
+
+// The I slot (its reads see the state before the word's writes).
+MC1_HOT void Iss::int_op(const DecodedWord& dw) {
+  const IntSlot& i = dw.w.i;
   const std::uint8_t ad = i.d & 15;
-  const std::uint16_t s = a_[i.s], t = a_[i.t], imm = i.imm;
-  const int li = latency(i.op);
+  const std::uint32_t s = a_[i.s], t = a_[i.t], imm = i.imm;
+  const int li = dw.lat_i;
   switch (i.op) {
     case IntOp::None: break;
     case IntOp::Li: push_a(li, ad, imm); break;
@@ -337,7 +370,11 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
     case IntOp::Lif: push_f(li, i.d, (std::uint32_t{imm} << 8) & kMask24); break;
     case IntOp::Reserved: break;
   }
+}
 
+// The sequencer's effects beyond the next pc.
+MC1_HOT void Iss::seq_op(const DecodedWord& dw) {
+  const MicroWord& w = dw.w;
   switch (w.s.op) {
     case SeqOp::Dbnz: push_a(latency(SeqOp::Dbnz), w.s.r, static_cast<std::uint16_t>(a_[w.s.r] - 1)); break;
     case SeqOp::Call: stack_[sp_++] = static_cast<std::uint16_t>(pc_ + 1); break;
@@ -353,54 +390,57 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
     case SeqOp::Halt: state_ = RunState::Halted; break;
     default: break;
   }
-  pc_ = static_cast<std::uint16_t>(next);
-  ++counters_.issued;
 }
 
+// A cycle between retiring the last one's writes and applying the next
+// one's: the word at pc issues, stalls or faults.
 template <bool kRecord>
-MC1_HOT Stall Iss::clock(CycleRecord* rec) {
-  Stall s = Stall::None;
-  int cc = kNoCommit, flags = kNoCommit;
-  if constexpr (kRecord) {
-    rec->cycle = cycle_;
-    rec->pc = pc_;
-    rec->issued = false;
-    rec->stall = Stall::None;
-    rec->psel = static_cast<std::uint8_t>(psel_);
-    rec->dsel = static_cast<std::uint8_t>(dsel_);
-    rec->commits.clear();
-  }
-  take_due<kRecord>(rec, cc, flags);
+MC1_HOT Stall Iss::execute(CycleRecord* rec) {
   if (fetching_ > 0) {
     --fetching_;  // the program RAM reads the word at pc: nothing issues
-  } else if (state_ == RunState::Running) {
-    const DecodedWord& dw = decoded_[psel_][pc_];
-    s = stall_reason(dw);
-    if (s != Stall::None) {
-      ++counters_.stalls[static_cast<int>(s)];
-      if constexpr (kRecord) rec->stall = s;
-    } else {
-      const std::uint32_t next = next_pc(dw);
-      const Fault f = check_fault(dw, next);
-      if (f != Fault::None) {
-        state_ = RunState::Faulted;
-        fault_ = f;
-      } else {
-        issue<kRecord>(dw, next, rec);
-        if constexpr (kRecord) rec->issued = true;
-      }
-    }
+    return Stall::None;
   }
-  if constexpr (kRecord) {
-    if (cc != kNoCommit) rec->commits.push_back({Commit::Kind::Cc, 0, static_cast<std::uint32_t>(cc)});
-    if (flags != kNoCommit) rec->commits.push_back({Commit::Kind::Flags, 0, static_cast<std::uint32_t>(flags)});
+  if (state_ != RunState::Running) return Stall::None;
+  const DecodedWord& dw = decoded_[psel_][pc_];
+  const Stall s = stall_reason(dw);
+  if (s != Stall::None) {
+    ++counters_.stalls[static_cast<int>(s)];
+    if constexpr (kRecord) rec->stall = s;
+    return s;
   }
-  ++cycle_;
-  apply_next();
-  return s;
+  const std::uint32_t next = next_pc(dw);
+  // Most words can fault only on their data address, if at all.
+  Fault f = Fault::None;
+  if (__builtin_expect((dw.kind & (DecodedWord::kReserved | DecodedWord::kStack)) || next >= kProgramWords, 0))
+    f = check_fault(dw, next);
+  else if ((dw.kind & DecodedWord::kMem) && static_cast<std::uint16_t>(a_[dw.w.d.base] + dw.w.d.disp) >= kDataWords)
+    f = Fault::DataAddress;
+  if (f != Fault::None) {
+    state_ = RunState::Faulted;
+    fault_ = f;
+  } else {
+    issue<kRecord>(dw, next, rec);
+    if constexpr (kRecord) rec->issued = true;
+  }
+  return Stall::None;
 }
 
-void Iss::step(CycleRecord& rec) { clock<true>(&rec); }
+void Iss::step(CycleRecord& rec) {
+  int cc = kNoCommit, flags = kNoCommit;
+  rec.cycle = cycle_;
+  rec.pc = static_cast<std::uint16_t>(pc_);
+  rec.issued = false;
+  rec.stall = Stall::None;
+  rec.psel = static_cast<std::uint8_t>(psel_);
+  rec.dsel = static_cast<std::uint8_t>(dsel_);
+  rec.commits.clear();
+  take_due<true>(&rec, cc, flags);
+  execute<true>(&rec);
+  if (cc != kNoCommit) rec.commits.push_back({Commit::Kind::Cc, 0, static_cast<std::uint32_t>(cc)});
+  if (flags != kNoCommit) rec.commits.push_back({Commit::Kind::Flags, 0, static_cast<std::uint32_t>(flags)});
+  ++cycle_;
+  apply_next<true>();
+}
 
 // No write in flight: every bucket but this cycle's (applied already, taken at
 // the start of the next clock) is empty. (Flags and CC arrive only with an F
@@ -413,27 +453,33 @@ bool Iss::writes_landed() const {
   return true;
 }
 
-std::uint64_t Iss::run(std::uint64_t max_cycles) {
-  std::uint64_t n = 0;
-  while (n < max_cycles && state_ == RunState::Running) {
-    const Stall s = clock<false>(nullptr);
-    ++n;
-    if (s == Stall::Bank && n < max_cycles && writes_landed()) {
+template <bool kUntilDataTaken>
+std::uint64_t Iss::run_fast(std::uint64_t max_cycles) {
+  if (max_cycles == 0 || state_ != RunState::Running) return 0;
+  int cc = kNoCommit, flags = kNoCommit;
+  take_due<false>(nullptr, cc, flags);  // what the last clock applied (nothing records it now)
+  for (std::uint64_t n = 1;; ++n) {
+    const Stall s = execute<false>(nullptr);
+    ++cycle_;
+    if (n == max_cycles || state_ != RunState::Running || (kUntilDataTaken && !data_ready_)) {
+      apply_next<true>();  // as step() leaves it: a step that follows records these writes
+      return n;
+    }
+    apply_next<false>();
+    if (s == Stall::Bank && writes_landed()) {
       // A word waiting for a bank the MPU has not handed over waits every
       // cycle until the call returns (the MPU acts between calls, and `bank`
       // comes first in the stall order); with no write left in flight each of
       // those cycles only counts a bank stall: clock them all at once.
       const std::uint64_t k = max_cycles - n;
-      Bucket& b = ring_[cycle_ % kRing];
-      b.nf = b.na = 0;
-      b.cc_valid = b.flags_commit = false;
-      b.flags = 0;
       counters_.stalls[static_cast<int>(Stall::Bank)] += k;
       cycle_ += k;
-      n = max_cycles;
+      return max_cycles;
     }
   }
-  return n;
 }
+
+template std::uint64_t Iss::run_fast<false>(std::uint64_t);
+template std::uint64_t Iss::run_fast<true>(std::uint64_t);
 
 }  // namespace mc1::apu

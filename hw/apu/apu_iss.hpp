@@ -23,20 +23,32 @@ constexpr int pow2_above(int n) {
 }
 
 // A program word decoded once, when the MPU writes it: the fields plus what
-// the stall logic asks of every word, precomputed.
+// the stall logic and the issue ask of every word, resolved then (operand
+// masks, each F write with its latency from the instruction-set table, the
+// checks the word can need), so that a cycle decodes nothing.
 struct DecodedWord {
   enum : std::uint8_t {
     kSwap = 1,       // SWAPD/SWAPP: subject to `bank`
     kCcBranch = 2,   // BCC/BNCC: subject to `cc`
     kHalt = 4,       // subject to `drain`
     kReserved = 8,   // a reserved op in some slot: faults when it would issue
+    kMem = 16,       // LD/ST: the data address is checked
+    kStack = 32,     // CALL/RET: the call stack is checked
+  };
+  // An F register write and the latency after which it is visible.
+  struct FDst {
+    std::uint8_t reg = 0, latency = 0;
   };
   MicroWord w;
   std::uint64_t src = 0;  // F registers read (raw)
-  // F registers written, by the latency of the write (waw): a write with
-  // latency L must land after every write already in flight to its register.
-  std::array<std::uint64_t, kMaxLatency + 1> dst_at{};
+  std::uint64_t dst = 0;  // F registers written, any latency
+  // Each F write (waw): a write with latency L must land after every write
+  // already in flight to its register.
+  std::array<FDst, 5> dsts{};  // M, A, F, LD, MOVAF/LIF
+  std::uint8_t ndst = 0;
   std::uint8_t kind = 0;
+  // latency(op) of the A, F, D and I slots; the longest FP op's (drain; 0: none).
+  std::uint8_t lat_a = 0, lat_f = 0, lat_d = 0, lat_i = 0, lat_fp = 0;
 
   static DecodedWord from(const Encoded& e);
 };
@@ -64,16 +76,19 @@ class Iss final : public ApuEngine {
   std::uint64_t cycle() const override { return cycle_; }
   std::uint32_t freg(int i) const override { return f_[i & 63]; }
   std::uint16_t areg(int i) const override { return a_[i & 15]; }
-  std::uint8_t flags() const override { return flags_; }
-  std::uint8_t cc() const override { return cc_; }
+  std::uint8_t flags() const override { return static_cast<std::uint8_t>(flags_); }
+  std::uint8_t cc() const override { return static_cast<std::uint8_t>(cc_); }
 
   // Fast path: clocks until the APU stops running (HALT issued, fault) or
   // max_cycles cycles have passed; returns the cycles clocked (0 when the
   // APU is not running).
-  std::uint64_t run(std::uint64_t max_cycles) override;
+  std::uint64_t run(std::uint64_t max_cycles) override { return run_fast<false>(max_cycles); }
+  std::uint64_t run_until_data_taken(std::uint64_t max_cycles) override {
+    return data_ready_ ? run_fast<true>(max_cycles) : 0;
+  }
 
   // Observers beyond ApuEngine (tests, profiles, the driver).
-  std::uint16_t pc() const { return pc_; }
+  std::uint16_t pc() const { return static_cast<std::uint16_t>(pc_); }
   int psel() const { return psel_; }
   int dsel() const { return dsel_; }
   int call_depth() const { return sp_; }
@@ -90,24 +105,29 @@ class Iss final : public ApuEngine {
   const Counters& counters() const { return counters_; }
 
  private:
-  struct FWrite { std::uint8_t index; std::uint32_t value; };
-  struct AWrite { std::uint8_t index; std::uint16_t value; };
+  // 32-bit fields throughout: a byte store could alias any member and make
+  // the compiler reload the hot state after it.
+  struct FWrite { std::uint32_t index, value; };
+  struct AWrite { std::uint32_t index, value; };
   // What becomes visible in one future cycle. At most one write per slot,
   // except the F slot: a SIN/COS and a RECIP/SQRT issued one cycle later.
-  struct Bucket {
-    std::uint64_t fmask = 0;
-    std::uint8_t nf = 0, na = 0;
-    bool cc_valid = false, flags_commit = false;
-    std::uint8_t cc = 0, flags = 0;  // flags: the OR of the ops', then FLAGS once applied
+  struct alignas(128) Bucket {  // a power of two: a shift indexes the ring
+    std::uint32_t nf = 0, na = 0;
+    std::uint32_t cc_valid = 0, flags_commit = 0;
+    std::uint32_t cc = 0, flags = 0;  // flags: the OR of the ops', then FLAGS once applied
     FWrite f[6];  // M, A, F twice, LD, MOVAF/LIF
     AWrite a[2];  // I slot, DBNZ
   };
   static constexpr int kRing = pow2_above(kMaxLatency);
 
-  // One cycle; returns the stall reason (None if it issued or did not run).
+  // One cycle's issue, stall or fault; returns the stall reason (None if it
+  // issued or did not run).
   template <bool kRecord>
-  Stall clock(CycleRecord* rec);
+  Stall execute(CycleRecord* rec);
+  template <bool kUntilDataTaken>
+  std::uint64_t run_fast(std::uint64_t max_cycles);
   bool writes_landed() const;
+  template <bool kKeep>
   void apply_next();
   template <bool kRecord>
   void take_due(CycleRecord* rec, int& cc, int& flags);
@@ -118,33 +138,38 @@ class Iss final : public ApuEngine {
   Fault check_fault(const DecodedWord& dw, std::uint32_t next) const;
   template <bool kRecord>
   void issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec);
-  void push_f(int latency, std::uint8_t index, std::uint32_t value);
-  void push_a(int latency, std::uint8_t index, std::uint16_t value);
-  void push_flags(int latency, std::uint8_t flags);
-  void note_fp(int latency);  // an FP op in flight until cycle_ + latency (drain)
+  void int_op(const DecodedWord& dw);
+  void seq_op(const DecodedWord& dw);
+  // An F write and the flags of the op that makes it.
+  void push_f(int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags = 0);
+  void push_a(int latency, std::uint32_t index, std::uint16_t value);
 
-  // Architectural state.
-  std::array<std::uint32_t, kNumFRegs> f_{};
-  std::array<std::uint16_t, kNumARegs> a_{};
-  std::uint8_t cc_ = 0, flags_ = 0;
-  std::uint16_t pc_ = 0;
-  std::array<std::uint16_t, kCallDepth> stack_{};
-  int sp_ = 0;
-  int psel_ = 0, dsel_ = 0;
-  bool program_ready_ = false, data_ready_ = false;
-  RunState state_ = RunState::Idle;
-  Fault fault_ = Fault::None;
+  // Hot state first: what every cycle reads.
   std::uint64_t cycle_ = 0;
-  int fetching_ = 0;  // cycles left in which a start fetches its first word
-  std::array<std::array<Encoded, kProgramWords>, 2> program_{};
-  std::array<std::array<DecodedWord, kProgramWords>, 2> decoded_{};
-  std::array<std::array<std::uint32_t, kDataWords>, 2> data_{};
-
-  // Pipeline state: future writes by cycle, and the scoreboard's summaries.
-  std::array<Bucket, kRing> ring_{};
+  // The scoreboard: the F registers with a write in flight (visible after
+  // the current cycle), and for each the cycle its last write becomes
+  // visible (writes to one register land in issue order: waw).
+  std::uint64_t pending_ = 0;
   std::uint64_t fp_done_ = 0;      // first cycle with no FP op in flight
   std::uint64_t cmp_done_ = 0;     // first cycle with no CMP in flight
+  std::uint32_t pc_ = 0;
+  RunState state_ = RunState::Idle;
+  int fetching_ = 0;  // cycles left in which a start fetches its first word
+  int psel_ = 0, dsel_ = 0;
+  bool program_ready_ = false, data_ready_ = false;
+  std::uint32_t cc_ = 0, flags_ = 0;
+  int sp_ = 0;
+  Fault fault_ = Fault::None;
+  std::array<std::uint32_t, kNumFRegs> f_{};
+  std::array<std::uint16_t, kNumARegs> a_{};
+  std::array<std::uint16_t, kCallDepth> stack_{};
   Counters counters_;
+  std::array<std::uint64_t, kNumFRegs> land_{};
+  // Future writes by cycle.
+  std::array<Bucket, kRing> ring_{};
+  std::array<std::array<DecodedWord, kProgramWords>, 2> decoded_{};
+  std::array<std::array<std::uint32_t, kDataWords>, 2> data_{};
+  std::array<std::array<Encoded, kProgramWords>, 2> program_{};
 };
 
 }  // namespace mc1::apu

@@ -47,29 +47,45 @@ Result add_special(Bits a, Bits b);
 
 namespace inl {
 
-[[gnu::always_inline]] inline Result mul(Bits a, Bits b) {
-  a &= bits::kMask24;
-  b &= bits::kMask24;
+// The ops on operands already within 24 bits (the ISS's registers always
+// are): mul24, add24, sub24. mul, add, sub mask first.
+[[gnu::always_inline]] inline Result mul24(Bits a, Bits b) {
   if (__builtin_expect(!(bits::is_normal(a) && bits::is_normal(b)), 0))
     return detail::mul_special(bits::flush(a), bits::flush(b));
   // Product of two 17-bit significands: 2^32 <= p < 2^34, exact in 64 bits.
+  // round_pack's rule without its general normalization: q is p at
+  // [2^33, 2^34), its 17 bits below the result's significand are dropped with
+  // RNE (sig = 2^17 on a carry), and the exponent field plus sig - 2^16 is
+  // the magnitude's encoding, the carry included; overflow and tininess
+  // after rounding are compares on it.
+  constexpr int kDrop = kFracBits + 1;
   const std::uint64_t p = std::uint64_t{bits::sig_of(a)} * bits::sig_of(b);
-  const int k = bits::exp_of(a) + bits::exp_of(b) - 2 * kBias - 2 * kFracBits;
-  const auto n = bits::normalize(p, k);
-  return bits::round_pack(bits::sign_of(a) != bits::sign_of(b), n.exp, n.sig);
+  const int hi = static_cast<int>(p >> (2 * kFracBits + 1));
+  const std::uint64_t q = p << (hi ^ 1);
+  const auto sig = static_cast<std::int32_t>(
+      (q + ((std::uint64_t{1} << (kDrop - 1)) - 1) + ((q >> kDrop) & 1)) >> kDrop);
+  const std::int32_t mag = (bits::exp_of(a) + bits::exp_of(b) - kBias + hi - 1) * (1 << kFracBits) + sig;
+  const bool s = bits::sign_of(a) != bits::sign_of(b);
+  if (__builtin_expect(mag >= static_cast<std::int32_t>(kPosInf), 0))
+    return {bits::signed_inf(s), static_cast<std::uint8_t>(kOF | kNX)};
+  if (__builtin_expect(mag < (1 << kFracBits), 0)) return {bits::signed_zero(s), static_cast<std::uint8_t>(kUF | kNX)};
+  const bool inexact = (q & ((std::uint64_t{1} << kDrop) - 1)) != 0;
+  return {bits::signed_zero(s) | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
 }
 
-[[gnu::always_inline]] inline Result add(Bits a, Bits b) {
-  a &= bits::kMask24;
-  b &= bits::kMask24;
+[[gnu::always_inline]] inline Result add24(Bits a, Bits b) {
   if (__builtin_expect(!(bits::is_normal(a) && bits::is_normal(b)), 0))
     return detail::add_special(bits::flush(a), bits::flush(b));
   return detail::add_normal(a, b);
 }
 
+[[gnu::always_inline]] inline Result mul(Bits a, Bits b) { return mul24(a & bits::kMask24, b & bits::kMask24); }
+[[gnu::always_inline]] inline Result add(Bits a, Bits b) { return add24(a & bits::kMask24, b & bits::kMask24); }
+
 // a - b is a + (-b) exactly, signed zeros included: (-0) - (+0) = (-0) + (-0).
 // Flipping the sign of a NaN leaves a NaN, which add() turns canonical.
 [[gnu::always_inline]] inline Result sub(Bits a, Bits b) { return add(a, b ^ kSignBit); }
+[[gnu::always_inline]] inline Result sub24(Bits a, Bits b) { return add24(a, b ^ kSignBit); }
 
 [[gnu::always_inline]] inline Result cmp(Bits a, Bits b) {
   a = bits::flush(a);

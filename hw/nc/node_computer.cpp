@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#if defined(__x86_64__) || defined(__i386__)
+#include <x86intrin.h>
+#endif
 #include <stdexcept>
 #include <string>
 
@@ -13,17 +16,41 @@ namespace mc1::nc {
 namespace {
 
 // Host time of a stretch of APU clocking (the benchmark's split between the
-// APU's work and SystemC's).
+// APU's work and SystemC's), read twice per APU run, some 10^5 times a
+// frame: in the cheapest clock there is, the x86 time-stamp counter (a
+// constant rate on the hosts this runs on; elsewhere steady_clock's count),
+// turned into seconds once, when the NC closes the frame (host_seconds).
+std::uint64_t host_ticks() {
+#if defined(__x86_64__) || defined(__i386__)
+  return __rdtsc();
+#else
+  return static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+#endif
+}
+
+// The ticks' rate against steady_clock, from the first timed run to now.
+double host_seconds(std::uint64_t ticks) {
+  struct Start {
+    std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
+    std::uint64_t ticks = host_ticks();
+  };
+  static const Start start;
+  if (ticks == 0) return 0;
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start.t).count();
+  const std::uint64_t n = host_ticks() - start.ticks;
+  return n > 0 ? static_cast<double>(ticks) * s / static_cast<double>(n) : 0;
+}
+
 class HostTimer {
  public:
-  explicit HostTimer(double& sink) : sink_(sink), t0_(std::chrono::steady_clock::now()) {}
-  ~HostTimer() {
-    sink_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+  explicit HostTimer(std::uint64_t& sink) : sink_(sink), t0_(host_ticks()) {
+    (void)host_seconds(0);  // the rate's start, before the first run ends
   }
+  ~HostTimer() { sink_ += host_ticks() - t0_; }
 
  private:
-  double& sink_;
-  std::chrono::steady_clock::time_point t0_;
+  std::uint64_t& sink_;
+  std::uint64_t t0_;
 };
 
 // Unwinds the firmware when the NC's processor stops (kill_at).
@@ -162,7 +189,7 @@ void NodeComputer::catch_up_to(Picos t) {
   std::uint64_t n = 0;
   engine_->set_time(apu_time_, cycle_ps_);
   {
-    HostTimer timer(stats_.apu_host_seconds);
+    HostTimer timer(apu_host_ticks_);
     n = driver_.run(k);
   }
   stats_.apu_cycles += n;
@@ -278,12 +305,13 @@ void NodeComputer::apu_wait_swap() {
   const std::uint64_t limit = std::min(to_kill, t_.apu_watchdog_cycles);
   const std::uint64_t n = run_on_pool([this, limit](ApuJob& job) {
     engine_->set_time(apu_time_, cycle_ps_);  // the run starts at apu_time_ (waveforms, profiles)
-    // Cycle by cycle: the swap interrupt comes in the cycle the APU takes the bank.
-    HostTimer timer(stats_.apu_host_seconds);
+    // Up to the cycle the APU takes the bank (the swap interrupt comes in
+    // it), in stretches that end where the NC's steps on the pool do.
+    HostTimer timer(apu_host_ticks_);
     std::uint64_t k = 0;
     const auto waiting = [&] { return driver_.data_ready() && engine_->state() == apu::RunState::Running && k < limit; };
     while (waiting()) {
-      k += driver_.run(1);
+      k += driver_.run_until_data_taken(std::min(limit - k, kPoolStepCycles - (k + 1) % kPoolStepCycles));
       if (waiting()) job.reached(k + 1);
     }
     return k;
@@ -311,7 +339,7 @@ void NodeComputer::apu_wait_halt() {
   std::string runaway;  // the driver's account of a run the watchdog stops
   const std::uint64_t n = run_on_pool([this, &runaway](ApuJob& job) -> std::uint64_t {
     engine_->set_time(apu_time_, cycle_ps_);  // the run starts at apu_time_ (waveforms, profiles)
-    HostTimer timer(stats_.apu_host_seconds);
+    HostTimer timer(apu_host_ticks_);
     const std::uint64_t c0 = engine_->cycle();
     // Called before every kPoolStepCycles-th cycle, the APU still running.
     const auto progress = [&] { job.reached(engine_->cycle() - c0 + 1); };
@@ -422,6 +450,7 @@ void NodeComputer::close(Picos frame_end) {
     stats_.apu_bank_stalls = iss->counters().stalls[static_cast<int>(apu::Stall::Bank)];
     for (int k = 0; k < apu::kStallKinds; ++k) stats_.apu_stalls[k] = iss->counters().stalls[k];
   }
+  stats_.apu_host_seconds = host_seconds(apu_host_ticks_);
   engine_->set_time(std::max(apu_time_, frame_end), cycle_ps_);  // a waveform's idle tail ends with the frame
   for (Picos& p : stats_.time) p = 0;
   for (const Span& s : spans_) stats_.time[static_cast<int>(s.what)] += s.end - s.begin;

@@ -75,7 +75,7 @@ struct NcStats {
   std::vector<std::pair<std::string, Picos>> milestones;  // in the order reached
   std::vector<std::pair<Picos, std::string>> phases;      // step changes, in time order (phase())
   Picos mpu_busy = 0;               // MPU work annotated (copies, commands, interrupts)
-  double apu_host_seconds = 0;      // host time spent clocking the APU engine
+  double apu_host_seconds = 0;      // host time spent clocking the APU engine (set by close())
   // Only when the engine is the ISS (it counts them): words issued, and
   // cycles stalled on `bank` (the APU waiting for the MPU's hand-over).
   bool apu_counted = false;
@@ -158,6 +158,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   Picos cycle_ps_;
 
   Picos apu_time_ = 0;      // the APU is clocked up to here
+  std::uint64_t apu_host_ticks_ = 0;  // host clock ticks spent clocking the APU (HostTimer)
   bool apu_open_ = false;   // an ApuSpan is open
   Picos apu_begin_ = 0;
 
