@@ -161,8 +161,8 @@ struct TestScene {
         const V3 n = norm(cross(e1, e2));
         const V3 ua = cross(e2, n), va = cross(n, e1);
         put(w, P_P0, p.v[0]);
-        put(w, P_E1, e1);
-        put(w, P_E2, e2);
+        put(w, P_P1, p.v[1]);
+        put(w, P_P2, p.v[2]);
         put(w, P_N, n);
         put(w, P_UA, (1 / dot(e1, ua)) * ua);
         put(w, P_VA, (1 / dot(e2, va)) * va);
