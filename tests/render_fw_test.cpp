@@ -753,6 +753,46 @@ TEST(RenderScan, PseudoPolygonsInTilesOfAWholeFrameBlock) {
   EXPECT_LT(a.max_rel_t, 1e-3);
 }
 
+// Watertight edges (docs/renderer.md "Predicates"): a curved mesh whose
+// vertices lie on the eye rays of pixel centres 4 pixels apart, so that its
+// row, column and diagonal edges pass through pixel centres (within the FP24
+// rounding of the vertices: rounding decides which side), each shared by two
+// triangles. No pixel centre inside the mesh may fall between them (the
+// former edge functions, of each triangle's own v0, E1, E2, 1 / V and
+// stepped along the row: 94 of the 633 on-edge pixels did).
+TEST(RenderScan, SharedEdgesThroughPixelCentresLeaveNoCrack) {
+  TestScene s;
+  s.width = 48;
+  s.height = 32;
+  const int cols = 10, rows = 7, step = 4, first = 2;
+  auto vertex = [&](int a, int b) {
+    const int i = first + step * a, j = first + step * b;
+    const double h = std::tan(s.fov_deg * M_PI / 360.0), px = 2 * h / s.height;
+    const double depth = 6 + 0.7 * std::sin(0.9 * a) + 0.5 * std::cos(1.3 * b);  // not planar
+    return V3{(i + 0.5 - s.width / 2.0) * px * depth, (s.height / 2.0 - j - 0.5) * px * depth, depth};
+  };
+  for (int b = 0; b < rows; ++b)
+    for (int a = 0; a < cols; ++a) {
+      s.add_triangle(vertex(a, b), vertex(a + 1, b), vertex(a + 1, b + 1), 0, 0);
+      s.add_triangle(vertex(a, b), vertex(a + 1, b + 1), vertex(a, b + 1), 0, 0);
+    }
+  Rig rig;
+  rig.fw.load_view_scene(s.view());
+  const auto z = rig.fw.scan_convert({0, 0, s.width, s.height}, every_primitive(rig.fw.view()));
+  int inside = 0, on_edges = 0, cracks = 0;
+  for (int j = first + 1; j < first + step * rows; ++j)
+    for (int i = first + 1; i < first + step * cols; ++i) {
+      ++inside;
+      const int di = (i - first) % step, dj = (j - first) % step;
+      on_edges += di == 0 || dj == 0 || di == dj;
+      if (z[j * s.width + i].id == kNoHit) ++cracks, ADD_FAILURE() << "crack at (" << i << ", " << j << ")";
+    }
+  std::printf("mesh of %d triangles: %d pixels inside, %d on shared edges, %d cracks\n", 2 * cols * rows, inside,
+              on_edges, cracks);
+  EXPECT_GT(on_edges, 500);
+  EXPECT_EQ(cracks, 0);
+}
+
 // s2's candidates per group of hits (shadows): fig. 6's list of (object,
 // light), less the triangles whose padded box misses the box of the group's
 // hits on that object and the light. Every shadow flag is the one the whole
