@@ -313,42 +313,52 @@ void runs_json(std::ostream& json, const std::vector<BenchRun>& runs) {
   }
 }
 
-}  // namespace
+struct BenchOptions {
+  std::string scene;
+  std::pair<unsigned, unsigned> size, big;  // big {0, 0}: no efficiency runs
+  std::vector<unsigned> nodes;
+  unsigned static_nodes = 0, big_nodes = 0;
+  bool rtl = false;
+};
 
-int cmd_bench_render(const CLI::App& cmd) {
-  SystemConfig base = machine_config();
-  apply_params(cmd, base.timing);
-  const Parsed a(cmd);
-  threads_option(a, base);
-  const std::string scene = a.get("scene", MC1_SOURCE_DIR "/scenes/whitted.json");
-  const auto size = parse_size("--size", a.get("size", "256x256"), false);
-  const std::vector<unsigned> nodes = parse_list("--nodes", a.get("nodes", "1,4,16,64"), 1, 4096);
-  const unsigned static_nodes = parse_unsigned("--static-nodes", a.get("static-nodes", "16"), 1, 4096);
+BenchOptions bench_options(const Parsed& a, SystemConfig& base) {
+  BenchOptions o;
+  o.scene = a.get("scene", MC1_SOURCE_DIR "/scenes/whitted.json");
+  o.size = parse_size("--size", a.get("size", "256x256"), false);
+  o.nodes = parse_list("--nodes", a.get("nodes", "1,4,16,64"), 1, 4096);
+  o.static_nodes = parse_unsigned("--static-nodes", a.get("static-nodes", "16"), 1, 4096);
   if (a.has("block")) std::tie(base.block_w, base.block_h) = parse_size("--block", a.get("block"), true);
   const std::string big_text = a.get("big", "512x512");
-  const auto big = big_text == "0" ? std::pair<unsigned, unsigned>{0, 0} : parse_size("--big", big_text, false);
-  const unsigned big_nodes = parse_unsigned("--big-nodes", a.get("big-nodes", "64"), 1, 4096);
+  o.big = big_text == "0" ? std::pair<unsigned, unsigned>{0, 0} : parse_size("--big", big_text, false);
+  o.big_nodes = parse_unsigned("--big-nodes", a.get("big-nodes", "64"), 1, 4096);
+  o.rtl = a.has("rtl");
+  return o;
+}
 
-  std::vector<BenchRun> runs;
-  std::map<std::pair<unsigned, unsigned>, std::vector<std::uint8_t>> first_image;
-  bool same = true;
-  std::printf("%-26s %5s %9s %7s %13s %9s %9s %9s %8s\n", "run", "NCs", "size", "sched", "simulated", "APU util",
-              "download", "host", "frame");
-  auto run_one = [&](const std::string& label, unsigned n, std::pair<unsigned, unsigned> wh, rc::Schedule s,
-                     EngineKind e) -> const FrameReport& {
-    if (!runs.empty()) fresh_systemc_kernel();
-    SystemConfig cfg = base;
+// The benchmark's frames, a table line each, and whether the frames of one
+// size are the same in every run.
+class BenchRuns {
+ public:
+  BenchRuns(const SystemConfig& base, std::string scene) : base_(base), scene_(std::move(scene)) {
+    std::printf("%-26s %5s %9s %7s %13s %9s %9s %9s %8s\n", "run", "NCs", "size", "sched", "simulated", "APU util",
+                "download", "host", "frame");
+  }
+
+  const FrameReport& run(const std::string& label, unsigned n, std::pair<unsigned, unsigned> wh, rc::Schedule s,
+                         EngineKind e) {
+    if (!runs_.empty()) fresh_systemc_kernel();
+    SystemConfig cfg = base_;
     cfg.nodes = n;
     cfg.schedule = s;
     cfg.engine = e;
-    BenchRun b{label, n, wh.first, wh.second, s, e, run_render(RenderJob{scene, wh.first, wh.second}, cfg).report};
-    auto it = first_image.find(wh);
+    BenchRun b{label, n, wh.first, wh.second, s, e, run_render(RenderJob{scene_, wh.first, wh.second}, cfg).report};
+    auto it = first_image_.find(wh);
     bool ok = true;
-    if (it == first_image.end())
-      first_image[wh] = b.r.rgb;
+    if (it == first_image_.end())
+      first_image_[wh] = b.r.rgb;
     else
       ok = it->second == b.r.rgb;
-    same = same && ok;
+    same_ = same_ && ok;
     const Picos T = b.r.frame_time;
     std::printf("%-26s %5u %4ux%-4u %7s %10.3f ms %9s %9s %7.2f s %8s\n", label.c_str(), n, wh.first, wh.second,
                 rc::schedule_name(s), T * 1e-9, pct(apu_utilization_mean(b.r)).c_str(),
@@ -358,77 +368,117 @@ int cmd_bench_render(const CLI::App& cmd) {
       std::printf("  (%zu deadlines missed: the timing table's rc_timeout_* figures are too short here)\n",
                   b.r.timeouts.size());
     std::fflush(stdout);
-    runs.push_back(std::move(b));
-    return runs.back().r;
-  };
+    runs_.push_back(std::move(b));
+    return runs_.back().r;
+  }
 
-  std::ostringstream json;
-  json << "{\"schema\": \"mc1-bench-render/1\", \"scene\": " << mc1::scene::json::quote(scene) << ", \"block\": " << base.block_w << ", \"runs\": [";
-  std::map<unsigned, Picos> t_size;
-  for (unsigned n : nodes)
-    t_size[n] = run_one("speedup", n, size, rc::Schedule::Lpt, EngineKind::Iss).frame_time;
-  const Picos lpt_ref = t_size.count(static_nodes)
-                            ? t_size[static_nodes]
-                            : run_one("lpt", static_nodes, size, rc::Schedule::Lpt, EngineKind::Iss).frame_time;
-  const Picos static_ref = run_one("static split", static_nodes, size, rc::Schedule::Static, EngineKind::Iss).frame_time;
-  Picos big1 = 0, bign = 0, bigs = 0, big_dl = 0;
-  if (big.first) {
-    big1 = run_one("efficiency, 1 NC", 1, big, rc::Schedule::Lpt, EngineKind::Iss).frame_time;
-    const FrameReport& r = run_one("efficiency", big_nodes, big, rc::Schedule::Lpt, EngineKind::Iss);
-    bign = r.frame_time;
-    big_dl = milestone_time(r, "downloaded");
-    bigs = run_one("static split", big_nodes, big, rc::Schedule::Static, EngineKind::Iss).frame_time;
+  const std::vector<BenchRun>& runs() const { return runs_; }
+  bool same() const { return same_; }
+
+ private:
+  const SystemConfig& base_;
+  std::string scene_;
+  std::vector<BenchRun> runs_;
+  std::map<std::pair<unsigned, unsigned>, std::vector<std::uint8_t>> first_image_;
+  bool same_ = true;
+};
+
+// The figures the benchmark reports, from its runs.
+struct BenchTimes {
+  std::map<unsigned, Picos> t_size;  // --size, lpt, per node count
+  Picos lpt_ref = 0, static_ref = 0;  // --size on --static-nodes
+  Picos big1 = 0, bign = 0, bigs = 0, big_dl = 0;  // --big on 1 and --big-nodes NCs, static; the download
+  double rtl_host = 0, iss_host = 0, ref_host = 0;
+};
+
+BenchTimes run_bench(BenchRuns& b, const BenchOptions& o) {
+  BenchTimes t;
+  for (unsigned n : o.nodes) t.t_size[n] = b.run("speedup", n, o.size, rc::Schedule::Lpt, EngineKind::Iss).frame_time;
+  t.lpt_ref = t.t_size.count(o.static_nodes)
+                  ? t.t_size[o.static_nodes]
+                  : b.run("lpt", o.static_nodes, o.size, rc::Schedule::Lpt, EngineKind::Iss).frame_time;
+  t.static_ref = b.run("static split", o.static_nodes, o.size, rc::Schedule::Static, EngineKind::Iss).frame_time;
+  if (o.big.first) {
+    t.big1 = b.run("efficiency, 1 NC", 1, o.big, rc::Schedule::Lpt, EngineKind::Iss).frame_time;
+    const FrameReport& r = b.run("efficiency", o.big_nodes, o.big, rc::Schedule::Lpt, EngineKind::Iss);
+    t.bign = r.frame_time;
+    t.big_dl = milestone_time(r, "downloaded");
+    t.bigs = b.run("static split", o.big_nodes, o.big, rc::Schedule::Static, EngineKind::Iss).frame_time;
   }
-  double rtl_host = 0;
-  if (a.has("rtl")) {
-    rtl_host = run_one("RTL engine", static_nodes, size, rc::Schedule::Lpt, EngineKind::Rtl).host_seconds;
-  }
+  if (o.rtl) t.rtl_host = b.run("RTL engine", o.static_nodes, o.size, rc::Schedule::Lpt, EngineKind::Rtl).host_seconds;
   // The co-simulation against the reference renderer on the same frame: the
   // ISS run on --static-nodes NCs (lpt) over the reference's best of three.
-  double iss_host = 0;
-  for (const BenchRun& b : runs)
-    if (b.engine == EngineKind::Iss && b.nodes == static_nodes && b.schedule == rc::Schedule::Lpt &&
-        b.width == size.first && b.height == size.second) {
-      iss_host = b.r.host_seconds;
+  for (const BenchRun& r : b.runs())
+    if (r.engine == EngineKind::Iss && r.nodes == o.static_nodes && r.schedule == rc::Schedule::Lpt &&
+        r.width == o.size.first && r.height == o.size.second) {
+      t.iss_host = r.r.host_seconds;
       break;
     }
-  const double ref_host = reference_host_seconds(scene, size);
-  runs_json(json, runs);
-  json << "], \"speedup\": {";
+  t.ref_host = reference_host_seconds(o.scene, o.size);
+  return t;
+}
 
-  std::printf("\n%ux%u, lpt:", size.first, size.second);
+// Speedup on --size and lpt over static: printed, and into the JSON.
+void speedup_summary(std::ostream& json, const BenchOptions& o, BenchTimes& t) {
+  json << "], \"speedup\": {";
+  std::printf("\n%ux%u, lpt:", o.size.first, o.size.second);
   bool first = true;
-  for (unsigned n : nodes) {
-    if (!t_size.count(1)) break;
-    const double sp = static_cast<double>(t_size[1]) / static_cast<double>(t_size[n]);
+  for (unsigned n : o.nodes) {
+    if (!t.t_size.count(1)) break;
+    const double sp = static_cast<double>(t.t_size[1]) / static_cast<double>(t.t_size[n]);
     std::printf("  %u NCs speedup %.2f (efficiency %s)", n, sp, pct(sp / n).c_str());
     json << (first ? "" : ", ") << "\"" << n << "\": " << sp;
     first = false;
   }
-  const double gain = static_cast<double>(static_ref) / static_cast<double>(lpt_ref);
-  std::printf("\n%ux%u on %u NCs: lpt %.3f ms, static %.3f ms: lpt gains %.2fx\n", size.first, size.second,
-              static_nodes, lpt_ref * 1e-9, static_ref * 1e-9, gain);
+  const double gain = static_cast<double>(t.static_ref) / static_cast<double>(t.lpt_ref);
+  std::printf("\n%ux%u on %u NCs: lpt %.3f ms, static %.3f ms: lpt gains %.2fx\n", o.size.first, o.size.second,
+              o.static_nodes, t.lpt_ref * 1e-9, t.static_ref * 1e-9, gain);
   json << "}, \"lpt_over_static\": " << gain;
-  if (big.first) {
-    const double eff = static_cast<double>(big1) / (static_cast<double>(big_nodes) * static_cast<double>(bign));
-    const double big_gain = static_cast<double>(bigs) / static_cast<double>(bign);
+}
+
+// Parallel efficiency on --big; the host time of the co-simulation over the
+// reference renderer's, and of the RTL engine over the ISS.
+void efficiency_summary(std::ostream& json, const BenchOptions& o, const BenchTimes& t) {
+  if (o.big.first) {
+    const double eff = static_cast<double>(t.big1) / (static_cast<double>(o.big_nodes) * static_cast<double>(t.bign));
+    const double big_gain = static_cast<double>(t.bigs) / static_cast<double>(t.bign);
     std::printf("%ux%u: 1 NC %.3f ms, %u NCs %.3f ms: parallel efficiency %s; the download (serial) is %s of the "
                 "%u-NC frame; lpt gains %.2fx over static\n",
-                big.first, big.second, big1 * 1e-9, big_nodes, bign * 1e-9, pct(eff).c_str(),
-                pct(static_cast<double>(big_dl) / bign).c_str(), big_nodes, big_gain);
-    json << ", \"big\": {\"width\": " << big.first << ", \"height\": " << big.second << ", \"nodes\": " << big_nodes
-         << ", \"efficiency\": " << eff << ", \"download_share\": " << static_cast<double>(big_dl) / bign
+                o.big.first, o.big.second, t.big1 * 1e-9, o.big_nodes, t.bign * 1e-9, pct(eff).c_str(),
+                pct(static_cast<double>(t.big_dl) / t.bign).c_str(), o.big_nodes, big_gain);
+    json << ", \"big\": {\"width\": " << o.big.first << ", \"height\": " << o.big.second << ", \"nodes\": " << o.big_nodes
+         << ", \"efficiency\": " << eff << ", \"download_share\": " << static_cast<double>(t.big_dl) / t.bign
          << ", \"lpt_over_static\": " << big_gain << "}";
   }
-  const double over_ref = ref_host > 0 ? iss_host / ref_host : 0;
-  std::printf("%ux%u on %u NCs: co-simulation (ISS) host %.2f s, reference renderer %.3f s: %.1fx\n", size.first,
-              size.second, static_nodes, iss_host, ref_host, over_ref);
-  json << ", \"reference_host_seconds\": " << ref_host << ", \"cosim_over_reference\": " << over_ref;
-  if (a.has("rtl")) {
-    const double rtl_over_iss = iss_host > 0 ? rtl_host / iss_host : 0;
-    std::printf("RTL engine, %u NCs: host %.1f s, %.1fx the ISS's\n", static_nodes, rtl_host, rtl_over_iss);
-    json << ", \"rtl_host_seconds\": " << rtl_host << ", \"rtl_over_iss\": " << rtl_over_iss;
+  const double over_ref = t.ref_host > 0 ? t.iss_host / t.ref_host : 0;
+  std::printf("%ux%u on %u NCs: co-simulation (ISS) host %.2f s, reference renderer %.3f s: %.1fx\n", o.size.first,
+              o.size.second, o.static_nodes, t.iss_host, t.ref_host, over_ref);
+  json << ", \"reference_host_seconds\": " << t.ref_host << ", \"cosim_over_reference\": " << over_ref;
+  if (o.rtl) {
+    const double rtl_over_iss = t.iss_host > 0 ? t.rtl_host / t.iss_host : 0;
+    std::printf("RTL engine, %u NCs: host %.1f s, %.1fx the ISS's\n", o.static_nodes, t.rtl_host, rtl_over_iss);
+    json << ", \"rtl_host_seconds\": " << t.rtl_host << ", \"rtl_over_iss\": " << rtl_over_iss;
   }
+}
+
+}  // namespace
+
+int cmd_bench_render(const CLI::App& cmd) {
+  SystemConfig base = machine_config();
+  apply_params(cmd, base.timing);
+  const Parsed a(cmd);
+  threads_option(a, base);
+  const BenchOptions o = bench_options(a, base);
+  BenchRuns bench(base, o.scene);
+  BenchTimes t = run_bench(bench, o);
+
+  std::ostringstream json;
+  json << "{\"schema\": \"mc1-bench-render/1\", \"scene\": " << mc1::scene::json::quote(o.scene)
+       << ", \"block\": " << base.block_w << ", \"runs\": [";
+  runs_json(json, bench.runs());
+  speedup_summary(json, o, t);
+  efficiency_summary(json, o, t);
+  const bool same = bench.same();
   json << ", \"frames_equal\": " << (same ? "true" : "false") << "}\n";
   if (a.has("json")) write_file_atomically(a.get("json"), json.str());
   if (!same) std::fprintf(stderr, "mc1 bench-render: frames of one size differ between runs\n");

@@ -247,10 +247,8 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
   return passed ? cmdline::kExitOk : cmdline::kExitFailed;
 }
 
-// --merge: the shards' points in index order, every point once; the frames
-// of one scene and orbit frame compared.
-int merge_sweep(const CLI::App& cmd, const Parsed& a) {
-  const std::vector<std::string> files = cmd.get_option("--merge")->as<std::vector<std::string>>();
+// The reports of the shards, each with the members the merge reads.
+std::vector<shard::Report> read_sweep_reports(const std::vector<std::string>& files) {
   std::vector<shard::Report> reports;
   for (const std::string& f : files) {
     shard::Report r = shard::read_report(f, "mc1-sweep/1");
@@ -266,15 +264,13 @@ int merge_sweep(const CLI::App& cmd, const Parsed& a) {
     }
     reports.push_back(std::move(r));
   }
-  shard::check_same_run(reports, kRunKeys);
-  std::sort(reports.begin(), reports.end(), [](const auto& x, const auto& y) { return x.shard < y.shard; });
-  const auto total = static_cast<std::uint64_t>(reports.front().root.find("points_total")->number);
-  Value merged = reports.front().root;
-  *shard::mutable_member(merged, "shard") = shard::string_value("all/" + std::to_string(reports.front().shards));
-  *shard::mutable_member(merged, "threads") = Value{};
-  double wall = 0;
-  Value& points = *shard::mutable_member(merged, "points");
-  points.items.clear();
+  return reports;
+}
+
+// The points of the shards (sorted by shard) appended to `points`, each
+// shard's exactly the slice it has of `total`; their wall seconds summed.
+// True when every shard passed.
+bool merge_points(const std::vector<shard::Report>& reports, std::uint64_t total, Value& points, double& wall) {
   bool passed = true;
   for (const shard::Report& r : reports) {
     const auto [first, end] = shard::shard_range(total, r.shard, r.shards);
@@ -290,11 +286,20 @@ int merge_sweep(const CLI::App& cmd, const Parsed& a) {
     passed = passed && r.root.find("passed")->boolean;
     wall += shard::member(r, r.root, "wall_seconds", Type::number).number;
   }
-  *shard::mutable_member(merged, "wall_seconds") = shard::number_value(wall);
-  // One image per scene and orbit frame.
+  return passed;
+}
+
+// One image per scene and orbit frame, in the order of first appearance:
+// the report's "frames" (its hash, "differs" when its points disagree).
+struct Frames {
+  Value list;
+  bool equal = true;
+};
+
+Frames frames_of(const Value& points) {
   std::map<std::pair<std::string, double>, std::pair<std::string, unsigned>> frames;
   std::vector<std::pair<std::string, double>> order;
-  bool equal = true;
+  Frames out;
   for (const Value& p : points.items) {
     const auto key = std::make_pair(p.find("scene")->string, p.find("frame")->number);
     auto it = frames.find(key);
@@ -302,31 +307,49 @@ int merge_sweep(const CLI::App& cmd, const Parsed& a) {
       frames[key] = {p.find("image_fnv1a")->string, 1};
       order.push_back(key);
     } else {
-      equal = equal && it->second.first == p.find("image_fnv1a")->string;
+      out.equal = out.equal && it->second.first == p.find("image_fnv1a")->string;
       if (it->second.first != p.find("image_fnv1a")->string) it->second.first = "differs";
       ++it->second.second;
     }
   }
-  Value list;
-  list.type = Type::array;
+  out.list.type = Type::array;
   for (const auto& key : order) {
     const auto& [hash, count] = frames[key];
     Value f = json::parse("{\"scene\": " + json::quote(key.first) + ", \"frame\": " + shard::serialize(shard::number_value(key.second)) +
                               ", \"points\": " + std::to_string(count) + ", \"image_fnv1a\": " + json::quote(hash) +
                               ", \"equal\": " + (hash == "differs" ? "false" : "true") + "}",
                           "merge");
-    list.items.push_back(std::move(f));
+    out.list.items.push_back(std::move(f));
   }
-  const bool ok = passed && equal;
+  return out;
+}
+
+// --merge: the shards' points in index order, every point once; the frames
+// of one scene and orbit frame compared.
+int merge_sweep(const CLI::App& cmd, const Parsed& a) {
+  std::vector<shard::Report> reports = read_sweep_reports(cmd.get_option("--merge")->as<std::vector<std::string>>());
+  shard::check_same_run(reports, kRunKeys);
+  std::sort(reports.begin(), reports.end(), [](const auto& x, const auto& y) { return x.shard < y.shard; });
+  const auto total = static_cast<std::uint64_t>(reports.front().root.find("points_total")->number);
+  Value merged = reports.front().root;
+  *shard::mutable_member(merged, "shard") = shard::string_value("all/" + std::to_string(reports.front().shards));
+  *shard::mutable_member(merged, "threads") = Value{};
+  double wall = 0;
+  Value& points = *shard::mutable_member(merged, "points");
+  points.items.clear();
+  const bool passed = merge_points(reports, total, points, wall);
+  *shard::mutable_member(merged, "wall_seconds") = shard::number_value(wall);
+  const Frames frames = frames_of(points);
+  const bool ok = passed && frames.equal;
   shard::mutable_member(merged, "passed")->boolean = ok;
-  merged.members.insert(merged.members.end() - 1, {"frames", list});
+  merged.members.insert(merged.members.end() - 1, {"frames", frames.list});
   const std::string text = shard::layout(merged, {"points", "frames"});
   if (a.has("json")) write_file_atomically(a.get("json"), text);
   else std::fputs(text.c_str(), stdout);
   if (!a.has("quiet"))
     std::fprintf(a.has("json") ? stdout : stderr, "mc1 sweep: merged %zu shards, %llu points, %zu frames: %s\n",
-                 reports.size(), static_cast<unsigned long long>(total), order.size(),
-                 !passed ? "a point is incomplete" : equal ? "every frame equal across its points" : "FRAMES DIFFER");
+                 reports.size(), static_cast<unsigned long long>(total), frames.list.items.size(),
+                 !passed ? "a point is incomplete" : frames.equal ? "every frame equal across its points" : "FRAMES DIFFER");
   return ok ? cmdline::kExitOk : cmdline::kExitFailed;
 }
 

@@ -139,75 +139,87 @@ void HdlcChannel::idle_wait() {
     sc_core::wait(sent_);
 }
 
+struct HdlcChannel::Due {
+  unsigned to, from;  // global stations: 0 = RC, k = NC k
+  hdlc::Delivery d;
+  std::optional<hdlc::LinkDown> down;  // not a message: NC `from`'s link is down
+};
+
+bool HdlcChannel::drop_settled() {
+  bool idle = pending_.empty();
+  for (unsigned port = 0; port < ports(); ++port) {
+    auto& open = open_[port];
+    const hdlc::Network& net = *nets_[port];
+    open.erase(std::remove_if(open.begin(), open.end(), [&](hdlc::MessageId id) { return net.settled(id); }),
+               open.end());
+    idle = idle && open.empty();
+  }
+  return idle;
+}
+
+// Every port's deliveries and link-downs up to now, in the one order that
+// does not depend on the ports: time, receiver, sender, then message id.
+void HdlcChannel::take_due(std::vector<Due>& due) {
+  const Picos now = to_picos(sc_core::sc_time_stamp());
+  due.clear();
+  for (unsigned port = 0; port < ports(); ++port) {
+    nets_[port]->run_until(now);
+    for (hdlc::Delivery& d : nets_[port]->take_deliveries()) {
+      const unsigned to = d.to_station == 0 ? 0 : first_nc(port) + d.to_station - 1;
+      const unsigned from = d.from_station == 0 ? 0 : first_nc(port) + d.from_station - 1;
+      due.push_back({to, from, std::move(d), std::nullopt});
+    }
+    for (const hdlc::LinkDown& x : nets_[port]->take_link_downs()) {
+      hdlc::Delivery d;
+      d.time = x.time;
+      due.push_back({0, first_nc(port) + x.nc - 1, std::move(d), x});
+    }
+  }
+  std::sort(due.begin(), due.end(), [](const Due& a, const Due& b) {
+    if (a.d.time != b.d.time) return a.d.time < b.d.time;
+    if (a.to != b.to) return a.to < b.to;
+    if (a.from != b.from) return a.from < b.from;
+    if (a.down.has_value() != b.down.has_value()) return !a.down;  // its messages before its link-down
+    return a.d.id < b.d.id;
+  });
+}
+
+void HdlcChannel::deliver(Due& x) {
+  tlm::tlm_generic_payload q;
+  q.set_command(tlm::TLM_WRITE_COMMAND);
+  q.set_data_ptr(x.d.data.data());
+  q.set_data_length(static_cast<unsigned>(x.d.data.size()));
+  q.set_streaming_width(static_cast<unsigned>(x.d.data.size()));
+  q.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  sc_core::sc_time at = sc_core::SC_ZERO_TIME;
+  HdlcLinkEvent ev(HdlcLinkEvent::Kind::LinkDown);
+  if (x.down) {
+    ev.reason = x.down->reason;
+    ev.declared = x.down->time;
+    q.set_extension(&ev);
+  }
+  if (x.to == 0) {
+    q.set_address(x.from);
+    hdlc2rc->b_transport(q, at);
+    if (x.down) q.clear_extension(&ev);
+  } else {
+    q.set_address(x.d.address == hdlc::kAddrBroadcast ? kHdlcBroadcast : x.to);
+    hdlc2nc[static_cast<int>(x.to) - 1]->b_transport(q, at);
+  }
+  if (q.is_response_error())
+    SC_REPORT_ERROR(name(), ("a station refused a message: " + q.get_response_string()).c_str());
+}
+
 void HdlcChannel::pump() {
-  struct Due {
-    unsigned to, from;  // global stations: 0 = RC, k = NC k
-    hdlc::Delivery d;
-    std::optional<hdlc::LinkDown> down;  // not a message: NC `from`'s link is down
-  };
   std::vector<Due> due;
   for (;;) {
-    bool idle = pending_.empty();
-    for (unsigned port = 0; port < ports(); ++port) {
-      auto& open = open_[port];
-      const hdlc::Network& net = *nets_[port];
-      open.erase(std::remove_if(open.begin(), open.end(), [&](hdlc::MessageId id) { return net.settled(id); }),
-                 open.end());
-      idle = idle && open.empty();
-    }
-    if (idle)
+    if (drop_settled())
       idle_wait();
     else
       sc_core::wait(to_sc_time(step_));
-
-    const Picos now = to_picos(sc_core::sc_time_stamp());
     submit();
-    due.clear();
-    for (unsigned port = 0; port < ports(); ++port) {
-      nets_[port]->run_until(now);
-      for (hdlc::Delivery& d : nets_[port]->take_deliveries()) {
-        const unsigned to = d.to_station == 0 ? 0 : first_nc(port) + d.to_station - 1;
-        const unsigned from = d.from_station == 0 ? 0 : first_nc(port) + d.from_station - 1;
-        due.push_back({to, from, std::move(d), std::nullopt});
-      }
-      for (const hdlc::LinkDown& x : nets_[port]->take_link_downs()) {
-        hdlc::Delivery d;
-        d.time = x.time;
-        due.push_back({0, first_nc(port) + x.nc - 1, std::move(d), x});
-      }
-    }
-    std::sort(due.begin(), due.end(), [](const Due& a, const Due& b) {
-      if (a.d.time != b.d.time) return a.d.time < b.d.time;
-      if (a.to != b.to) return a.to < b.to;
-      if (a.from != b.from) return a.from < b.from;
-      if (a.down.has_value() != b.down.has_value()) return !a.down;  // its messages before its link-down
-      return a.d.id < b.d.id;
-    });
-    for (Due& x : due) {
-      tlm::tlm_generic_payload q;
-      q.set_command(tlm::TLM_WRITE_COMMAND);
-      q.set_data_ptr(x.d.data.data());
-      q.set_data_length(static_cast<unsigned>(x.d.data.size()));
-      q.set_streaming_width(static_cast<unsigned>(x.d.data.size()));
-      q.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-      sc_core::sc_time at = sc_core::SC_ZERO_TIME;
-      HdlcLinkEvent ev(HdlcLinkEvent::Kind::LinkDown);
-      if (x.down) {
-        ev.reason = x.down->reason;
-        ev.declared = x.down->time;
-        q.set_extension(&ev);
-      }
-      if (x.to == 0) {
-        q.set_address(x.from);
-        hdlc2rc->b_transport(q, at);
-        if (x.down) q.clear_extension(&ev);
-      } else {
-        q.set_address(x.d.address == hdlc::kAddrBroadcast ? kHdlcBroadcast : x.to);
-        hdlc2nc[static_cast<int>(x.to) - 1]->b_transport(q, at);
-      }
-      if (q.is_response_error())
-        SC_REPORT_ERROR(name(), ("a station refused a message: " + q.get_response_string()).c_str());
-    }
+    take_due(due);
+    for (Due& x : due) deliver(x);
   }
 }
 

@@ -106,6 +106,10 @@ class HdlcChannel : public sc_core::sc_module {
              Control control = Control::None);
   void idle_wait();
   void submit();  // pending sends into the networks, in canonical order
+  struct Due;     // a delivery or link-down the networks produced
+  bool drop_settled();  // forgets the acknowledged messages; true: nothing open or pending
+  void take_due(std::vector<Due>& due);
+  void deliver(Due& x);
   void pump();
   void tracer();
   void end_of_elaboration() override;

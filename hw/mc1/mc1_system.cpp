@@ -154,22 +154,97 @@ void add_sender(HdlcReport& h, const hdlc::SenderStats& s) {
   h.rej_received += s.rej_received;
 }
 
+// The machine's configuration, as the report states it.
+void config_into(FrameReport& r, const SystemConfig& cfg) {
+  r.engine = engine_name(cfg.engine);
+  r.nodes = cfg.nodes;
+  r.width = cfg.width;
+  r.height = cfg.height;
+  r.block_w = cfg.block_w;
+  r.block_h = cfg.block_h;
+  r.schedule = rc::schedule_name(cfg.schedule);
+  r.ber = cfg.ber;
+  for (const NodeKill& x : cfg.kills) r.kills.push_back({x.nc, x.time});
+  for (const DeadLink& d : cfg.dead_links) r.dead_links.push_back({d.nc, d.begin, d.end});
+  for (const CutLine& c : cfg.cut_lines) r.cut_lines.push_back({c.nc, c.time});
+}
+
+NcReport nc_report(const nc::NodeComputer& n) {
+  const nc::NcStats& s = n.stats();
+  NcReport x;
+  x.id = n.id();
+  x.busy = s.time[static_cast<int>(nc::Activity::Busy)];
+  x.wait_rc = s.time[static_cast<int>(nc::Activity::WaitRc)];
+  x.wait_bus = s.time[static_cast<int>(nc::Activity::WaitBus)];
+  x.idle = s.time[static_cast<int>(nc::Activity::Idle)];
+  x.dead = s.time[static_cast<int>(nc::Activity::Dead)];
+  x.killed = s.killed;
+  x.killed_at = s.killed_at;
+  x.watchdog = s.watchdog;
+  x.fault = s.fault;
+  x.milestones = s.milestones;
+  x.phases = s.phases;
+  x.apu_busy = s.apu_running;
+  x.apu_cycles = s.apu_cycles;
+  x.blocks = s.blocks;
+  x.pixels = s.pixels;
+  x.runs = s.runs;
+  x.mpu_busy = s.mpu_busy;
+  x.finished_at = s.finished_at;
+  x.apu_host_seconds = s.apu_host_seconds;
+  x.apu_counted = s.apu_counted;
+  x.apu_issued = s.apu_issued;
+  x.apu_bank_stalls = s.apu_bank_stalls;
+  for (int k = 0; k < apu::kStallKinds; ++k) x.apu_stalls[k] = s.apu_stalls[k];
+  x.spans = n.spans();
+  x.apu = n.apu_spans();
+  return x;
+}
+
+// Every line of every port, and the errors, retries and polls summed over them.
+HdlcReport hdlc_report(const HdlcChannel& ch, unsigned nodes) {
+  HdlcReport h;
+  h.ports = ch.ports();
+  for (unsigned p = 0; p < h.ports; ++p) {
+    const hdlc::Network& net = ch.network(p);
+    h.down.push_back(line_report("down" + std::to_string(p), net.down_line()));
+    add_sender(h, net.sender_broadcast());
+  }
+  for (unsigned k = 1; k <= nodes; ++k) {
+    const hdlc::Network& net = ch.network(ch.port_of(k));
+    const unsigned a = ch.address_of(k);
+    h.up.push_back(line_report("up" + std::to_string(k), net.up_line(a)));
+    add_receive(h, net.receive_stats(hdlc::Direction::Down, a));
+    add_receive(h, net.receive_stats(hdlc::Direction::Up, a));
+    add_sender(h, net.sender_to_nc(a));
+    add_sender(h, net.sender_to_rc(a));
+    const hdlc::SupervisionStats& sv = net.supervision(a);
+    h.polls += sv.polls;
+    h.poll_answers += sv.poll_answers;
+    h.max_retries = std::max(h.max_retries, sv.max_retries);
+  }
+  return h;
+}
+
+BusReport bus_report(const ImageBus& bus, const ImageBusMonitor& monitor) {
+  const ImageBus::Stats& b = bus.stats();
+  BusReport r;
+  r.runs = b.runs;
+  r.bytes = b.bytes;
+  r.pixels = b.pixels;
+  r.busy = to_picos(b.busy);
+  r.waiting = to_picos(b.waiting);
+  r.duplicate_runs = monitor.duplicate_runs();
+  r.duplicate_pixels = monitor.duplicate_pixels();
+  return r;
+}
+
 }  // namespace
 
 FrameReport Mc1System::report(double host_seconds) {
   FrameReport r;
-  r.engine = engine_name(cfg_.engine);
-  r.nodes = cfg_.nodes;
-  r.width = cfg_.width;
-  r.height = cfg_.height;
-  r.block_w = cfg_.block_w;
-  r.block_h = cfg_.block_h;
+  config_into(r, cfg_);
   r.blocks = static_cast<unsigned>(rc_->schedule().size());
-  r.schedule = rc::schedule_name(cfg_.schedule);
-  r.ber = cfg_.ber;
-  for (const NodeKill& x : cfg_.kills) r.kills.push_back({x.nc, x.time});
-  for (const DeadLink& d : cfg_.dead_links) r.dead_links.push_back({d.nc, d.begin, d.end});
-  for (const CutLine& c : cfg_.cut_lines) r.cut_lines.push_back({c.nc, c.time});
   r.host_seconds = host_seconds;
 
   // The frame ends when the RC has every block back and every live NC is
@@ -181,66 +256,10 @@ FrameReport Mc1System::report(double host_seconds) {
 
   for (const auto& n : ncs_) {
     n->close(end);
-    const nc::NcStats& s = n->stats();
-    NcReport x;
-    x.id = n->id();
-    x.busy = s.time[static_cast<int>(nc::Activity::Busy)];
-    x.wait_rc = s.time[static_cast<int>(nc::Activity::WaitRc)];
-    x.wait_bus = s.time[static_cast<int>(nc::Activity::WaitBus)];
-    x.idle = s.time[static_cast<int>(nc::Activity::Idle)];
-    x.dead = s.time[static_cast<int>(nc::Activity::Dead)];
-    x.killed = s.killed;
-    x.killed_at = s.killed_at;
-    x.watchdog = s.watchdog;
-    x.fault = s.fault;
-    x.milestones = s.milestones;
-    x.phases = s.phases;
-    x.apu_busy = s.apu_running;
-    x.apu_cycles = s.apu_cycles;
-    x.blocks = s.blocks;
-    x.pixels = s.pixels;
-    x.runs = s.runs;
-    x.mpu_busy = s.mpu_busy;
-    x.finished_at = s.finished_at;
-    x.apu_host_seconds = s.apu_host_seconds;
-    x.apu_counted = s.apu_counted;
-    x.apu_issued = s.apu_issued;
-    x.apu_bank_stalls = s.apu_bank_stalls;
-    for (int k = 0; k < apu::kStallKinds; ++k) x.apu_stalls[k] = s.apu_stalls[k];
-    x.spans = n->spans();
-    x.apu = n->apu_spans();
-    r.ncs.push_back(std::move(x));
+    r.ncs.push_back(nc_report(*n));
   }
-
-  HdlcReport& h = r.hdlc;
-  h.ports = hdlc_->ports();
-  for (unsigned p = 0; p < h.ports; ++p) {
-    const hdlc::Network& net = hdlc_->network(p);
-    h.down.push_back(line_report("down" + std::to_string(p), net.down_line()));
-    add_sender(h, net.sender_broadcast());
-  }
-  for (unsigned k = 1; k <= cfg_.nodes; ++k) {
-    const hdlc::Network& net = hdlc_->network(hdlc_->port_of(k));
-    const unsigned a = hdlc_->address_of(k);
-    h.up.push_back(line_report("up" + std::to_string(k), net.up_line(a)));
-    add_receive(h, net.receive_stats(hdlc::Direction::Down, a));
-    add_receive(h, net.receive_stats(hdlc::Direction::Up, a));
-    add_sender(h, net.sender_to_nc(a));
-    add_sender(h, net.sender_to_rc(a));
-    const hdlc::SupervisionStats& sv = net.supervision(a);
-    h.polls += sv.polls;
-    h.poll_answers += sv.poll_answers;
-    h.max_retries = std::max(h.max_retries, sv.max_retries);
-  }
-
-  const ImageBus::Stats& b = bus_->stats();
-  r.bus.runs = b.runs;
-  r.bus.bytes = b.bytes;
-  r.bus.pixels = b.pixels;
-  r.bus.busy = to_picos(b.busy);
-  r.bus.waiting = to_picos(b.waiting);
-  r.bus.duplicate_runs = monitor_->duplicate_runs();
-  r.bus.duplicate_pixels = monitor_->duplicate_pixels();
+  r.hdlc = hdlc_report(*hdlc_, cfg_.nodes);
+  r.bus = bus_report(*bus_, *monitor_);
 
   r.rc = rc_->stats();
   r.dispatches = rc_->dispatches();
