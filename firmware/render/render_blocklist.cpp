@@ -7,7 +7,7 @@ namespace mc1::render {
 
 using namespace layout;
 
-static_assert(P_E1 == P_P0 + 3 && P_E2 == P_P0 + 6, "a triangle's v0, E1, E2 are r_box's three points");
+static_assert(P_P1 == P_P0 + 3 && P_P2 == P_P0 + 6, "a triangle's v0, v1, v2 are r_box's three points");
 
 bool RenderFirmware::ScreenRect::overlaps(const Block& b) const {
   if (status == kBehind) return false;
@@ -45,7 +45,7 @@ void RenderFirmware::project_boxes() {
     if (!is_triangle(p[P_TYPE])) continue;
     Item it;
     it.w[B_KIND] = BK_TRI;
-    std::copy(p.begin() + P_P0, p.begin() + P_P0 + 9, it.w.begin() + B_PTS);  // v0, E1, E2
+    std::copy(p.begin() + P_P0, p.begin() + P_P0 + 9, it.w.begin() + B_PTS);  // v0, v1, v2
     it.out = &prim_rect_[k];
     it.triangle = static_cast<int>(k);
     items.push_back(it);

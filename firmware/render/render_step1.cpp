@@ -19,7 +19,7 @@ constexpr std::uint32_t kBig = 0x7ABC17;        // fp24(1e18): "no hit"
 static_assert(XC_U - XC_O == M_CKU - M_CKO && XC_V - XC_O == M_CKV - M_CKO, "checker frame O, U, V");
 static_assert(XT_N - XT_V0 == image_words::kN - image_words::kV0, "triangle v0 v1 v2 N");
 static_assert(XE_B - XE_A == image_words::kEllB - image_words::kEllA, "ellipsoid A, b");
-static_assert(XT_E1 - XT_V0 == P_E1 - P_P0 && XT_E2 - XT_V0 == P_E2 - P_P0 && XT_N - XT_V0 == P_N - P_P0 &&
+static_assert(XT_P1 - XT_V0 == P_P1 - P_P0 && XT_P2 - XT_V0 == P_P2 - P_P0 && XT_N - XT_V0 == P_N - P_P0 &&
                   XT_UA - XT_V0 == P_UA - P_P0 && XT_VA - XT_V0 == P_VA - P_P0 && XT_RVN - XT_V0 == P_VN0 - P_P0,
               "r_xform's triangle results in the order of the primitive record");
 static_assert(XE_B - XE_A == P_B - P_A, "ellipsoid record");
@@ -144,7 +144,7 @@ void add_prims(ViewScene& v, const SceneImage& img, const XformItems& x) {
     w[P_CSG] = csg_bits(img.objects[p.object], static_cast<int>(i) - img.objects[p.object].first_prim);
     if (is_triangle(p.type)) {
       const auto& it = x.of(x.prim[i]);
-      std::copy(it.begin() + XT_V0, it.begin() + XT_RVN + 9, w.begin() + P_P0);  // P0 E1 E2 N UA VA, VN
+      std::copy(it.begin() + XT_V0, it.begin() + XT_RVN + 9, w.begin() + P_P0);  // P0 P1 P2 N UA VA, VN
     } else if (p.type == kEllipsoid) {
       const auto& it = x.of(x.prim[i]);
       std::copy(it.begin() + XE_A, it.begin() + XE_B + 3, w.begin() + P_A);  // A, b
