@@ -101,11 +101,21 @@ module apu_core
   localparam int FLAGS_W = apu_pkg::FLAGS_W;
   localparam int CC_W = apu_pkg::CC_W;
 
+  // The package's enum types under local names, and the microword's struct
+  // declared here (generated from the table): Icarus Verilog 11 crashes on
+  // a variable of a package's enum type in a module (segfault in
+  // NetScope::find_enumeration_for_name) and aborts on one of a package's
+  // struct type (elab_type.cc:86); docs/fp24-rtl.md "Portable SystemVerilog".
+  typedef apu_pkg::run_e   run_e;
+  typedef apu_pkg::fault_e fault_e;
+  typedef apu_pkg::stall_e stall_e;
+`include "apu_microword.svh"
+
   // =========================================================================
   // Architectural state
   // =========================================================================
-  apu_pkg::run_e      run_state_q;
-  apu_pkg::fault_e    fault_q;
+  run_e               run_state_q;
+  fault_e             fault_q;
   logic [PC_W-1:0]    pc_q;
   logic               psel_q, dsel_q;
   logic               program_ready_q, data_ready_q;
@@ -144,7 +154,7 @@ module apu_core
   logic [WORD_W-1:0] fetch_word;   // the word at pc, read at the last edge
   logic [PC_W-1:0]   fetch_addr;   // the word of the next cycle
   logic              fetch_bank;
-  apu_pkg::microword_t w;
+  microword_t        w;
 
   // The sequencer only fetches; the MPU only writes program words, into the
   // bank the sequencer does not use (before a swap of this cycle).
@@ -273,7 +283,7 @@ module apu_core
       .in_valid       (fu_issue),
       .in_op          (w.f_op),
       .in_a           (fop[RD_FA]),
-      .in_b           ('0),
+      .in_b           ({FP_W{1'b0}}),
       .out_valid      (fu_out_valid),
       .out_result     (fu_out_result),
       .out_flags      (fu_out_flags),
@@ -346,7 +356,7 @@ module apu_core
   // =========================================================================
   logic            stall_bank, stall_raw, stall_waw, stall_cc, stall_drain;
   logic            stall;
-  apu_pkg::stall_e stall_reason;
+  stall_e          stall_reason;
 
 
   assign stall_bank   = ((w.s_op == apu_pkg::S_SWAPD) && !data_ready)
@@ -375,7 +385,7 @@ module apu_core
   logic [PC_W:0]   pc_next;         // one bit more: continuing at 1024 is a fault
   logic [15:0]     mem_addr;
   logic            cs_empty, cs_full;
-  apu_pkg::fault_e fault_code;
+  fault_e          fault_code;
 
   assign reserved_op = (w.a_en && (w.a_op == apu_pkg::A_RSVD)) || (w.d_op == apu_pkg::D_RSVD)
                     || (w.i_op == apu_pkg::I_RSVD) || (w.s_op > apu_pkg::S_HALT);

@@ -1,5 +1,6 @@
 // FP24 operand unpack and classification (docs/fp24.md "Format"), shared by
-// the multiplier and the adder unit: the fields of x and what they encode.
+// the multiplier, the adder unit and the function unit's two pipes: the
+// fields of x and what they encode.
 // An exponent field of 0 reads as zero whatever the fraction holds (DAZ);
 // all-ones is infinity with a zero fraction, NaN otherwise.
 // Purely combinational; the caller puts it in its first stage.

@@ -57,6 +57,13 @@ module fp24_func_rsq #(
   logic [EXP_W-1:0]  x_exp;
   logic [FRAC_W-1:0] x_frac;
   logic [SEXP_W-1:0] x_eunb;
+
+  // The operand's fields and class (DAZ, infinity, NaN), as the multiplier
+  // and the adder unit unpack theirs.
+  fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class (
+      .x(s1_a), .sign(x_sign), .exp(x_exp), .frac(x_frac), .zero(x_zero), .inf(x_inf), .nan(x_nan));
+  assign x_eunb = {2'b00, x_exp} - BIAS;
+
   logic [8:0]        d;
   /* verilator lint_off UNUSEDSIGNAL */
   logic [T_W-1:0]    t;  // q0 is its bits F .. F+17
@@ -64,11 +71,6 @@ module fp24_func_rsq #(
   logic [Q_W-1:0]    q0;
 
   always_comb begin
-    {x_sign, x_exp, x_frac} = s1_a;
-    x_eunb = {2'b00, x_exp} - BIAS;
-    x_zero = (x_exp == '0);  // DAZ
-    x_inf  = (x_exp == EXP_ONES) && (x_frac == '0);
-    x_nan  = (x_exp == EXP_ONES) && (x_frac != '0);
     d      = s1_sqrt ? x_frac[8:0] : {2'b00, x_frac[6:0]};
     // B is two's complement; the sum is taken mod 2^T_W and is positive.
     t  = {s1_seed[SEED_W-1-:fp24_func_pkg::SEED_A_W], {(fp24_func_pkg::SEED_F - fp24_func_pkg::SEED_FA) {1'b0}}}

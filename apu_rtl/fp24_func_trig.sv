@@ -68,6 +68,13 @@ module fp24_func_trig #(
   logic [EXP_W-1:0]  x_exp;
   logic [FRAC_W-1:0] x_frac;
   logic [SEXP_W-1:0] x_eunb;
+
+  // The operand's fields and class (DAZ, infinity, NaN), as the multiplier
+  // and the adder unit unpack theirs.
+  fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class (
+      .x(s1_a), .sign(x_sign), .exp(x_exp), .frac(x_frac), .zero(x_zero), .inf(x_inf), .nan(x_nan));
+  assign x_eunb = {2'b00, x_exp} - BIAS;
+
   logic [V_W-1:0]    v;
   logic              spec;
   logic [W-1:0]      spec_result;
@@ -78,11 +85,6 @@ module fp24_func_trig #(
   // to the variables of the functions it calls, so blocks that call one
   // function wake each other forever (docs/fp24-rtl.md "Second simulator").
   always @* begin
-    {x_sign, x_exp, x_frac} = s1_a;
-    x_eunb = {2'b00, x_exp} - BIAS;
-    x_zero = (x_exp == '0);  // DAZ
-    x_inf  = (x_exp == EXP_ONES) && (x_frac == '0);
-    x_nan  = (x_exp == EXP_ONES) && (x_frac != '0);
     v      = {{(V_W - FRAC_W - 1) {1'b0}}, 1'b1, x_frac} * {{(FRAC_W + 1) {1'b0}}, s1_win};
     // sin +-0 = +-0, cos 0 = 1, +-inf invalid, NaN: the canonical NaN.
     spec        = x_zero || x_inf || x_nan;

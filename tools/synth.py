@@ -8,7 +8,9 @@ apu_pkg.sv, fp24_rom.svh) with Debian's Yosys 0.23 and, per unit:
   - checks: hierarchy, proc, `check -assert`, no latch;
   - generic `synth` (memories kept as memories): cells, flip-flops, inferred
     memories, and per pipeline stage the cells, flip-flops and logic depth in
-    gate levels (tools/synth_depth.py), cross-checked with `ltp -noff`;
+    gate levels (tools/synth_depth.py), cross-checked with `ltp -noff`; the
+    deepest path into every register, and for apu_core those paths by
+    pipeline stage (the issue cycle, each unit's own stages);
   - `synth_ice40` and, where the result fits an HX8K, nextpnr-ice40 Fmax.
 Writes BUILD_DIR/reports/synth.txt and synth.json (work files in
 BUILD_DIR/reports/synth/).
@@ -109,22 +111,65 @@ def generic(gen, top, work):
         n_cells += 1
         if synth_depth.is_ff(t):
             n_ff += len(c["connections"].get("Q", [1]))
-    stages = synth_depth.analyse(mod)
+    net_ = synth_depth.Netlist(mod)
+    stages = synth_depth.analyse(mod, net_)
+    ltp_count = synth_depth.analyse(mod, net_, read_tree=False)["ltp"]
     m = re.search(r"Longest topological path in \S+ \(length=(\d+)\)", log)
-    # Two counts of one quantity: a disagreement is a bug in synth_depth.py.
-    if m is None or int(m.group(1)) != stages["ltp"]:
-        raise CheckFailed(f"{top}: depth {stages['ltp']} but `ltp -noff` says "
+    # Two counts of one quantity (an asynchronous read as one level, as ltp
+    # counts it): a disagreement is a bug in synth_depth.py.
+    if m is None or int(m.group(1)) != ltp_count:
+        raise CheckFailed(f"{top}: depth {ltp_count} but `ltp -noff` says "
                           f"{m.group(1) if m else 'nothing'} (log {work}/{top}.synth.log.full)")
+    paths = synth_depth.paths(mod, net_)
     return {"cells": n_cells, "flip_flops": n_ff, "memories": memories,
             "memory_bits": sum(x["bits"] for x in memories),
             "stages": stages["stages"], "loop": stages["loop"], "to_outputs": stages["outputs"],
-            "depth": stages["ltp"], "ltp_noff": int(m.group(1)) if m else None}
+            "depth": stages["ltp"], "ltp_noff": int(m.group(1)) if m else None,
+            "paths": paths, "stages_by_name": stages_by_name(paths) if top == "apu_core" else None}
+
+
+# The FP units' instances in apu_core: a path from one of their registers to
+# another of the same instance is that unit's own stage; every other path is
+# the cycle of the word (docs/apu-rtl.md "One cycle").
+UNIT_INSTANCES = ("u_mul", "u_add", "u_func")
+
+
+def stage_of(path):
+    """The pipeline stage a register-to-register path belongs to: "issue"
+    (the word's cycle: fetch register, decode, interlock, register-file read
+    and bypass, a unit's stage-1 logic, the sequencer, the writes) or a
+    unit's own stage, "u_add s2" (named by the register it ends in)."""
+    to, src = path["to"], path["from"]
+    top = to.split(".", 1)[0]
+    if top not in UNIT_INSTANCES or not src.startswith(top + "."):
+        return "issue"
+    inst, leaf = to.rsplit(".", 1)
+    m = re.match(r"s(\d+)_", leaf)
+    if m and m.group(1) == "1":
+        return "issue"  # stage 1 latches the issue cycle's operands (a unit's own result by the bypass)
+    return f"{inst} s{m.group(1)}" if m else f"{inst} {leaf}"
+
+
+def stages_by_name(paths):
+    """Per stage_of() class: the deepest path, and the registers it ends in
+    with their own deepest paths (deepest first), in the order issue, then
+    the units' stages."""
+    out = {}
+    for p in paths:  # deepest first
+        e = out.setdefault(stage_of(p), {"stage": stage_of(p), "depth": p["depth"], "path": p, "ends": []})
+        e["ends"].append({"to": p["to"], "depth": p["depth"], "from": p["from"]})
+
+    def key(e):
+        if e["stage"] == "issue":
+            return (0, "", 0)
+        inst, _, st = e["stage"].partition(" ")
+        return (1, inst, int(st[1:]) if re.fullmatch(r"s\d+", st) else 99)
+    return sorted(out.values(), key=key)
 
 
 def memory_name(cell, name):
-    """A memory's source name: the memory's MEMID parameter without its backslash."""
-    memid = cell["parameters"].get("MEMID", name)
-    return memid.lstrip("\\")
+    """A memory's source name (synth_depth.memory_name of its MEMID)."""
+    return synth_depth.memory_name(cell["parameters"].get("MEMID", name))
 
 
 def ice40(gen, top, work, report):
@@ -169,7 +214,8 @@ def ice40(gen, top, work, report):
 
 def text_report(units):
     out = ["APU RTL, open-flow synthesis (tools/synth.sh; method: docs/apu-rtl.md \"Synthesis\")",
-           "Yosys 0.23 generic `synth -flatten`, memories kept; depth = gate levels, every gate one level.",
+           "Yosys 0.23 generic `synth -flatten`, memories kept; depth = gate levels, every gate one level,",
+           "an asynchronous memory read its mux tree (log2 words; `ltp -noff` counts it as one level).",
            ""]
     out.append(f"{'unit':<10} {'stage':<8} {'cells':>8} {'FFs':>7} {'depth':>6}")
     for name, u in units.items():
@@ -184,6 +230,15 @@ def text_report(units):
                        "   (registers that feed themselves)")
         if g["to_outputs"]:
             out.append(f"{'':<10} {'outputs':<8} {'':>8} {'':>7} {g['to_outputs']:>6}")
+        if g.get("stages_by_name"):
+            out.append(f"{'':<10} by stage: deepest register-to-register path (stage: depth, path)")
+            for e in g["stages_by_name"]:
+                p = e["path"]
+                way = " > ".join([p["from"]] + [f"{n} ({lv})" for n, lv in p["through"]] + [p["to"]])
+                out.append(f"{'':<12}{e['stage']:<22} {e['depth']:>3}  {way}")
+                if e["stage"] == "issue":
+                    for end in e["ends"][1:8]:
+                        out.append(f"{'':<12}{'':<22} {end['depth']:>3}  ... > {end['to']} (from {end['from']})")
         for m in g["memories"]:
             out.append(f"{'':<10} memory {m['name']}: {m['words']} x {m['width']} = {m['bits']} bits, "
                        f"{m['read_ports']} read ({'sync' if m['sync_read'] else 'async'}), "

@@ -1,17 +1,20 @@
 # Generator of the APU's cross-language contract (docs/apu-isa.md): reads the
 # instruction-set table apu_isa.tbl and writes the SystemVerilog package
-# apu_pkg.sv and the C++ header apu_isa.hpp from it, so the RTL and the C++
-# models cannot disagree on a field, an op code or a latency.
+# apu_pkg.sv, the microword's struct apu_microword.svh (the core includes it:
+# docs/apu-rtl.md "Portable SystemVerilog") and the C++ header apu_isa.hpp
+# from it, so the RTL and the C++ models cannot disagree on a field, an op
+# code or a latency.
 #
-#   cmake -DTABLE=<apu_isa.tbl> -DPKG_SV=<apu_pkg.sv> -DISA_HPP=<apu_isa.hpp> -P apu_isagen.cmake
+#   cmake -DTABLE=<apu_isa.tbl> -DPKG_SV=<apu_pkg.sv> -DMICROWORD_SVH=<apu_microword.svh>
+#         -DISA_HPP=<apu_isa.hpp> -P apu_isagen.cmake
 #
 # A file is rewritten only when its content changes (so nothing rebuilds for
 # a comment elsewhere). Errors name the table's file and line.
 
 cmake_minimum_required(VERSION 3.22)  # IN_LIST, and the policies of the project
 
-if(NOT TABLE OR NOT PKG_SV OR NOT ISA_HPP)
-  message(FATAL_ERROR "usage: cmake -DTABLE=<apu_isa.tbl> -DPKG_SV=<apu_pkg.sv> -DISA_HPP=<apu_isa.hpp> -P apu_isagen.cmake")
+if(NOT TABLE OR NOT PKG_SV OR NOT MICROWORD_SVH OR NOT ISA_HPP)
+  message(FATAL_ERROR "usage: cmake -DTABLE=<apu_isa.tbl> -DPKG_SV=<apu_pkg.sv> -DMICROWORD_SVH=<apu_microword.svh> -DISA_HPP=<apu_isa.hpp> -P apu_isagen.cmake")
 endif()
 
 function(table_error line_no text)
@@ -277,8 +280,9 @@ endif()
 
 # ---- SystemVerilog package -----------------------------------------------------
 set(header_note "Generated from apu_rtl/isa/apu_isa.tbl by apu_rtl/isa/apu_isagen.cmake: do not edit.")
-set(sv "// APU core: microword layout, op codes, unit latencies and status encodings\n")
-string(APPEND sv "// (docs/apu-isa.md, docs/apu-rtl.md), shared with the C++ models' apu_isa.hpp.\n")
+set(sv "// APU core: sizes, op codes, unit latencies and status encodings (the\n")
+string(APPEND sv "// microword's struct: apu_microword.svh) (docs/apu-isa.md, docs/apu-rtl.md),\n")
+string(APPEND sv "// shared with the C++ models' apu_isa.hpp.\n")
 string(APPEND sv "// ${header_note}\npackage apu_pkg;\n\n  // ---- sizes\n")
 foreach(name IN LISTS SIZES)
   comment_of(c "${S_${name}_note}")
@@ -321,12 +325,19 @@ foreach(e IN LISTS ENUMS)
   string(APPEND sv "  } ${e};\n")
 endforeach()
 
-string(APPEND sv "\n  // ---- the microword, bit 0 = LSB (a packed struct lists MSB first)\n")
-string(APPEND sv "  typedef struct packed {\n")
+string(APPEND sv "\nendpackage\n")
+
+# The microword's struct, for the core's module scope: Icarus Verilog 11
+# aborts (elab_type.cc:86) on a variable of a package's struct type in a
+# module, and Yosys 0.23 reads no member of a local alias of one; a struct
+# declared in the module all three take.
+set(svh "// The APU microword, bit 0 = LSB (a packed struct lists MSB first), for\n")
+string(APPEND svh "// apu_core's module scope (docs/apu-isa.md, docs/apu-rtl.md).\n// ${header_note}\n")
+string(APPEND svh "  typedef struct packed {\n")
 set(rev_slots ${SLOTS})
 list(REVERSE rev_slots)
 foreach(letter IN LISTS rev_slots)
-  string(APPEND sv "    // ${letter}: ${L_${letter}_note}, bits ${L_${letter}_first}..${L_${letter}_last}\n")
+  string(APPEND svh "    // ${letter}: ${L_${letter}_note}, bits ${L_${letter}_first}..${L_${letter}_last}\n")
   set(rev_fields ${L_${letter}_fields})
   list(REVERSE rev_fields)
   foreach(name IN LISTS rev_fields)
@@ -345,10 +356,10 @@ foreach(letter IN LISTS rev_slots)
       math(EXPR top "${F_${key}_width} - 1")
       set(sv_type "logic [${top}:0]")
     endif()
-    string(APPEND sv "    ${sv_type} ${L_${letter}_prefix}_${name};${note}\n")
+    string(APPEND svh "    ${sv_type} ${L_${letter}_prefix}_${name};${note}\n")
   endforeach()
 endforeach()
-string(APPEND sv "  } microword_t;\n\nendpackage\n")
+string(APPEND svh "  } microword_t;\n")
 
 # ---- C++ header ------------------------------------------------------------------
 set(hpp "// The APU's microword fields, op codes, unit latencies and status codes\n")
@@ -477,4 +488,5 @@ function(write_if_changed path content)
   file(WRITE "${path}" "${content}")
 endfunction()
 write_if_changed("${PKG_SV}" "${sv}")
+write_if_changed("${MICROWORD_SVH}" "${svh}")
 write_if_changed("${ISA_HPP}" "${hpp}")

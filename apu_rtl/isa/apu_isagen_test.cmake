@@ -1,11 +1,12 @@
-# ctest apu_isagen_checks: the generator accepts the real table, writes both
-# files, and refuses a broken table with its file and line.
+# ctest apu_isagen_checks: the generator accepts the real table, writes its
+# three files, and refuses a broken table with its file and line.
 #   cmake -DTABLE=<apu_isa.tbl> -DGENERATOR=<apu_isagen.cmake> -DWORK=<dir> -P apu_isagen_test.cmake
 cmake_minimum_required(VERSION 3.22)
 
 function(generate table out_dir rc_var log_var)
   file(MAKE_DIRECTORY ${out_dir})
   execute_process(COMMAND ${CMAKE_COMMAND} -DTABLE=${table} -DPKG_SV=${out_dir}/apu_pkg.sv
+                          -DMICROWORD_SVH=${out_dir}/apu_microword.svh
                           -DISA_HPP=${out_dir}/apu_isa.hpp -P ${GENERATOR}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE log)
   set(${rc_var} ${rc} PARENT_SCOPE)
@@ -14,11 +15,13 @@ endfunction()
 
 file(REMOVE_RECURSE ${WORK})
 generate(${TABLE} ${WORK}/good rc log)
-if(rc OR NOT EXISTS ${WORK}/good/apu_pkg.sv OR NOT EXISTS ${WORK}/good/apu_isa.hpp)
+if(rc OR NOT EXISTS ${WORK}/good/apu_pkg.sv OR NOT EXISTS ${WORK}/good/apu_microword.svh
+      OR NOT EXISTS ${WORK}/good/apu_isa.hpp)
   message(FATAL_ERROR "the real table does not generate:\n${log}")
 endif()
 file(READ ${WORK}/good/apu_isa.hpp hpp)
 file(READ ${WORK}/good/apu_pkg.sv sv)
+file(READ ${WORK}/good/apu_microword.svh svh)
 foreach(expected "constexpr int kTrigLatency = 9;" "case FuncOp::Sin: return kTrigLatency;"
                  "visit(Field{118, 10}, w.s.target);" "constexpr int kStallKinds = 6;")
   string(FIND "${hpp}" "${expected}" at)
@@ -26,10 +29,16 @@ foreach(expected "constexpr int kTrigLatency = 9;" "case FuncOp::Sin: return kTr
     message(FATAL_ERROR "apu_isa.hpp lacks: ${expected}")
   endif()
 endforeach()
-foreach(expected "localparam int LAT_TRIG = 9;" "A_RSVD = 3'd7" "logic [9:0] s_target;" "} microword_t;")
+foreach(expected "localparam int LAT_TRIG = 9;" "A_RSVD = 3'd7")
   string(FIND "${sv}" "${expected}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "apu_pkg.sv lacks: ${expected}")
+  endif()
+endforeach()
+foreach(expected "logic [9:0] s_target;" "} microword_t;")
+  string(FIND "${svh}" "${expected}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "apu_microword.svh lacks: ${expected}")
   endif()
 endforeach()
 
