@@ -1,6 +1,7 @@
-// Text helpers of the APU reports (apu_profile, apu_stall_profile): printf into
+// Text helpers of the APU reports (apu_profile, apu_stall_profile, and mc1's
+// timing tables in host/mc1/report_profile.cpp): printf into
 // a string, and a JSON string's body with quotes, backslashes and control
-// characters escaped. Private to the apu_verif library.
+// characters escaped.
 #pragma once
 
 #include <cstdarg>
