@@ -68,7 +68,7 @@ void add_render_options(CLI::App& cmd) {
                "summary on stdout");
   value_option(cmd, "trace", "FILE.fst",
                "APU waveform of NC --trace-node (that NC runs the RTL core) on simulated time; also FILE.fst.gtkw "
-               "(the save file), .pc.txt and .kernel.txt (translate filters)");
+               "(the save file), .kpc.txt, .kernel.txt and .<enum>.txt (translate filters)");
   value_option(cmd, "trace-node", "K", "the NC to trace (default 1)");
   value_option(cmd, "trace-from", "TIME", "the waveform starts at simulated TIME (12.5ms, 300us, ...; bare: ms)");
   value_option(cmd, "trace-to", "TIME", "the waveform ends at simulated TIME");

@@ -6,15 +6,14 @@
 #include <algorithm>
 #include <sstream>
 
-#ifndef MC1_GTKW_FILTER_DIR
-#define MC1_GTKW_FILTER_DIR ""
-#endif
-
 namespace mc1::apu {
 
 extern const char* const kApuCoreGtkw;  // docs/apu-core.gtkw (apu_core_gtkw.cpp, generated)
 
 namespace {
+
+// Where docs/apu-core.gtkw finds the enum filters (relative to the source tree).
+const std::string kFilterDir = "build/generated/gtkwave/";
 
 std::string absolute(const std::string& path) {
   if (!path.empty() && path[0] == '/') return path;
@@ -38,7 +37,7 @@ long long first_marker(const std::string& markers) {
 
 std::string trace_save_file(const std::string& trace, const std::string& kpc_filter,
                             const std::string& kernel_filter, const std::string& markers,
-                            const std::string& writer) {
+                            const std::string& writer, const std::string& enum_filter_prefix) {
   std::string out = "[*] GTKWave save file written by " + writer + " for " + trace + "\n[dumpfile] \"" + trace + "\"\n";
   out += markers;
   // The view opens 1 us (4 cycles) before the first marker (the top stall site).
@@ -47,7 +46,7 @@ std::string trace_save_file(const std::string& trace, const std::string& kpc_fil
   std::istringstream lines(kApuCoreGtkw);
   std::string line, flags;  // flags: the last "@..." line, which holds for the signals after it
   bool restore = false;     // a signal was added: the next signal needs `flags` again
-  const std::string rel = "build/generated/gtkwave/";
+  const std::string rel = kFilterDir;
   const auto add_signal = [&](int filter_no, const std::string& filter, const std::string& name) {
     out += "@2022\n^" + std::to_string(filter_no) + " " + filter + "\n" + name + "\n";  // hex, filtered
     restore = true;
@@ -56,7 +55,7 @@ std::string trace_save_file(const std::string& trace, const std::string& kpc_fil
     if (marker >= 0 && line.rfind("*-", 0) == 0) continue;  // the markers' line replaces the zoom line
     if (line.rfind("[timestart]", 0) == 0) line = "[timestart] " + std::to_string(start);
     if (line.size() > 1 && line[0] == '^' && line.find(rel) != std::string::npos)
-      line.replace(line.find(rel), rel.size(), std::string(MC1_GTKW_FILTER_DIR) + "/");
+      line.replace(line.find(rel), rel.size(), enum_filter_prefix);
     if (line.rfind("@", 0) == 0) flags = line;
     else if (restore && !flags.empty()) out += flags + "\n";
     restore = false;
@@ -72,9 +71,14 @@ std::vector<std::pair<std::string, std::string>> trace_side_files(const std::str
                                                                   const std::string& markers,
                                                                   const std::string& writer) {
   const std::string abs = absolute(trace);
-  return {{trace + ".kernel.txt", kernels.id_filter()},
-          {trace + ".kpc.txt", kernels.kpc_filter()},
-          {trace + ".gtkw", trace_save_file(abs, abs + ".kpc.txt", abs + ".kernel.txt", markers, writer)}};
+  std::vector<std::pair<std::string, std::string>> files = {{trace + ".kernel.txt", kernels.id_filter()},
+                                                            {trace + ".kpc.txt", kernels.kpc_filter()}};
+  const std::string base = kApuCoreGtkw;
+  for (const auto& [name, text] : enum_filters())  // the ones the save file names
+    if (base.find(kFilterDir + name + ".txt") != std::string::npos) files.emplace_back(trace + "." + name + ".txt", text);
+  files.emplace_back(trace + ".gtkw",
+                     trace_save_file(abs, abs + ".kpc.txt", abs + ".kernel.txt", markers, writer, abs + "."));
+  return files;
 }
 
 }  // namespace mc1::apu

@@ -3,8 +3,11 @@
 // "Waveforms of a frame"):
 //   TRACE.kernel.txt  GTKWave translate filter, TOP.mc1.kernel_id -> kernel name
 //   TRACE.kpc.txt     TOP.mc1.kpc (kernel id, pc) -> that kernel's word at pc, disassembled
+//   TRACE.<enum>.txt  the translate filters of the instruction-set table's
+//                     enums the save file names (seq_op_e, add_op_e, ...:
+//                     apu_gtkw_filters.cpp, built in)
 //   TRACE.gtkw        the save file: docs/apu-core.gtkw (built in) with
-//                     [dumpfile] TRACE, its enum filters by absolute path,
+//                     [dumpfile] TRACE, the enum filters above by absolute path,
 //                     kernel_id and kpc with their filters, and the markers.
 #pragma once
 
@@ -24,9 +27,14 @@ std::vector<std::pair<std::string, std::string>> trace_side_files(const std::str
                                                                   const std::string& writer);
 
 // The save file alone (trace_side_files' TRACE.gtkw); `trace`, `kpc_filter`
-// and `kernel_filter` are the paths it names.
+// and `kernel_filter` are the paths it names, and enum filter <e> is named
+// `enum_filter_prefix` + "<e>.txt".
 std::string trace_save_file(const std::string& trace, const std::string& kpc_filter,
                             const std::string& kernel_filter, const std::string& markers,
-                            const std::string& writer);
+                            const std::string& writer, const std::string& enum_filter_prefix);
+
+// The instruction-set table's enum filters: (SV enum type, filter text), the
+// texts of generated/gtkwave/<enum>.txt.
+const std::vector<std::pair<std::string, std::string>>& enum_filters();
 
 }  // namespace mc1::apu
