@@ -23,6 +23,7 @@
 #include <mc1/fp24.hpp>
 #include <mc1/mc1_engines.hpp>
 #include <mc1/node_computer.hpp>
+#include <mc1/sc_kernel.hpp>
 
 namespace {
 
@@ -209,7 +210,7 @@ int sc_main(int, char*[]) {
   node.nc2rc_hdlc.bind(bench.nc2rc);
   node.nc2bus_pixels.bind(bench.bus);
 
-  sc_start(10, SC_MS);
+  sc_run(10, SC_MS);  // mc1::sc_run: sc_start, then the sanitizers told whose stack this is
   check(mpu_iss.done && mpu_rtl.done, "both benches done", mpu_iss.done + 2 * mpu_rtl.done, 3);
   check(mpu_iss.halt_cycle == mpu_rtl.halt_cycle && mpu_iss.halt_cycle > 0, "halt cycle iss vs rtl",
         mpu_iss.halt_cycle, mpu_rtl.halt_cycle);
