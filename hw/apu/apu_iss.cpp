@@ -20,7 +20,18 @@ constexpr int kNoCommit = -1;
 
 bool two_operand(AddOp op) { return op == AddOp::Add || op == AddOp::Sub || op == AddOp::Cmp; }
 
+// A word's shape: M enabled (bit 0), the A slot (bits 1-2: none, ADD, SUB,
+// another op), F enabled (bit 3), the D slot (bits 4-5: none, LD, ST).
+// Reserved ops fault and never issue: their slot counts as empty.
+int shape(const MicroWord& w) {
+  int a = 0;
+  if (w.a.en) a = w.a.op == AddOp::Add ? 1 : w.a.op == AddOp::Sub ? 2 : 3;
+  const int d = w.d.op == MemOp::Ld ? 1 : w.d.op == MemOp::St ? 2 : 0;
+  return (w.m.en ? 1 : 0) | a << 1 | (w.f.en ? 8 : 0) | d << 4;
+}
+
 }  // namespace
+
 
 DecodedWord DecodedWord::from(const Encoded& e) {
   DecodedWord d;
@@ -68,7 +79,10 @@ DecodedWord DecodedWord::from(const Encoded& e) {
   d.lat_i = static_cast<std::uint8_t>(latency(w.i.op));
   switch (w.i.op) {
     case IntOp::Movaf:
-    case IntOp::Lif: write(w.i.d, d.lat_i); break;
+    case IntOp::Lif:
+      write(w.i.d, d.lat_i);
+      d.kind |= kMovF;
+      break;
     case IntOp::Movfa: d.src |= bit(w.i.imm); break;
     case IntOp::Reserved: d.kind |= kReserved; break;
     default: break;
@@ -85,6 +99,9 @@ DecodedWord DecodedWord::from(const Encoded& e) {
       if (is_reserved(w.s.op)) d.kind |= kReserved;
       break;
   }
+  d.hazard = d.src | d.dst;
+  static constexpr auto kRunIssue = Iss::run_issue_table(std::make_integer_sequence<int, Iss::kShapes>{});
+  d.run_issue = kRunIssue[shape(w)];
   return d;
 }
 
@@ -150,43 +167,66 @@ void Iss::start(std::uint16_t pc) {
   fetching_ = kStartFetchCycles;
 }
 
-MC1_HOT void Iss::push_f(int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags) {
+// kEarly (run's cycles): the register takes the value at once, the bucket
+// keeps the one it replaces. No word can see it before it lands: a reader
+// stalls (raw) while it is in flight, and the word's own reads come first.
+template <bool kEarly>
+MC1_HOT void Iss::push_f(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags) {
   const std::uint64_t at = cycle_ + latency;
   Bucket& b = ring_[at % kRing];
-  b.f[b.nf++] = {index, value};
+  if constexpr (kEarly) {
+    b.f[slot] = {index, value, f_[index]};
+    f_[index] = value;
+  } else {
+    b.f[slot] = {index, value, 0};
+  }
+  b.fslots |= 1u << slot;
   b.flags |= flags;
-  pending_ |= bit(index);
-  land_[index] = std::max(land_[index], at);
+  // This write lands after any other to its register (waw): the bucket of
+  // one still in flight no longer clears the register from the scoreboard.
+  const std::uint64_t m = bit(index);
+  if (__builtin_expect((pending_ & m) != 0, 0)) ring_[land_[index] % kRing].last &= ~m;
+  b.last |= m;
+  land_[index] = at;
+  pending_ |= m;
 }
 
-MC1_HOT void Iss::push_a(int latency, std::uint32_t index, std::uint16_t value) {
+MC1_HOT void Iss::push_a(ASlot slot, int latency, std::uint32_t index, std::uint16_t value) {
   if (index == 0) return;  // A0 reads 0; writes to it are dropped
   Bucket& b = ring_[(cycle_ + latency) % kRing];
-  b.a[b.na++] = {index, value};
+  b.a[slot] = {index, value};
+  b.aslots |= 1u << slot;
 }
 
 // End of a cycle: the writes that become visible in the next cycle enter the
 // state now, so that between two steps the state is the one the next word
 // reads (as in the RTL, where they are written at the clock edge). kKeep:
 // the bucket stays for the next step to record (take_due retires it);
-// otherwise (run's cycles but its last) it is retired at once.
-template <bool kKeep>
+// otherwise (run's cycles but its last) it is retired at once. kEarly: the
+// F registers have their values already (push_f).
+template <bool kKeep, bool kEarly>
 MC1_HOT void Iss::apply_next() {
   Bucket& b = ring_[cycle_ % kRing];
-  if (b.nf | b.na | b.cc_valid | b.flags) {
-    for (std::uint32_t i = 0; i < b.nf; ++i) {
-      const std::uint32_t r = b.f[i].index;
-      f_[r] = b.f[i].value;
-      if (land_[r] == cycle_) pending_ &= ~bit(r);  // its last write in flight
+  if (b.fslots | b.aslots | b.cc_valid) {
+    if constexpr (!kEarly) {
+      for (std::uint32_t m = b.fslots; m != 0; m &= m - 1) {
+        const FWrite& w = b.f[__builtin_ctz(m)];
+        f_[w.index] = w.value;
+      }
     }
-    for (std::uint32_t i = 0; i < b.na; ++i) a_[b.a[i].index] = static_cast<std::uint16_t>(b.a[i].value);
+    pending_ &= ~b.last;
+    b.last = 0;
+    for (std::uint32_t m = b.aslots; m != 0; m &= m - 1) {
+      const AWrite& w = b.a[__builtin_ctz(m)];
+      a_[w.index] = static_cast<std::uint16_t>(w.value);
+    }
     if (b.cc_valid) cc_ = b.cc;
     const std::uint32_t new_flags = flags_ | b.flags;
     if constexpr (kKeep) {
       b.flags_commit = new_flags != flags_;
       b.flags = new_flags;
     } else {
-      b.nf = b.na = 0;
+      b.fslots = b.aslots = 0;
       b.cc_valid = 0;
       b.flags = 0;
     }
@@ -200,25 +240,29 @@ MC1_HOT void Iss::apply_next() {
 template <bool kRecord>
 MC1_HOT void Iss::take_due(CycleRecord* rec, int& cc, int& flags) {
   Bucket& b = ring_[cycle_ % kRing];
-  if (b.nf | b.na | b.cc_valid) {
+  if (b.fslots | b.aslots | b.cc_valid) {
     if constexpr (kRecord) {
       // Commits in the interface's order: FReg by index, then AReg by index.
       auto& out = rec->commits;
       const std::size_t f0 = out.size();
-      for (std::uint32_t i = 0; i < b.nf; ++i) {
-        const Commit c{Commit::Kind::FReg, static_cast<std::uint16_t>(b.f[i].index), b.f[i].value};
+      for (std::uint32_t m = b.fslots; m != 0; m &= m - 1) {
+        const FWrite& w = b.f[__builtin_ctz(m)];
+        const Commit c{Commit::Kind::FReg, static_cast<std::uint16_t>(w.index), w.value};
         std::size_t j = out.size();
         out.push_back(c);
         for (; j > f0 && out[j - 1].index > c.index; --j) out[j] = out[j - 1];
         out[j] = c;
       }
-      if (b.na == 2 && b.a[1].index < b.a[0].index) std::swap(b.a[0], b.a[1]);
-      for (std::uint32_t i = 0; i < b.na; ++i)
-        out.push_back({Commit::Kind::AReg, static_cast<std::uint16_t>(b.a[i].index), b.a[i].value});
+      const std::size_t a0 = out.size();
+      for (std::uint32_t m = b.aslots; m != 0; m &= m - 1) {
+        const AWrite& w = b.a[__builtin_ctz(m)];
+        out.push_back({Commit::Kind::AReg, static_cast<std::uint16_t>(w.index), w.value});
+      }
+      if (out.size() == a0 + 2 && out[a0 + 1].index < out[a0].index) std::swap(out[a0], out[a0 + 1]);
       if (b.cc_valid) cc = static_cast<int>(b.cc);
       if (b.flags_commit) flags = static_cast<int>(b.flags);
     }
-    b.nf = b.na = 0;
+    b.fslots = b.aslots = 0;
     b.cc_valid = b.flags_commit = 0;
     b.flags = 0;
   }
@@ -278,70 +322,109 @@ MC1_HOT Fault Iss::check_fault(const DecodedWord& dw, std::uint32_t next) const 
   return Fault::None;
 }
 
-template <bool kRecord>
-MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec) {
-  namespace fp = mc1::fp24;
-  namespace inl = mc1::fp24::inl;  // mul, add, sub, cmp inline: no call per op (F registers hold 24 bits)
-  const MicroWord& w = dw.w;
-  // Every read below sees the state before this word's writes: FP results
-  // and register writes go to future buckets; only the store is immediate.
-  if (dw.lat_fp) fp_done_ = std::max(fp_done_, cycle_ + dw.lat_fp);
-  if (w.m.en) {
-    const fp::Result r = inl::mul24(f_[w.m.a], f_[w.m.b]);
-    push_f(kMulLatency, w.m.d, r.value, r.flags);
-    ++counters_.unit_ops[0];
-  }
-  if (w.a.en) {
-    const std::uint32_t x = f_[w.a.a], y = f_[w.a.b];
-    fp::Result r{};
-    switch (w.a.op) {
-      case AddOp::Add: r = inl::add24(x, y); break;
-      case AddOp::Sub: r = inl::sub24(x, y); break;
-      case AddOp::Cmp: r = inl::cmp(x, y); break;
-      case AddOp::Float: r = fp::from_int(static_cast<std::uint16_t>(x)); break;
-      case AddOp::Fix: r = fp::to_int(x); r.value &= 0xFFFF; break;
-      case AddOp::Neg: r = fp::neg(x); break;
-      default: r = fp::abs(x); break;
-    }
-    const int latency_a = dw.lat_a;
-    if (w.a.op == AddOp::Cmp) {
-      Bucket& b = ring_[(cycle_ + latency_a) % kRing];
-      b.cc_valid = 1;
-      b.cc = r.value;
-      b.flags |= r.flags;
-      cmp_done_ = cycle_ + latency_a;
-    } else {
-      push_f(latency_a, w.a.d, r.value, r.flags);
-    }
-    ++counters_.unit_ops[1];
-  }
-  if (w.f.en) {
-    const std::uint32_t x = f_[w.f.a];
-    fp::Result r{};
-    switch (w.f.op) {
-      case FuncOp::Recip: r = fp::recip(x); break;
-      case FuncOp::Sqrt: r = fp::sqrt(x); break;
-      case FuncOp::Sin: r = fp::sin(x); break;
-      case FuncOp::Cos: r = fp::cos(x); break;
-    }
-    push_f(dw.lat_f, w.f.d, r.value, r.flags);
-    ++counters_.unit_ops[2];
-  }
+namespace {
 
-  if (w.d.op != MemOp::None) {
+// The A slot's result (CMP: its condition in value).
+MC1_HOT fp24::Result add_unit(AddOp op, std::uint32_t x, std::uint32_t y) {
+  namespace fp = mc1::fp24;
+  namespace inl = mc1::fp24::inl;
+  switch (op) {
+    case AddOp::Add: return inl::add24(x, y);
+    case AddOp::Sub: return inl::sub24(x, y);
+    case AddOp::Cmp: return inl::cmp(x, y);
+    case AddOp::Float: return fp::from_int(static_cast<std::uint16_t>(x));
+    case AddOp::Fix: {
+      fp::Result r = fp::to_int(x);
+      r.value &= 0xFFFF;
+      return r;
+    }
+    case AddOp::Neg: return fp::neg(x);
+    default: return fp::abs(x);
+  }
+}
+
+MC1_HOT fp24::Result func_unit(FuncOp op, std::uint32_t x) {
+  namespace fp = mc1::fp24;
+  switch (op) {
+    case FuncOp::Recip: return fp::recip(x);
+    case FuncOp::Sqrt: return fp::sqrt(x);
+    case FuncOp::Sin: return fp::sin(x);
+    default: return fp::cos(x);
+  }
+}
+
+}  // namespace
+
+// Every read of the word sees the state before its writes: all operands are
+// read, and the store done, before the first F write (which run() makes at
+// once, push_f); A registers, CC and FLAGS change only when their bucket is
+// applied.
+template <bool kRecord, int kShape>
+MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec) {
+  constexpr bool kEarly = !kRecord;
+  constexpr bool kAny = kShape == kAnyShape;
+  const MicroWord& w = dw.w;
+  const bool m_en = kAny ? w.m.en : (kShape & 1) != 0;
+  const bool a_en = kAny ? w.a.en : (kShape & 6) != 0;
+  const bool f_en = kAny ? w.f.en : (kShape & 8) != 0;
+  const MemOp d_op = kAny ? w.d.op : static_cast<MemOp>(kShape >> 4);
+  if (m_en || a_en || f_en) fp_done_ = std::max(fp_done_, cycle_ + dw.lat_fp);
+  fp24::Result rm, ra, rf;
+  if (m_en) rm = fp24::inl::mul24(f_[w.m.a], f_[w.m.b]);
+  if (a_en) {
+    if constexpr (kShape >= 0 && (kShape & 6) == 2) {
+      ra = fp24::inl::add24(f_[w.a.a], f_[w.a.b]);
+    } else if constexpr (kShape >= 0 && (kShape & 6) == 4) {
+      ra = fp24::inl::sub24(f_[w.a.a], f_[w.a.b]);
+    } else {
+      ra = add_unit(w.a.op, f_[w.a.a], f_[w.a.b]);
+    }
+  }
+  if (f_en) rf = func_unit(w.f.op, f_[w.f.a]);
+  std::uint32_t loaded = 0;
+  if (d_op != MemOp::None) {
     const std::uint16_t addr = static_cast<std::uint16_t>(a_[w.d.base] + w.d.disp);
-    if (w.d.op == MemOp::Ld) {
-      push_f(dw.lat_d, w.d.f, data_[dsel_][addr]);
+    if (d_op == MemOp::Ld) {
+      loaded = data_[dsel_][addr];
     } else {
       data_[dsel_][addr] = f_[w.d.f];
       if constexpr (kRecord) rec->commits.push_back({Commit::Kind::Mem, addr, f_[w.d.f]});
     }
   }
-
-  if (w.i.op != IntOp::None) int_op(dw);
+  if (w.i.op != IntOp::None) int_op(dw);  // MOVFA reads F
   if (w.s.op != SeqOp::Next) seq_op(dw);
+
+  if (m_en) push_f<kEarly>(kSlotM, kMulLatency, w.m.d, rm.value, rm.flags);
+  if (a_en) {
+    if (!(kShape >= 0 && (kShape & 6) != 6) && w.a.op == AddOp::Cmp) {
+      Bucket& b = ring_[(cycle_ + dw.lat_a) % kRing];
+      b.cc_valid = 1;
+      b.cc = ra.value;
+      b.flags |= ra.flags;
+      cmp_done_ = cycle_ + dw.lat_a;
+    } else {
+      push_f<kEarly>(kSlotA, dw.lat_a, w.a.d, ra.value, ra.flags);
+    }
+  }
+  if (f_en) {
+    const FSlot slot = w.f.op == FuncOp::Sin || w.f.op == FuncOp::Cos ? kSlotTrig : kSlotRsq;
+    push_f<kEarly>(slot, dw.lat_f, w.f.d, rf.value, rf.flags);
+  }
+  if (d_op == MemOp::Ld) push_f<kEarly>(kSlotLd, dw.lat_d, w.d.f, loaded);
+  if (dw.kind & DecodedWord::kMovF) {
+    const std::uint32_t v = w.i.op == IntOp::Movaf ? a_[w.i.s] : (std::uint32_t{w.i.imm} << 8) & kMask24;
+    push_f<kEarly>(kSlotMov, dw.lat_i, w.i.d, v);
+  }
   pc_ = static_cast<std::uint16_t>(next);
+  counters_.unit_ops[0] += m_en;
+  counters_.unit_ops[1] += a_en;
+  counters_.unit_ops[2] += f_en;
   ++counters_.issued;
+}
+
+template <int kShape>
+void Iss::run_issue(Iss& iss, const DecodedWord& dw, std::uint32_t next) {
+  iss.issue<false, kShape>(dw, next, nullptr);
 }
 
 // The I slot (its reads see the state before the word's writes).
@@ -352,22 +435,22 @@ MC1_HOT void Iss::int_op(const DecodedWord& dw) {
   const int li = dw.lat_i;
   switch (i.op) {
     case IntOp::None: break;
-    case IntOp::Li: push_a(li, ad, imm); break;
-    case IntOp::Addi: push_a(li, ad, static_cast<std::uint16_t>(s + imm)); break;
-    case IntOp::Add: push_a(li, ad, static_cast<std::uint16_t>(s + t)); break;
-    case IntOp::Sub: push_a(li, ad, static_cast<std::uint16_t>(s - t)); break;
-    case IntOp::Muli: push_a(li, ad, static_cast<std::uint16_t>(std::uint32_t{s} * imm)); break;
-    case IntOp::Shl: push_a(li, ad, static_cast<std::uint16_t>(s << (imm & 15))); break;
-    case IntOp::Shr: push_a(li, ad, static_cast<std::uint16_t>(s >> (imm & 15))); break;
+    case IntOp::Li: push_a(kSlotI, li, ad, imm); break;
+    case IntOp::Addi: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(s + imm)); break;
+    case IntOp::Add: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(s + t)); break;
+    case IntOp::Sub: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(s - t)); break;
+    case IntOp::Muli: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(std::uint32_t{s} * imm)); break;
+    case IntOp::Shl: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(s << (imm & 15))); break;
+    case IntOp::Shr: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(s >> (imm & 15))); break;
     case IntOp::Sra:
-      push_a(li, ad, static_cast<std::uint16_t>(static_cast<std::int16_t>(s) >> (imm & 15)));
+      push_a(kSlotI, li, ad, static_cast<std::uint16_t>(static_cast<std::int16_t>(s) >> (imm & 15)));
       break;
-    case IntOp::Andi: push_a(li, ad, s & imm); break;
-    case IntOp::Ori: push_a(li, ad, s | imm); break;
-    case IntOp::Xor: push_a(li, ad, s ^ t); break;
-    case IntOp::Movaf: push_f(li, i.d, s); break;
-    case IntOp::Movfa: push_a(li, ad, static_cast<std::uint16_t>(f_[i.imm & 63])); break;
-    case IntOp::Lif: push_f(li, i.d, (std::uint32_t{imm} << 8) & kMask24); break;
+    case IntOp::Andi: push_a(kSlotI, li, ad, s & imm); break;
+    case IntOp::Ori: push_a(kSlotI, li, ad, s | imm); break;
+    case IntOp::Xor: push_a(kSlotI, li, ad, s ^ t); break;
+    case IntOp::Movaf: break;  // F writes: issue()
+    case IntOp::Movfa: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(f_[i.imm & 63])); break;
+    case IntOp::Lif: break;
     case IntOp::Reserved: break;
   }
 }
@@ -376,7 +459,7 @@ MC1_HOT void Iss::int_op(const DecodedWord& dw) {
 MC1_HOT void Iss::seq_op(const DecodedWord& dw) {
   const MicroWord& w = dw.w;
   switch (w.s.op) {
-    case SeqOp::Dbnz: push_a(latency(SeqOp::Dbnz), w.s.r, static_cast<std::uint16_t>(a_[w.s.r] - 1)); break;
+    case SeqOp::Dbnz: push_a(kSlotDbnz, latency(SeqOp::Dbnz), w.s.r, static_cast<std::uint16_t>(a_[w.s.r] - 1)); break;
     case SeqOp::Call: stack_[sp_++] = static_cast<std::uint16_t>(pc_ + 1); break;
     case SeqOp::Ret: --sp_; break;
     case SeqOp::Swapd:
@@ -402,7 +485,9 @@ MC1_HOT Stall Iss::execute(CycleRecord* rec) {
   }
   if (state_ != RunState::Running) return Stall::None;
   const DecodedWord& dw = decoded_[psel_][pc_];
-  const Stall s = stall_reason(dw);
+  // Most words touch no register in flight and can stall on nothing else.
+  Stall s = Stall::None;
+  if (__builtin_expect((dw.kind & DecodedWord::kMayStall) || (dw.hazard & pending_), 0)) s = stall_reason(dw);
   if (s != Stall::None) {
     ++counters_.stalls[static_cast<int>(s)];
     if constexpr (kRecord) rec->stall = s;
@@ -419,8 +504,12 @@ MC1_HOT Stall Iss::execute(CycleRecord* rec) {
     state_ = RunState::Faulted;
     fault_ = f;
   } else {
-    issue<kRecord>(dw, next, rec);
-    if constexpr (kRecord) rec->issued = true;
+    if constexpr (kRecord) {
+      issue<true, kAnyShape>(dw, next, rec);
+      rec->issued = true;
+    } else {
+      dw.run_issue(*this, dw, next);
+    }
   }
   return Stall::None;
 }
@@ -439,7 +528,7 @@ void Iss::step(CycleRecord& rec) {
   if (cc != kNoCommit) rec.commits.push_back({Commit::Kind::Cc, 0, static_cast<std::uint32_t>(cc)});
   if (flags != kNoCommit) rec.commits.push_back({Commit::Kind::Flags, 0, static_cast<std::uint32_t>(flags)});
   ++cycle_;
-  apply_next<true>();
+  apply_next<true, false>();
 }
 
 // No write in flight: every bucket but this cycle's (applied already, taken at
@@ -448,9 +537,34 @@ void Iss::step(CycleRecord& rec) {
 bool Iss::writes_landed() const {
   for (int k = 1; k < kRing; ++k) {
     const Bucket& b = ring_[(cycle_ + k) % kRing];
-    if (b.nf | b.na | b.cc_valid) return false;
+    if (b.fslots | b.aslots | b.cc_valid) return false;
   }
   return true;
+}
+
+// run()'s F writes are early (push_f): on the way in the writes in flight
+// take their registers too, in the order they land; on the way out the
+// registers get back the values of the writes still in flight, last first,
+// so that between calls the state is the one step() keeps.
+void Iss::writes_early() {
+  for (int k = 1; k < kRing; ++k) {
+    Bucket& b = ring_[(cycle_ + k) % kRing];
+    for (std::uint32_t m = b.fslots; m != 0; m &= m - 1) {
+      FWrite& w = b.f[__builtin_ctz(m)];
+      w.prev = f_[w.index];
+      f_[w.index] = w.value;
+    }
+  }
+}
+
+void Iss::writes_late() {
+  for (int k = kRing - 1; k >= 1; --k) {
+    const Bucket& b = ring_[(cycle_ + k) % kRing];
+    for (std::uint32_t m = b.fslots; m != 0; m &= m - 1) {
+      const FWrite& w = b.f[__builtin_ctz(m)];
+      f_[w.index] = w.prev;
+    }
+  }
 }
 
 template <bool kUntilDataTaken>
@@ -458,14 +572,16 @@ std::uint64_t Iss::run_fast(std::uint64_t max_cycles) {
   if (max_cycles == 0 || state_ != RunState::Running) return 0;
   int cc = kNoCommit, flags = kNoCommit;
   take_due<false>(nullptr, cc, flags);  // what the last clock applied (nothing records it now)
+  writes_early();
   for (std::uint64_t n = 1;; ++n) {
     const Stall s = execute<false>(nullptr);
     ++cycle_;
     if (n == max_cycles || state_ != RunState::Running || (kUntilDataTaken && !data_ready_)) {
-      apply_next<true>();  // as step() leaves it: a step that follows records these writes
+      apply_next<true, true>();  // as step() leaves it: a step that follows records these writes
+      writes_late();
       return n;
     }
-    apply_next<false>();
+    apply_next<false, true>();
     if (s == Stall::Bank && writes_landed()) {
       // A word waiting for a bank the MPU has not handed over waits every
       // cycle until the call returns (the MPU acts between calls, and `bank`

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 
 #include "apu_engine.hpp"
 #include "microword.hpp"
@@ -26,6 +27,8 @@ constexpr int pow2_above(int n) {
 // the stall logic and the issue ask of every word, resolved then (operand
 // masks, each F write with its latency from the instruction-set table, the
 // checks the word can need), so that a cycle decodes nothing.
+class Iss;
+
 struct DecodedWord {
   enum : std::uint8_t {
     kSwap = 1,       // SWAPD/SWAPP: subject to `bank`
@@ -34,6 +37,8 @@ struct DecodedWord {
     kReserved = 8,   // a reserved op in some slot: faults when it would issue
     kMem = 16,       // LD/ST: the data address is checked
     kStack = 32,     // CALL/RET: the call stack is checked
+    kMovF = 64,      // MOVAF/LIF: an I-slot F write
+    kMayStall = kSwap | kCcBranch | kHalt,  // a stall beyond raw/waw is possible
   };
   // An F register write and the latency after which it is visible.
   struct FDst {
@@ -42,6 +47,7 @@ struct DecodedWord {
   MicroWord w;
   std::uint64_t src = 0;  // F registers read (raw)
   std::uint64_t dst = 0;  // F registers written, any latency
+  std::uint64_t hazard = 0;  // src | dst: a word touching none in flight cannot stall on raw/waw
   // Each F write (waw): a write with latency L must land after every write
   // already in flight to its register.
   std::array<FDst, 5> dsts{};  // M, A, F, LD, MOVAF/LIF
@@ -49,6 +55,9 @@ struct DecodedWord {
   std::uint8_t kind = 0;
   // latency(op) of the A, F, D and I slots; the longest FP op's (drain; 0: none).
   std::uint8_t lat_a = 0, lat_f = 0, lat_d = 0, lat_i = 0, lat_fp = 0;
+  // run()'s issue of this word: Iss::issue specialized for the word's M, A,
+  // F and D slots (its shape), so that a cycle tests none of them.
+  void (*run_issue)(Iss&, const DecodedWord&, std::uint32_t next) = nullptr;
 
   static DecodedWord from(const Encoded& e);
 };
@@ -107,16 +116,25 @@ class Iss final : public ApuEngine {
  private:
   // 32-bit fields throughout: a byte store could alias any member and make
   // the compiler reload the hot state after it.
-  struct FWrite { std::uint32_t index, value; };
+  // prev: the register's value before the write, while run() holds the
+  // write in the register early (see run_fast).
+  struct FWrite { std::uint32_t index, value, prev; };
   struct AWrite { std::uint32_t index, value; };
-  // What becomes visible in one future cycle. At most one write per slot,
-  // except the F slot: a SIN/COS and a RECIP/SQRT issued one cycle later.
+  // What becomes visible in one future cycle. Each write has a fixed slot:
+  // a bucket takes at most one write of each pipe (one word issues a cycle
+  // and a pipe has one latency), so a push needs no count and a bucket's
+  // writes are a mask of slots.
+  enum FSlot : std::uint32_t { kSlotM, kSlotA, kSlotRsq, kSlotTrig, kSlotLd, kSlotMov, kFSlots };
+  enum ASlot : std::uint32_t { kSlotI, kSlotDbnz, kASlots };
   struct alignas(128) Bucket {  // a power of two: a shift indexes the ring
-    std::uint32_t nf = 0, na = 0;
+    // The F registers whose last write in flight lands here: the
+    // scoreboard clears them when the bucket is applied.
+    std::uint64_t last = 0;
+    std::uint32_t fslots = 0, aslots = 0;  // the slots holding a write
     std::uint32_t cc_valid = 0, flags_commit = 0;
     std::uint32_t cc = 0, flags = 0;  // flags: the OR of the ops', then FLAGS once applied
-    FWrite f[6];  // M, A, F twice, LD, MOVAF/LIF
-    AWrite a[2];  // I slot, DBNZ
+    FWrite f[kFSlots];
+    AWrite a[kASlots];
   };
   static constexpr int kRing = pow2_above(kMaxLatency);
 
@@ -127,8 +145,10 @@ class Iss final : public ApuEngine {
   template <bool kUntilDataTaken>
   std::uint64_t run_fast(std::uint64_t max_cycles);
   bool writes_landed() const;
-  template <bool kKeep>
+  template <bool kKeep, bool kEarly>
   void apply_next();
+  void writes_early();
+  void writes_late();
   template <bool kRecord>
   void take_due(CycleRecord* rec, int& cc, int& flags);
   Stall stall_reason(const DecodedWord& dw) const;
@@ -136,13 +156,25 @@ class Iss final : public ApuEngine {
   // fault, if any, that keeps the word from issuing.
   std::uint32_t next_pc(const DecodedWord& dw) const;
   Fault check_fault(const DecodedWord& dw, std::uint32_t next) const;
-  template <bool kRecord>
+  // kShape: the word's slots as DecodedWord::from's shape(), or kAnyShape
+  // (read from the word).
+  static constexpr int kAnyShape = -1, kShapes = 48;
+  template <bool kRecord, int kShape>
   void issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec);
+  using RunIssue = void (*)(Iss&, const DecodedWord&, std::uint32_t);
+  template <int kShape>
+  static void run_issue(Iss& iss, const DecodedWord& dw, std::uint32_t next);
+  template <int... kShape>
+  static constexpr std::array<RunIssue, sizeof...(kShape)> run_issue_table(std::integer_sequence<int, kShape...>) {
+    return {&run_issue<kShape>...};
+  }
+  friend struct DecodedWord;
   void int_op(const DecodedWord& dw);
   void seq_op(const DecodedWord& dw);
   // An F write and the flags of the op that makes it.
-  void push_f(int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags = 0);
-  void push_a(int latency, std::uint32_t index, std::uint16_t value);
+  template <bool kEarly>
+  void push_f(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags = 0);
+  void push_a(ASlot slot, int latency, std::uint32_t index, std::uint16_t value);
 
   // Hot state first: what every cycle reads.
   std::uint64_t cycle_ = 0;

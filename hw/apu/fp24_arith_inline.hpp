@@ -23,11 +23,13 @@ namespace detail {
 Result mul_special(Bits a, Bits b);
 Result add_special(Bits a, Bits b);
 
-// Sum of two normal numbers of any sign. Significands are placed at bit 40
+// Sum of two normal numbers of any sign, by the general rule: exact sum
+// (with sticky), normalize(), round_pack(). Significands are placed at bit 40
 // (msb at 56) so that an alignment shift of up to 40 loses nothing and a
 // larger one is caught by the sticky bit; the result msb stays at >= 55
-// whenever bits were lost, far above the sticky bit.
-[[gnu::always_inline]] inline Result add_normal(Bits a, Bits b) {
+// whenever bits were lost, far above the sticky bit. add_normal() must give
+// the same bits and flags (tests/fp24_fast_path_test.cpp).
+inline Result add_normal_generic(Bits a, Bits b) {
   constexpr int kPos = 40;
   // Order by magnitude so the difference of significands is never negative.
   if ((b & bits::kMagMask) > (a & bits::kMagMask)) std::swap(a, b);
@@ -41,6 +43,39 @@ Result add_special(Bits a, Bits b);
   // big stands for 2^(ea - kBias) * big / 2^(kPos + 16).
   const auto n = bits::normalize(m, bits::exp_of(a) - kBias - kPos - kFracBits);
   return bits::round_pack(bits::sign_of(a), n.exp, n.sig);
+}
+
+// The same sum with no branch on the data but the rare ones (exact
+// cancellation, overflow, tininess): which operand is larger, whether the
+// signs differ and whether the rounding goes up are random to a branch
+// predictor, and the ISS's hot loop paid a misprediction for each.
+// Rounding as in mul24: the 17-bit significand rounded by an add, the
+// exponent field plus it is the magnitude's encoding, carry included.
+[[gnu::always_inline]] inline Result add_normal(Bits a, Bits b) {
+  constexpr int kPos = 40;
+  constexpr int kDrop = 46;  // q's bits below the 17-bit significand (msb at 62)
+  const Bits swap = 0u - static_cast<Bits>((b & bits::kMagMask) > (a & bits::kMagMask));
+  const Bits x = a ^ ((a ^ b) & swap), y = b ^ ((a ^ b) & swap);  // |x| >= |y|
+  const int ex = bits::exp_of(x);
+  const int d = std::min(ex - bits::exp_of(y), 63);
+  const std::uint64_t big = std::uint64_t{bits::sig_of(x)} << kPos;
+  const std::uint64_t small_full = std::uint64_t{bits::sig_of(y)} << kPos;
+  std::uint64_t small = small_full >> d;
+  small |= (small << d) != small_full;  // sticky
+  const std::uint64_t differ = 0 - static_cast<std::uint64_t>(((x ^ y) >> 23) & 1);
+  const std::uint64_t m = big + ((small ^ differ) - differ);  // big - small if the signs differ
+  if (__builtin_expect(m == 0, 0)) return {0, 0};           // x + (-x) = +0
+  const int lz = __builtin_clzll(m);                         // 5..63; 7 when m's msb is big's
+  const std::uint64_t q = m << (lz - 1);
+  const auto sig = static_cast<std::int32_t>(
+      (q + ((std::uint64_t{1} << (kDrop - 1)) - 1) + ((q >> kDrop) & 1)) >> kDrop);
+  // Biased exponent of m: ex + 7 - lz; the field holds e - 1 plus sig's 2^16.
+  const std::int32_t mag = (ex + 6 - lz) * (1 << kFracBits) + sig;
+  const Bits s = x & kSignBit;
+  if (__builtin_expect(mag >= static_cast<std::int32_t>(kPosInf), 0)) return {s | kPosInf, static_cast<std::uint8_t>(kOF | kNX)};
+  if (__builtin_expect(mag < (1 << kFracBits), 0)) return {s, static_cast<std::uint8_t>(kUF | kNX)};
+  const bool inexact = (q & ((std::uint64_t{1} << kDrop) - 1)) != 0;
+  return {s | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
 }
 
 }  // namespace detail
