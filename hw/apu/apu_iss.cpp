@@ -127,7 +127,7 @@ void Iss::reset() {
   ring_.fill(Bucket{});
   pending_ = 0;
   land_.fill(0);
-  fp_done_ = cmp_done_ = 0;
+  cmp_done_ = 0;
   counters_ = Counters{};
 }
 
@@ -171,7 +171,8 @@ void Iss::start(std::uint16_t pc) {
 // keeps the one it replaces. No word can see it before it lands: a reader
 // stalls (raw) while it is in flight, and the word's own reads come first.
 template <bool kEarly>
-MC1_HOT void Iss::push_f(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags) {
+MC1_HOT std::uint64_t Iss::push_f(FSlot slot, int latency, std::uint32_t index, std::uint32_t value,
+                                  std::uint32_t flags, std::uint64_t pending) {
   const std::uint64_t at = cycle_ + latency;
   Bucket& b = ring_[at % kRing];
   if constexpr (kEarly) {
@@ -180,22 +181,22 @@ MC1_HOT void Iss::push_f(FSlot slot, int latency, std::uint32_t index, std::uint
   } else {
     b.f[slot] = {index, value, 0};
   }
-  b.fslots |= 1u << slot;
+  b.slots |= 1u << slot;
   b.flags |= flags;
   // This write lands after any other to its register (waw): the bucket of
   // one still in flight no longer clears the register from the scoreboard.
   const std::uint64_t m = bit(index);
-  if (__builtin_expect((pending_ & m) != 0, 0)) ring_[land_[index] % kRing].last &= ~m;
+  if (__builtin_expect((pending & m) != 0, 0)) ring_[land_[index] % kRing].last &= ~m;
   b.last |= m;
   land_[index] = at;
-  pending_ |= m;
+  return m;
 }
 
 MC1_HOT void Iss::push_a(ASlot slot, int latency, std::uint32_t index, std::uint16_t value) {
   if (index == 0) return;  // A0 reads 0; writes to it are dropped
   Bucket& b = ring_[(cycle_ + latency) % kRing];
   b.a[slot] = {index, value};
-  b.aslots |= 1u << slot;
+  b.slots |= 1u << (kASlotShift + slot);
 }
 
 // End of a cycle: the writes that become visible in the next cycle enter the
@@ -207,27 +208,26 @@ MC1_HOT void Iss::push_a(ASlot slot, int latency, std::uint32_t index, std::uint
 template <bool kKeep, bool kEarly>
 MC1_HOT void Iss::apply_next() {
   Bucket& b = ring_[cycle_ % kRing];
-  if (b.fslots | b.aslots | b.cc_valid) {
+  if (b.slots) {
     if constexpr (!kEarly) {
-      for (std::uint32_t m = b.fslots; m != 0; m &= m - 1) {
+      for (std::uint32_t m = b.slots & kFSlotMask; m != 0; m &= m - 1) {
         const FWrite& w = b.f[__builtin_ctz(m)];
         f_[w.index] = w.value;
       }
     }
     pending_ &= ~b.last;
     b.last = 0;
-    for (std::uint32_t m = b.aslots; m != 0; m &= m - 1) {
+    for (std::uint32_t m = b.slots >> kASlotShift & 3; m != 0; m &= m - 1) {
       const AWrite& w = b.a[__builtin_ctz(m)];
       a_[w.index] = static_cast<std::uint16_t>(w.value);
     }
-    if (b.cc_valid) cc_ = b.cc;
+    if (b.slots & kCcSlot) cc_ = b.cc;
     const std::uint32_t new_flags = flags_ | b.flags;
     if constexpr (kKeep) {
       b.flags_commit = new_flags != flags_;
       b.flags = new_flags;
     } else {
-      b.fslots = b.aslots = 0;
-      b.cc_valid = 0;
+      b.slots = 0;
       b.flags = 0;
     }
     flags_ = new_flags;
@@ -240,12 +240,12 @@ MC1_HOT void Iss::apply_next() {
 template <bool kRecord>
 MC1_HOT void Iss::take_due(CycleRecord* rec, int& cc, int& flags) {
   Bucket& b = ring_[cycle_ % kRing];
-  if (b.fslots | b.aslots | b.cc_valid) {
+  if (b.slots) {
     if constexpr (kRecord) {
       // Commits in the interface's order: FReg by index, then AReg by index.
       auto& out = rec->commits;
       const std::size_t f0 = out.size();
-      for (std::uint32_t m = b.fslots; m != 0; m &= m - 1) {
+      for (std::uint32_t m = b.slots & kFSlotMask; m != 0; m &= m - 1) {
         const FWrite& w = b.f[__builtin_ctz(m)];
         const Commit c{Commit::Kind::FReg, static_cast<std::uint16_t>(w.index), w.value};
         std::size_t j = out.size();
@@ -254,16 +254,15 @@ MC1_HOT void Iss::take_due(CycleRecord* rec, int& cc, int& flags) {
         out[j] = c;
       }
       const std::size_t a0 = out.size();
-      for (std::uint32_t m = b.aslots; m != 0; m &= m - 1) {
+      for (std::uint32_t m = b.slots >> kASlotShift & 3; m != 0; m &= m - 1) {
         const AWrite& w = b.a[__builtin_ctz(m)];
         out.push_back({Commit::Kind::AReg, static_cast<std::uint16_t>(w.index), w.value});
       }
       if (out.size() == a0 + 2 && out[a0 + 1].index < out[a0].index) std::swap(out[a0], out[a0 + 1]);
-      if (b.cc_valid) cc = static_cast<int>(b.cc);
+      if (b.slots & kCcSlot) cc = static_cast<int>(b.cc);
       if (b.flags_commit) flags = static_cast<int>(b.flags);
     }
-    b.fslots = b.aslots = 0;
-    b.cc_valid = b.flags_commit = 0;
+    b.slots = b.flags_commit = 0;
     b.flags = 0;
   }
 }
@@ -283,7 +282,7 @@ MC1_HOT Stall Iss::stall_reason(const DecodedWord& dw) const {
       if (land_[dw.dsts[i].reg] >= cycle_ + dw.dsts[i].latency) return Stall::Waw;
   }
   if ((k & DecodedWord::kCcBranch) && cmp_done_ > cycle_) return Stall::Cc;
-  if ((k & DecodedWord::kHalt) && fp_done_ > cycle_) return Stall::Drain;
+  if ((k & DecodedWord::kHalt) && fp_in_flight()) return Stall::Drain;
   return Stall::None;
 }
 
@@ -368,7 +367,6 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
   const bool a_en = kAny ? w.a.en : (kShape & 6) != 0;
   const bool f_en = kAny ? w.f.en : (kShape & 8) != 0;
   const MemOp d_op = kAny ? w.d.op : static_cast<MemOp>(kShape >> 4);
-  if (m_en || a_en || f_en) fp_done_ = std::max(fp_done_, cycle_ + dw.lat_fp);
   fp24::Result rm, ra, rf;
   if (m_en) rm = fp24::inl::mul24(f_[w.m.a], f_[w.m.b]);
   if (a_en) {
@@ -394,27 +392,30 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
   if (w.i.op != IntOp::None) int_op(dw);  // MOVFA reads F
   if (w.s.op != SeqOp::Next) seq_op(dw);
 
-  if (m_en) push_f<kEarly>(kSlotM, kMulLatency, w.m.d, rm.value, rm.flags);
+  const std::uint64_t pending = pending_;
+  std::uint64_t set = 0;
+  if (m_en) set |= push_f<kEarly>(kSlotM, kMulLatency, w.m.d, rm.value, rm.flags, pending);
   if (a_en) {
     if (!(kShape >= 0 && (kShape & 6) != 6) && w.a.op == AddOp::Cmp) {
       Bucket& b = ring_[(cycle_ + dw.lat_a) % kRing];
-      b.cc_valid = 1;
+      b.slots |= kCcSlot;
       b.cc = ra.value;
       b.flags |= ra.flags;
       cmp_done_ = cycle_ + dw.lat_a;
     } else {
-      push_f<kEarly>(kSlotA, dw.lat_a, w.a.d, ra.value, ra.flags);
+      set |= push_f<kEarly>(kSlotA, dw.lat_a, w.a.d, ra.value, ra.flags, pending);
     }
   }
   if (f_en) {
     const FSlot slot = w.f.op == FuncOp::Sin || w.f.op == FuncOp::Cos ? kSlotTrig : kSlotRsq;
-    push_f<kEarly>(slot, dw.lat_f, w.f.d, rf.value, rf.flags);
+    set |= push_f<kEarly>(slot, dw.lat_f, w.f.d, rf.value, rf.flags, pending);
   }
-  if (d_op == MemOp::Ld) push_f<kEarly>(kSlotLd, dw.lat_d, w.d.f, loaded);
+  if (d_op == MemOp::Ld) set |= push_f<kEarly>(kSlotLd, dw.lat_d, w.d.f, loaded, 0, pending);
   if (dw.kind & DecodedWord::kMovF) {
     const std::uint32_t v = w.i.op == IntOp::Movaf ? a_[w.i.s] : (std::uint32_t{w.i.imm} << 8) & kMask24;
-    push_f<kEarly>(kSlotMov, dw.lat_i, w.i.d, v);
+    set |= push_f<kEarly>(kSlotMov, dw.lat_i, w.i.d, v, 0, pending);
   }
+  pending_ = pending | set;
   pc_ = static_cast<std::uint16_t>(next);
   counters_.unit_ops[0] += m_en;
   counters_.unit_ops[1] += a_en;
@@ -537,7 +538,7 @@ void Iss::step(CycleRecord& rec) {
 bool Iss::writes_landed() const {
   for (int k = 1; k < kRing; ++k) {
     const Bucket& b = ring_[(cycle_ + k) % kRing];
-    if (b.fslots | b.aslots | b.cc_valid) return false;
+    if (b.slots) return false;
   }
   return true;
 }
@@ -549,7 +550,7 @@ bool Iss::writes_landed() const {
 void Iss::writes_early() {
   for (int k = 1; k < kRing; ++k) {
     Bucket& b = ring_[(cycle_ + k) % kRing];
-    for (std::uint32_t m = b.fslots; m != 0; m &= m - 1) {
+    for (std::uint32_t m = b.slots & kFSlotMask; m != 0; m &= m - 1) {
       FWrite& w = b.f[__builtin_ctz(m)];
       w.prev = f_[w.index];
       f_[w.index] = w.value;
@@ -560,11 +561,19 @@ void Iss::writes_early() {
 void Iss::writes_late() {
   for (int k = kRing - 1; k >= 1; --k) {
     const Bucket& b = ring_[(cycle_ + k) % kRing];
-    for (std::uint32_t m = b.fslots; m != 0; m &= m - 1) {
+    for (std::uint32_t m = b.slots & kFSlotMask; m != 0; m &= m - 1) {
       const FWrite& w = b.f[__builtin_ctz(m)];
       f_[w.index] = w.prev;
     }
   }
+}
+
+// An FP unit op issued and not yet landed (`drain`): a later bucket holds
+// its write or CC.
+bool Iss::fp_in_flight() const {
+  for (int k = 1; k < kRing; ++k)
+    if (ring_[(cycle_ + k) % kRing].slots & kFpSlots) return true;
+  return false;
 }
 
 template <bool kUntilDataTaken>

@@ -126,12 +126,15 @@ class Iss final : public ApuEngine {
   // writes are a mask of slots.
   enum FSlot : std::uint32_t { kSlotM, kSlotA, kSlotRsq, kSlotTrig, kSlotLd, kSlotMov, kFSlots };
   enum ASlot : std::uint32_t { kSlotI, kSlotDbnz, kASlots };
+  static constexpr std::uint32_t kFSlotMask = 0x3F, kASlotShift = 8, kCcSlot = 1u << 16;
+  // What an FP unit op writes (drain waits for these; LD, MOVAF, LIF are not).
+  static constexpr std::uint32_t kFpSlots = 1u << kSlotM | 1u << kSlotA | 1u << kSlotRsq | 1u << kSlotTrig | kCcSlot;
   struct alignas(128) Bucket {  // a power of two: a shift indexes the ring
     // The F registers whose last write in flight lands here: the
     // scoreboard clears them when the bucket is applied.
     std::uint64_t last = 0;
-    std::uint32_t fslots = 0, aslots = 0;  // the slots holding a write
-    std::uint32_t cc_valid = 0, flags_commit = 0;
+    std::uint32_t slots = 0;  // the slots holding a write: F at bit FSlot, A at 8 + ASlot, CC at 16
+    std::uint32_t flags_commit = 0;
     std::uint32_t cc = 0, flags = 0;  // flags: the OR of the ops', then FLAGS once applied
     FWrite f[kFSlots];
     AWrite a[kASlots];
@@ -171,9 +174,12 @@ class Iss final : public ApuEngine {
   friend struct DecodedWord;
   void int_op(const DecodedWord& dw);
   void seq_op(const DecodedWord& dw);
-  // An F write and the flags of the op that makes it.
+  // An F write and the flags of the op that makes it; pending: the
+  // scoreboard before the word. Returns the register's scoreboard bit.
   template <bool kEarly>
-  void push_f(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags = 0);
+  std::uint64_t push_f(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags,
+                       std::uint64_t pending);
+  bool fp_in_flight() const;
   void push_a(ASlot slot, int latency, std::uint32_t index, std::uint16_t value);
 
   // Hot state first: what every cycle reads.
@@ -182,7 +188,6 @@ class Iss final : public ApuEngine {
   // the current cycle), and for each the cycle its last write becomes
   // visible (writes to one register land in issue order: waw).
   std::uint64_t pending_ = 0;
-  std::uint64_t fp_done_ = 0;      // first cycle with no FP op in flight
   std::uint64_t cmp_done_ = 0;     // first cycle with no CMP in flight
   std::uint32_t pc_ = 0;
   RunState state_ = RunState::Idle;
