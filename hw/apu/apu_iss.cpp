@@ -30,8 +30,21 @@ int shape(const MicroWord& w) {
   return (w.m.en ? 1 : 0) | a << 1 | (w.f.en ? 8 : 0) | d << 4;
 }
 
-}  // namespace
+// The checks an S-slot op needs (DecodedWord::kind bits).
+std::uint8_t seq_kind(SeqOp op) {
+  switch (op) {
+    case SeqOp::Swapd:
+    case SeqOp::Swapp: return DecodedWord::kSwap;
+    case SeqOp::Bcc:
+    case SeqOp::Bncc: return DecodedWord::kCcBranch;
+    case SeqOp::Halt: return DecodedWord::kHalt;
+    case SeqOp::Call:
+    case SeqOp::Ret: return DecodedWord::kStack;
+    default: return is_reserved(op) ? DecodedWord::kReserved : 0;
+  }
+}
 
+}  // namespace
 
 DecodedWord DecodedWord::from(const Encoded& e) {
   DecodedWord d;
@@ -87,18 +100,7 @@ DecodedWord DecodedWord::from(const Encoded& e) {
     case IntOp::Reserved: d.kind |= kReserved; break;
     default: break;
   }
-  switch (w.s.op) {
-    case SeqOp::Swapd:
-    case SeqOp::Swapp: d.kind |= kSwap; break;
-    case SeqOp::Bcc:
-    case SeqOp::Bncc: d.kind |= kCcBranch; break;
-    case SeqOp::Halt: d.kind |= kHalt; break;
-    case SeqOp::Call:
-    case SeqOp::Ret: d.kind |= kStack; break;
-    default:
-      if (is_reserved(w.s.op)) d.kind |= kReserved;
-      break;
-  }
+  d.kind |= seq_kind(w.s.op);
   d.hazard = d.src | d.dst;
   static constexpr auto kRunIssue = Iss::run_issue_table(std::make_integer_sequence<int, Iss::kShapes>{});
   d.run_issue = kRunIssue[shape(w)];
@@ -534,9 +536,10 @@ void Iss::step(CycleRecord& rec) {
 
 // No write in flight: every bucket but this cycle's (applied already, taken at
 // the start of the next clock) is empty. (Flags and CC arrive only with an F
-// write or a CMP's CC.)
+// write or a CMP's CC.) Every write lands within kMaxLatency cycles, so no
+// scan of the ring goes further.
 bool Iss::writes_landed() const {
-  for (int k = 1; k < kRing; ++k) {
+  for (int k = 1; k <= kMaxLatency; ++k) {
     const Bucket& b = ring_[(cycle_ + k) % kRing];
     if (b.slots) return false;
   }
@@ -548,7 +551,7 @@ bool Iss::writes_landed() const {
 // registers get back the values of the writes still in flight, last first,
 // so that between calls the state is the one step() keeps.
 void Iss::writes_early() {
-  for (int k = 1; k < kRing; ++k) {
+  for (int k = 1; k <= kMaxLatency; ++k) {
     Bucket& b = ring_[(cycle_ + k) % kRing];
     for (std::uint32_t m = b.slots & kFSlotMask; m != 0; m &= m - 1) {
       FWrite& w = b.f[__builtin_ctz(m)];
@@ -559,7 +562,7 @@ void Iss::writes_early() {
 }
 
 void Iss::writes_late() {
-  for (int k = kRing - 1; k >= 1; --k) {
+  for (int k = kMaxLatency; k >= 1; --k) {
     const Bucket& b = ring_[(cycle_ + k) % kRing];
     for (std::uint32_t m = b.slots & kFSlotMask; m != 0; m &= m - 1) {
       const FWrite& w = b.f[__builtin_ctz(m)];
@@ -571,7 +574,7 @@ void Iss::writes_late() {
 // An FP unit op issued and not yet landed (`drain`): a later bucket holds
 // its write or CC.
 bool Iss::fp_in_flight() const {
-  for (int k = 1; k < kRing; ++k)
+  for (int k = 1; k <= kMaxLatency; ++k)
     if (ring_[(cycle_ + k) % kRing].slots & kFpSlots) return true;
   return false;
 }

@@ -82,11 +82,18 @@ inline Result add_normal_generic(Bits a, Bits b) {
 
 namespace inl {
 
+// Both operands normal (exponent 1..126) in two tests: adding 1 to the
+// exponent field takes 0 and 127, and only them, to a field with bits 1..6
+// clear (127 carries out of it).
+[[gnu::always_inline]] inline bool both_normal(Bits a, Bits b) {
+  constexpr Bits kOne = 1u << kFracBits, kTop = 0x7Eu << kFracBits;
+  return ((a + kOne) & kTop) != 0 && ((b + kOne) & kTop) != 0;
+}
+
 // The ops on operands already within 24 bits (the ISS's registers always
 // are): mul24, add24, sub24. mul, add, sub mask first.
 [[gnu::always_inline]] inline Result mul24(Bits a, Bits b) {
-  if (__builtin_expect(!(bits::is_normal(a) && bits::is_normal(b)), 0))
-    return detail::mul_special(bits::flush(a), bits::flush(b));
+  if (__builtin_expect(!both_normal(a, b), 0)) return detail::mul_special(bits::flush(a), bits::flush(b));
   // Product of two 17-bit significands: 2^32 <= p < 2^34, exact in 64 bits.
   // round_pack's rule without its general normalization: q is p at
   // [2^33, 2^34), its 17 bits below the result's significand are dropped with
@@ -109,8 +116,7 @@ namespace inl {
 }
 
 [[gnu::always_inline]] inline Result add24(Bits a, Bits b) {
-  if (__builtin_expect(!(bits::is_normal(a) && bits::is_normal(b)), 0))
-    return detail::add_special(bits::flush(a), bits::flush(b));
+  if (__builtin_expect(!both_normal(a, b), 0)) return detail::add_special(bits::flush(a), bits::flush(b));
   return detail::add_normal(a, b);
 }
 
