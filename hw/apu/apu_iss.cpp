@@ -54,11 +54,9 @@ DecodedWord DecodedWord::from(const Encoded& e) {
     d.dst |= bit(reg);
     d.dsts[d.ndst++] = {static_cast<std::uint8_t>(reg & 63), static_cast<std::uint8_t>(latency)};
   };
-  const auto fp = [&d](int latency) { d.lat_fp = static_cast<std::uint8_t>(std::max<int>(d.lat_fp, latency)); };
   if (w.m.en) {
     d.src |= bit(w.m.a) | bit(w.m.b);
     write(w.m.d, kMulLatency);
-    fp(kMulLatency);
   }
   if (w.a.en) {
     if (is_reserved(w.a.op)) {
@@ -67,14 +65,12 @@ DecodedWord DecodedWord::from(const Encoded& e) {
       d.lat_a = static_cast<std::uint8_t>(latency(w.a.op));
       d.src |= bit(w.a.a) | (two_operand(w.a.op) ? bit(w.a.b) : 0);
       if (w.a.op != AddOp::Cmp) write(w.a.d, d.lat_a);
-      fp(d.lat_a);
     }
   }
   if (w.f.en) {
     d.lat_f = static_cast<std::uint8_t>(latency(w.f.op));
     d.src |= bit(w.f.a);
     write(w.f.d, d.lat_f);
-    fp(d.lat_f);
   }
   d.lat_d = static_cast<std::uint8_t>(latency(w.d.op));
   switch (w.d.op) {

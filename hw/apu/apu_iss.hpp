@@ -53,8 +53,8 @@ struct DecodedWord {
   std::array<FDst, 5> dsts{};  // M, A, F, LD, MOVAF/LIF
   std::uint8_t ndst = 0;
   std::uint8_t kind = 0;
-  // latency(op) of the A, F, D and I slots; the longest FP op's (drain; 0: none).
-  std::uint8_t lat_a = 0, lat_f = 0, lat_d = 0, lat_i = 0, lat_fp = 0;
+  // latency(op) of the A, F, D and I slots.
+  std::uint8_t lat_a = 0, lat_f = 0, lat_d = 0, lat_i = 0;
   // run()'s issue of this word: Iss::issue specialized for the word's M, A,
   // F and D slots (its shape), so that a cycle tests none of them.
   void (*run_issue)(Iss&, const DecodedWord&, std::uint32_t next) = nullptr;
