@@ -508,20 +508,29 @@ module apu_core
   logic [(N_WB+N_WI)*FP_W-1:0]    f_wr_data_v;
 
   // The late bypass: the word in I takes a result completing in this cycle
-  // (out of a unit's last stage or the data memory) in a 2:1 multiplexer per
-  // completion port, with a one-hot select that D (or I, for a word held)
-  // decided in the last cycle from the tags completing now.
-  logic [FP_W-1:0]      opnd_q    [N_RD];  // D/I: the operands read in D
-  logic [N_RD*N_WB-1:0] byp_sel_q;         // [i*N_WB + p]: operand i takes port p now
-  logic [N_RD*N_WB-1:0] byp_sel_next;
-  logic                 advance;           // the word in D moves into I at this edge
+  // (out of a unit's last stage or the data memory): per operand a choice of
+  // the operand register or one of the N_WB completion ports, selected by
+  // a code that D (or I, for a word held) decided in the last cycle from the
+  // tags completing now (at most one port writes a register in a cycle).
+  // Registered as a binary code, the choice of six is three levels of 2:1
+  // multiplexers in front of the units: 0 the operand register, p + 1 port p.
+  localparam int BYP_W = 3;
+  logic [FP_W-1:0]       opnd_q    [N_RD];  // D/I: the operands read in D
+  logic [N_RD*BYP_W-1:0] byp_sel_q;         // [i*BYP_W +: BYP_W]: operand i's code
+  logic [N_RD*BYP_W-1:0] byp_sel_next;
+  logic [N_RD*N_WB-1:0]  byp_hit;           // [i*N_WB + p]: operand i is port p's next cycle
+  logic                  advance;           // the word in D moves into I at this edge
 
+  logic [FP_W-1:0] byp_m01 [N_RD];  // codes 1, 0
+  logic [FP_W-1:0] byp_m23 [N_RD];  // 3, 2
+  logic [FP_W-1:0] byp_m45 [N_RD];  // 5, 4
   always_comb begin
     for (int i = 0; i < N_RD; i++) begin
-      fop[i] = opnd_q[i];
-      for (int p = 0; p < N_WB; p++) begin
-        if (byp_sel_q[i*N_WB + p]) fop[i] = wb_data[p];
-      end
+      byp_m01[i] = byp_sel_q[i*BYP_W]     ? wb_data[0] : opnd_q[i];
+      byp_m23[i] = byp_sel_q[i*BYP_W]     ? wb_data[2] : wb_data[1];
+      byp_m45[i] = byp_sel_q[i*BYP_W]     ? wb_data[4] : wb_data[3];
+      fop[i]     = byp_sel_q[i*BYP_W + 2] ? byp_m45[i]
+                 : byp_sel_q[i*BYP_W + 1] ? byp_m23[i] : byp_m01[i];
     end
   end
 
@@ -536,9 +545,10 @@ module apu_core
     nx_en[3] = fu_trig_nx_valid;  nx_addr[3] = fu_trig_nx_d;
     nx_en[4] = issue && is_ld;    nx_addr[4] = w.d_f;
     for (int i = 0; i < N_RD; i++) begin
+      byp_sel_next[i*BYP_W +: BYP_W] = '0;
       for (int p = 0; p < N_WB; p++) begin
-        byp_sel_next[i*N_WB + p] = nx_en[p]
-                                && (nx_addr[p] == (advance ? d_src_addr[i] : src_addr[i]));
+        byp_hit[i*N_WB + p] = nx_en[p] && (nx_addr[p] == (advance ? d_src_addr[i] : src_addr[i]));
+        if (byp_hit[i*N_WB + p]) byp_sel_next[i*BYP_W +: BYP_W] = BYP_W'(p + 1);
       end
     end
   end
