@@ -285,6 +285,8 @@ module apu_core
   logic               issue;
   logic               mul_out_valid, add_out_valid, fu_out_valid, fu_trig_valid;
   logic [FP_W-1:0]    mul_out_result, add_out_result, fu_out_result, fu_trig_result;
+  // the results the units' out_* take at the next edge (the operand registers' bypass)
+  logic [FP_W-1:0]    mul_nx_result, add_nx_result, fu_nx_result, fu_trig_nx_result;
   logic [FLAGS_W-1:0] mul_out_flags, add_out_flags, fu_out_flags, fu_trig_flags;
 
   logic mul_issue, add_issue, fu_issue;
@@ -300,7 +302,8 @@ module apu_core
       .in_b      (fop[RD_MB]),
       .out_valid (mul_out_valid),
       .out_result(mul_out_result),
-      .out_flags (mul_out_flags)
+      .out_flags (mul_out_flags),
+      .out_next_result(mul_nx_result)
   );
 
   fp24_add u_add (
@@ -312,7 +315,8 @@ module apu_core
       .in_b      (fop[RD_AB]),
       .out_valid (add_out_valid),
       .out_result(add_out_result),
-      .out_flags (add_out_flags)
+      .out_flags (add_out_flags),
+      .out_next_result(add_nx_result)
   );
 
   fp24_func u_func (
@@ -327,7 +331,9 @@ module apu_core
       .out_flags      (fu_out_flags),
       .out_trig_valid (fu_trig_valid),
       .out_trig_result(fu_trig_result),
-      .out_trig_flags (fu_trig_flags)
+      .out_trig_flags (fu_trig_flags),
+      .out_next_result     (fu_nx_result),
+      .out_trig_next_result(fu_trig_nx_result)
   );
 
   logic               raw_hazard, waw_hazard, cmp_in_flight, pipes_busy;
@@ -507,57 +513,55 @@ module apu_core
   logic [(N_WB+N_WI)*FREG_AW-1:0] f_wr_addr_v;
   logic [(N_WB+N_WI)*FP_W-1:0]    f_wr_data_v;
 
-  // The late bypass: the word in I takes a result completing in this cycle
-  // (out of a unit's last stage or the data memory): per operand a choice of
-  // the operand register or one of the N_WB completion ports, selected by
-  // a code that D (or I, for a word held) decided in the last cycle from the
-  // tags completing now (at most one port writes a register in a cycle).
-  // Registered as a binary code, the choice of six is three levels of 2:1
-  // multiplexers in front of the units: 0 the operand register, p + 1 port p.
-  localparam int BYP_W = 3;
-  logic [FP_W-1:0]       opnd_q    [N_RD];  // D/I: the operands read in D
-  logic [N_RD*BYP_W-1:0] byp_sel_q;         // [i*BYP_W +: BYP_W]: operand i's code
-  logic [N_RD*BYP_W-1:0] byp_sel_next;
-  logic [N_RD*N_WB-1:0]  byp_hit;           // [i*N_WB + p]: operand i is port p's next cycle
-  logic                  advance;           // the word in D moves into I at this edge
+  // The bypass of the results completing while a word is in I. A unit's
+  // result is known in the cycle before it completes (its last stage's logic,
+  // out_*next_result): the operand registers take it at the edge into that
+  // cycle, from the tags a stage before completion, for the word moving into
+  // I or held there. A LD's word comes out of the data memory only in its
+  // completion cycle: that one is a late 2:1 multiplexer in front of the
+  // units, selected by `byp_ld_q`, which D (or I, for a word held) set in the
+  // last cycle. So the units' inputs are one multiplexer from registers.
+  logic [FP_W-1:0]    opnd_q    [N_RD];  // D/I: the operands
+  logic [N_RD-1:0]    byp_ld_q;          // operand i takes this cycle's LD word
+  logic [N_RD-1:0]    byp_ld_next;
+  logic [FP_W-1:0]    opnd_next [N_RD];
+  logic [N_RD*N_WB-1:0] byp_hit;         // [i*N_WB + p]: operand i is port p's write of the next cycle
+  logic               advance;           // the word in D moves into I at this edge
 
-  logic [FP_W-1:0] byp_m01 [N_RD];  // codes 1, 0
-  logic [FP_W-1:0] byp_m23 [N_RD];  // 3, 2
-  logic [FP_W-1:0] byp_m45 [N_RD];  // 5, 4
   always_comb begin
-    for (int i = 0; i < N_RD; i++) begin
-      byp_m01[i] = byp_sel_q[i*BYP_W]     ? wb_data[0] : opnd_q[i];
-      byp_m23[i] = byp_sel_q[i*BYP_W]     ? wb_data[2] : wb_data[1];
-      byp_m45[i] = byp_sel_q[i*BYP_W]     ? wb_data[4] : wb_data[3];
-      fop[i]     = byp_sel_q[i*BYP_W + 2] ? byp_m45[i]
-                 : byp_sel_q[i*BYP_W + 1] ? byp_m23[i] : byp_m01[i];
-    end
+    for (int i = 0; i < N_RD; i++) fop[i] = byp_ld_q[i] ? wb_data[4] : opnd_q[i];
   end
 
-  // The F writes of the next cycle (nx_*), for the word I holds then: the
-  // units' tags a stage before completion, and a LD issued now.
-  logic               nx_en   [N_WB];
-  logic [FREG_AW-1:0] nx_addr [N_WB];
+  // The F writes of the next cycle (nx_*): the units' tags a stage before
+  // completion with their results, and a LD issued now.
+  logic               nx_en     [N_WB];
+  logic [FREG_AW-1:0] nx_addr   [N_WB];
+  logic [FP_W-1:0]    nx_result [N_WB-1];  // the units' (a LD's word is not known yet)
   always_comb begin
-    nx_en[0] = mul_nx_valid;      nx_addr[0] = mul_nx_d;
-    nx_en[1] = add_nx_valid;      nx_addr[1] = add_nx_d;
-    nx_en[2] = fu_nx_valid;       nx_addr[2] = fu_nx_d;
-    nx_en[3] = fu_trig_nx_valid;  nx_addr[3] = fu_trig_nx_d;
+    nx_en[0] = mul_nx_valid;      nx_addr[0] = mul_nx_d;      nx_result[0] = mul_nx_result;
+    nx_en[1] = add_nx_valid;      nx_addr[1] = add_nx_d;      nx_result[1] = add_nx_result;
+    nx_en[2] = fu_nx_valid;       nx_addr[2] = fu_nx_d;       nx_result[2] = fu_nx_result;
+    nx_en[3] = fu_trig_nx_valid;  nx_addr[3] = fu_trig_nx_d;  nx_result[3] = fu_trig_nx_result;
     nx_en[4] = issue && is_ld;    nx_addr[4] = w.d_f;
     for (int i = 0; i < N_RD; i++) begin
-      byp_sel_next[i*BYP_W +: BYP_W] = '0;
       for (int p = 0; p < N_WB; p++) begin
         byp_hit[i*N_WB + p] = nx_en[p] && (nx_addr[p] == (advance ? d_src_addr[i] : src_addr[i]));
-        if (byp_hit[i*N_WB + p]) byp_sel_next[i*BYP_W +: BYP_W] = BYP_W'(p + 1);
       end
+      // The register file's word for a word moving in (the state after this
+      // cycle's writes), the operand as this cycle's word has it for a word
+      // held; a unit's result of the next cycle over either.
+      opnd_next[i] = advance ? f_rd_data_v[i*FP_W +: FP_W] : fop[i];
+      for (int p = 0; p < N_WB - 1; p++) begin
+        if (byp_hit[i*N_WB + p]) opnd_next[i] = nx_result[p];
+      end
+      byp_ld_next[i] = byp_hit[i*N_WB + 4];
     end
   end
 
   always_ff @(posedge clk) begin
-    if (!rst_n) byp_sel_q <= '0;
-    else        byp_sel_q <= byp_sel_next;
-    // A word held in I keeps taking the results that complete while it waits.
-    for (int i = 0; i < N_RD; i++) opnd_q[i] <= advance ? f_rd_data_v[i*FP_W +: FP_W] : fop[i];
+    if (!rst_n) byp_ld_q <= '0;
+    else        byp_ld_q <= byp_ld_next;
+    for (int i = 0; i < N_RD; i++) opnd_q[i] <= opnd_next[i];
   end
   always_comb begin
     for (int i = 0; i < N_WB + N_WI; i++) begin

@@ -136,8 +136,9 @@ UNIT_INSTANCES = ("u_mul", "u_add", "u_func")
 
 # The core's D/I registers: a path into them is the decode stage (the word on
 # the program memory's output, the F register read with its write-first
-# bypass, the late bypass's selects), docs/apu-rtl.md "One cycle".
-DECODE_REGISTERS = ("i_word_q", "opnd_q", "byp_sel_q")
+# bypass and the units' results of the next cycle, the LD bypass's select),
+# docs/apu-rtl.md "One cycle".
+DECODE_REGISTERS = ("i_word_q", "opnd_q", "byp_ld_q")
 
 
 def stage_of(path):
