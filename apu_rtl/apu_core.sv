@@ -6,15 +6,15 @@
 //   F  the program memory, a synchronous RAM: the sequencer presents an
 //      address, the word is on the RAM's output register in the next cycle;
 //   D  decode: the word on the RAM's output reads its F operands (with the
-//      write-first bypass of this cycle's writes) into the D/I registers
-//      (`i_word_q`, `opnd_q`), and the sequencer predicts the next address
-//      from it (JMP, CALL, RET exact; a conditional branch taken iff it
-//      jumps backward);
-//   I  issue: the word in the D/I registers takes the results completing in
-//      this cycle (`byp_sel_q`, a late one-hot bypass in front of the
-//      units), reads the A registers, decides its stall and fault, issues
-//      all its slots and resolves its branch; a miss (or a SWAPP) squashes
-//      the word in D and fetches the right one: BRANCH_MISS cycles.
+//      write-first bypass of this cycle's writes, and the units' results of
+//      the next cycle) into the D/I registers (`i_word_q`, `opnd_q`), and
+//      the sequencer predicts the next address from it (JMP, CALL, RET
+//      exact; a conditional branch taken iff it jumps backward);
+//   I  issue: the word in the D/I registers takes a LD's word completing in
+//      this cycle (`byp_ld_q`, the one multiplexer in front of the units),
+//      reads the A registers, decides its stall and fault, issues all its
+//      slots and resolves its branch; a miss (or a SWAPP) squashes the word
+//      in D and fetches the right one: BRANCH_MISS cycles.
 // FP ops enter fp24_mul / fp24_add / fp24_func; their results come back at
 // t + L and are written (and bypassed) in that cycle (the function unit can
 // return a SIN/COS and a RECIP/SQRT in one cycle: two ports). A LD reads the
