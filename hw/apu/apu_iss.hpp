@@ -68,6 +68,7 @@ class Iss final : public ApuEngine {
   void read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const override;
   void hand_over_program() override { program_ready_ = true; }
   void hand_over_data() override { data_ready_ = true; }
+  bool mpu_bank_while_running() const override { return true; }
   bool program_ready() const override { return program_ready_; }
   bool data_ready() const override { return data_ready_; }
   void start(std::uint16_t pc) override;
