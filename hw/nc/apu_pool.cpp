@@ -5,6 +5,18 @@
 namespace mc1::nc {
 namespace {
 thread_local bool t_in_job = false;
+
+// A stretch takes some microseconds: a thread out of work spins about as
+// long before it sleeps (a sleep and a wake-up cost more than that).
+constexpr int kSpins = 4000;
+
+void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#else
+  std::this_thread::yield();
+#endif
+}
 }  // namespace
 
 bool ApuJob::in_job() { return t_in_job; }
@@ -41,6 +53,7 @@ ApuPool::~ApuPool() {
   {
     Lock lock(m_);
     stopping_ = true;
+    ready_n_.store(1);  // no more spinning
   }
   work_cv_.notify_all();
   for (std::thread& t : workers_) t.join();
@@ -58,9 +71,20 @@ std::shared_ptr<ApuJob> ApuPool::post(ApuJob::Stretch stretch) {
     while (!job->done_) clock_stretch(lock, job, false);
     return job;
   }
+  push_ready(job);
+  return job;
+}
+
+void ApuPool::push_ready(const std::shared_ptr<ApuJob>& job) {
   ready_.push_back(job);
-  lock.unlock();
-  work_cv_.notify_one();
+  ready_n_.store(ready_.size(), std::memory_order_release);
+  if (sleepers_) work_cv_.notify_one();
+}
+
+std::shared_ptr<ApuJob> ApuPool::pop_ready() {
+  std::shared_ptr<ApuJob> job = std::move(ready_.front());
+  ready_.pop_front();
+  ready_n_.store(ready_.size(), std::memory_order_relaxed);
   return job;
 }
 
@@ -69,6 +93,7 @@ std::shared_ptr<ApuJob> ApuPool::take(ApuJob& job) {
   if (it == ready_.end()) return nullptr;
   std::shared_ptr<ApuJob> held = std::move(*it);
   ready_.erase(it);
+  ready_n_.store(ready_.size(), std::memory_order_relaxed);
   return held;
 }
 
@@ -77,14 +102,17 @@ void ApuPool::help(ApuJob& job, Over over) {
   Lock lock(m_);
   while (!over()) {
     std::shared_ptr<ApuJob> next = take(job);
-    if (!next && !ready_.empty()) {
-      next = std::move(ready_.front());
-      ready_.pop_front();
-    }
-    if (next)
+    if (!next && !ready_.empty()) next = pop_ready();
+    if (next) {
       clock_stretch(lock, next, true);
-    else
-      progress_cv_.wait(lock);  // a worker holds the job
+      continue;
+    }
+    // A worker holds the job: its stretch ends soon.
+    const std::uint64_t ended = ended_.load(std::memory_order_relaxed);
+    lock.unlock();
+    for (int i = 0; i < kSpins && ended_.load(std::memory_order_acquire) == ended; ++i) cpu_relax();
+    lock.lock();
+    if (ended_.load(std::memory_order_relaxed) == ended) progress_cv_.wait(lock);
   }
 }
 
@@ -103,14 +131,14 @@ void ApuPool::clock_stretch(Lock& lock, const std::shared_ptr<ApuJob>& job, bool
   t_in_job = outer;
   lock.lock();
   job->held_ = false;
+  ended_.fetch_add(1, std::memory_order_release);
   job->reached_ = std::max(job->reached_, job->stretch_reached_);
   if (cycles || error) {
     job->cycles_ = cycles.value_or(0);
     job->error_ = error;
     job->done_ = true;
   } else if (requeue && !job->done_) {  // not cancelled meanwhile: its next turn
-    ready_.push_back(job);
-    work_cv_.notify_one();
+    push_ready(job);
   }
   progress_cv_.notify_all();
 }
@@ -118,11 +146,16 @@ void ApuPool::clock_stretch(Lock& lock, const std::shared_ptr<ApuJob>& job, bool
 void ApuPool::worker() {
   Lock lock(m_);
   for (;;) {
-    work_cv_.wait(lock, [&] { return stopping_ || !ready_.empty(); });
+    if (ready_.empty() && !stopping_) {
+      lock.unlock();
+      for (int i = 0; i < kSpins && ready_n_.load(std::memory_order_acquire) == 0; ++i) cpu_relax();
+      lock.lock();
+      ++sleepers_;
+      work_cv_.wait(lock, [&] { return stopping_ || !ready_.empty(); });
+      --sleepers_;
+    }
     if (stopping_) return;
-    const std::shared_ptr<ApuJob> job = std::move(ready_.front());
-    ready_.pop_front();
-    clock_stretch(lock, job, true);
+    clock_stretch(lock, pop_ready(), true);
   }
 }
 

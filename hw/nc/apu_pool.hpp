@@ -15,6 +15,7 @@
 // simulation needs it.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -99,6 +100,8 @@ class ApuPool {
   // be free and out of ready_, and goes back to its end if `requeue`.
   void clock_stretch(Lock& lock, const std::shared_ptr<ApuJob>& job, bool requeue);
   std::shared_ptr<ApuJob> take(ApuJob& job);  // out of ready_, or null
+  void push_ready(const std::shared_ptr<ApuJob>& job);
+  std::shared_ptr<ApuJob> pop_ready();
   void worker();
 
   unsigned threads_;
@@ -108,6 +111,10 @@ class ApuPool {
   std::condition_variable progress_cv_;  // a stretch ended
   std::deque<std::shared_ptr<ApuJob>> ready_;  // free jobs not over, in turn
   bool stopping_ = false;
+  int sleepers_ = 0;  // workers waiting on work_cv_
+  // Read without m_ by spinning threads: ready_'s size, stretches ended.
+  std::atomic<std::size_t> ready_n_{0};
+  std::atomic<std::uint64_t> ended_{0};
 };
 
 }  // namespace mc1::nc
