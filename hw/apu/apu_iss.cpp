@@ -33,10 +33,14 @@ int shape(const MicroWord& w) {
 // The checks an S-slot op needs (DecodedWord::kind bits).
 std::uint8_t seq_kind(SeqOp op) {
   switch (op) {
-    case SeqOp::Swapd:
-    case SeqOp::Swapp: return DecodedWord::kSwap;
+    case SeqOp::Swapd: return DecodedWord::kSwap;
+    case SeqOp::Swapp: return DecodedWord::kSwap | DecodedWord::kRefetch;
     case SeqOp::Bcc:
-    case SeqOp::Bncc: return DecodedWord::kCcBranch;
+    case SeqOp::Bncc: return DecodedWord::kCcBranch | DecodedWord::kRefetch;
+    case SeqOp::Dbnz:
+    case SeqOp::Bz:
+    case SeqOp::Bnz:
+    case SeqOp::Bltz: return DecodedWord::kRefetch;
     case SeqOp::Halt: return DecodedWord::kHalt;
     case SeqOp::Call:
     case SeqOp::Ret: return DecodedWord::kStack;
@@ -305,6 +309,17 @@ MC1_HOT std::uint32_t Iss::next_pc(const DecodedWord& dw) const {
   }
 }
 
+// The sequencer fetches the word after a word while it decodes it
+// (docs/apu-isa.md "Timing"): JMP, CALL and RET exactly, a conditional branch
+// as taken iff its target is not after it; a SWAPP's next word only once it
+// has issued (from the new bank). Any other next word costs kBranchMissCycles.
+MC1_HOT bool Iss::fetch_missed(const DecodedWord& dw, std::uint32_t next) const {
+  const SeqSlot& s = dw.w.s;
+  if (s.op == SeqOp::Swapp) return true;
+  const std::uint32_t predicted = s.target <= pc_ ? s.target : pc_ + 1u;
+  return next != predicted;
+}
+
 MC1_HOT Fault Iss::check_fault(const DecodedWord& dw, std::uint32_t next) const {
   if (dw.kind & DecodedWord::kReserved) return Fault::ReservedOp;
   const MemSlot& d = dw.w.d;
@@ -414,6 +429,7 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
     set |= push_f<kEarly>(kSlotMov, dw.lat_i, w.i.d, v, 0, pending);
   }
   pending_ = pending | set;
+  if ((dw.kind & DecodedWord::kRefetch) && fetch_missed(dw, next)) fetching_ = kBranchMissCycles;
   pc_ = static_cast<std::uint16_t>(next);
   counters_.unit_ops[0] += m_en;
   counters_.unit_ops[1] += a_en;
@@ -478,11 +494,13 @@ MC1_HOT void Iss::seq_op(const DecodedWord& dw) {
 // one's: the word at pc issues, stalls or faults.
 template <bool kRecord>
 MC1_HOT Stall Iss::execute(CycleRecord* rec) {
-  if (fetching_ > 0) {
-    --fetching_;  // the program RAM reads the word at pc: nothing issues
-    return Stall::None;
-  }
   if (state_ != RunState::Running) return Stall::None;
+  if (fetching_ > 0) {
+    --fetching_;  // the word at pc is in the program RAM or in decode: nothing issues
+    ++counters_.stalls[static_cast<int>(Stall::Fetch)];
+    if constexpr (kRecord) rec->stall = Stall::Fetch;
+    return Stall::Fetch;
+  }
   const DecodedWord& dw = decoded_[psel_][pc_];
   // Most words touch no register in flight and can stall on nothing else.
   Stall s = Stall::None;

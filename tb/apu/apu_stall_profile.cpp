@@ -127,7 +127,7 @@ void StallProfile::NcState::add(unsigned kernel, const CycleRecord& r, std::uint
     end_run();
     return;
   }
-  if (r.stall == Stall::None) {  // a start's fetch (or a faulting word)
+  if (r.stall == Stall::None) {  // a faulting word (a start's cycles are `fetch` stalls)
     ++counts.fetch;
     ++site.counts.fetch;
     end_run();
