@@ -30,30 +30,10 @@ std::uint32_t wide_bits(const Wide& w, int pos, int width) {
 
 // The engine on one verilated model. Top is Vapu_core (kTraced: the FST
 // waveform and the trace module's kernel ids) or Vapu_fast; both have the
-// ports this code reads and drives, under the same names.
-class RtlEngine::Model {
+// ports this code reads and drives, under the same names. Its own
+// set_time() is not used: the waveform's times are RtlEngine's.
+class RtlEngine::Model : public ApuEngine {
  public:
-  virtual ~Model() = default;
-  virtual void write_program(std::uint16_t addr, const Encoded& word) = 0;
-  virtual void write_data(std::uint16_t addr, std::uint32_t value) = 0;
-  virtual std::uint32_t read_data(std::uint16_t addr) const = 0;
-  virtual void write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) = 0;
-  virtual void hand_over_program() = 0;
-  virtual void hand_over_data() = 0;
-  virtual bool program_ready() const = 0;
-  virtual bool data_ready() const = 0;
-  virtual void start(std::uint16_t pc) = 0;
-  virtual void step(CycleRecord& rec) = 0;
-  virtual std::uint64_t run(std::uint64_t max_cycles, bool until_data_taken) = 0;
-  virtual RunState state() const = 0;
-  virtual Fault fault() const = 0;
-  virtual std::uint64_t cycle() const = 0;
-  virtual std::uint32_t freg(int i) const = 0;
-  virtual std::uint16_t areg(int i) const = 0;
-  virtual std::uint8_t flags() const = 0;
-  virtual std::uint8_t cc() const = 0;
-  virtual void trace_window(std::uint64_t from_ps, std::uint64_t to_ps) = 0;
-  virtual void trace_kernel(int bank, std::uint16_t id) = 0;
   virtual bool unit_mismatch() const = 0;
 };
 
@@ -74,7 +54,8 @@ class RtlEngine::ModelOf final : public Model {
   bool data_ready() const override { return top_->apu2mpu_data_ready; }
   void start(std::uint16_t pc) override;
   void step(CycleRecord& rec) override;
-  std::uint64_t run(std::uint64_t max_cycles, bool until_data_taken) override;
+  std::uint64_t run(std::uint64_t max_cycles) override { return clock_until(max_cycles, false); }
+  std::uint64_t run_until_data_taken(std::uint64_t max_cycles) override { return clock_until(max_cycles, true); }
   RunState state() const override { return static_cast<RunState>(top_->apu2mpu_run_state); }
   Fault fault() const override { return static_cast<Fault>(top_->apu2mpu_fault); }
   std::uint64_t cycle() const override { return cycle_; }
@@ -87,6 +68,9 @@ class RtlEngine::ModelOf final : public Model {
   bool unit_mismatch() const override { return top_->dbg_unit_mismatch; }
 
  private:
+  // run(), and with until_data_taken also up to the cycle in which the APU
+  // takes the handed-over data bank.
+  std::uint64_t clock_until(std::uint64_t max_cycles, bool until_data_taken);
   void clock();        // one rising edge and the falling edge after it
   void settle();       // re-evaluate after an MPU-side input change
   void dump(std::uint64_t ps);  // at simulated time ps, if in the window (times strictly increase)
@@ -357,10 +341,8 @@ void RtlEngine::ModelOf<Top, kTraced>::step(CycleRecord& rec) {
   clock();
 }
 
-// With until_data_taken, it also stops after the cycle in which the APU
-// takes the handed-over data bank (ApuEngine::run_until_data_taken).
 template <class Top, bool kTraced>
-std::uint64_t RtlEngine::ModelOf<Top, kTraced>::run(std::uint64_t max_cycles, bool until_data_taken) {
+std::uint64_t RtlEngine::ModelOf<Top, kTraced>::clock_until(std::uint64_t max_cycles, bool until_data_taken) {
   dump_requests();
   const Top& t = *top_;
   const bool traced = kTraced && fst_;
@@ -424,8 +406,10 @@ bool RtlEngine::program_ready() const { return model_->program_ready(); }
 bool RtlEngine::data_ready() const { return model_->data_ready(); }
 void RtlEngine::start(std::uint16_t pc) { model_->start(pc); }
 void RtlEngine::step(CycleRecord& rec) { model_->step(rec); }
-std::uint64_t RtlEngine::run(std::uint64_t max_cycles) { return model_->run(max_cycles, false); }
-std::uint64_t RtlEngine::run_until_data_taken(std::uint64_t max_cycles) { return model_->run(max_cycles, true); }
+std::uint64_t RtlEngine::run(std::uint64_t max_cycles) { return model_->run(max_cycles); }
+std::uint64_t RtlEngine::run_until_data_taken(std::uint64_t max_cycles) {
+  return model_->run_until_data_taken(max_cycles);
+}
 RunState RtlEngine::state() const { return model_->state(); }
 Fault RtlEngine::fault() const { return model_->fault(); }
 std::uint64_t RtlEngine::cycle() const { return model_->cycle(); }

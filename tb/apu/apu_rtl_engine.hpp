@@ -13,8 +13,9 @@
 // Two verilated models of the same RTL (tb/apu/CMakeLists.txt): with a
 // waveform path, Vapu_core, traced, every port of the core; without,
 // Vapu_fast (tb/apu/apu_fast.sv), untraced and without the ports only
-// waveforms read, a third less host time per cycle. The engine's code is one
-// template over the two (apu_rtl_engine.cpp).
+// waveforms read, about a quarter less host time per cycle (docs/platform.md
+// "Rendering benchmark"). The engine's code is one template over the two
+// (apu_rtl_engine.cpp).
 #pragma once
 
 #include <cstdint>
