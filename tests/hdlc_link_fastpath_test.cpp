@@ -219,3 +219,25 @@ TEST(HdlcFastPath, NetworkFaultFreeSameAsBitLevel) {
 TEST(HdlcFastPath, NetworkWithFaultsElsewhereSameAsBitLevel) {
   for (std::uint64_t seed : {4, 5, 6}) fast_equals_bitwise(seed, true);
 }
+
+// The line's wire time in 64 bits where the numerator fits, in 128 where
+// not: the same rounded-up quotient everywhere (timing_params.cpp).
+TEST(HdlcFastPath, WireTimeSameIn64And128Bits) {
+  TimingParams t;
+  std::mt19937_64 rng(13);
+  for (std::uint64_t rate : {4'000'000ull, 3'000'001ull, 1ull, 999'999'999'989ull}) {
+    t.hdlc_bit_rate_bps = rate;
+    auto exact = [rate](std::uint64_t bits) {
+      const unsigned __int128 num = static_cast<unsigned __int128>(bits) * 1'000'000'000'000ull;
+      return static_cast<Picos>((num + rate - 1) / rate);
+    };
+    const std::uint64_t edge = ~std::uint64_t{0} / 1'000'000'000'000ull;  // last count that fits
+    for (std::uint64_t bits : {std::uint64_t{0}, std::uint64_t{1}, std::uint64_t{88}, edge - 1, edge, edge + 1,
+                               edge * 3})
+      EXPECT_EQ(t.hdlc_bits_ps(bits), exact(bits)) << bits << " bits at " << rate;
+    for (int n = 0; n < 1000; ++n) {
+      const std::uint64_t bits = rng() % (2 * edge);
+      ASSERT_EQ(t.hdlc_bits_ps(bits), exact(bits)) << bits << " bits at " << rate;
+    }
+  }
+}
