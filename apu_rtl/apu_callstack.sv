@@ -1,7 +1,9 @@
 // APU call stack: 8 return addresses for CALL/RET. Overflow and underflow are
 // faults that the sequencer detects from `full`/`empty` before it pushes or
 // pops. `clear` (an MPU start) empties the stack in the cycle it is presented:
-// the word of that cycle already sees an empty stack.
+// the word of that cycle already sees an empty stack. `top2`, the entry
+// below the top, is what a RET issuing now leaves on top (the sequencer's
+// prediction for a RET in decode behind it).
 module apu_callstack #(
     parameter int DEPTH  = 8,
     parameter int ADDR_W = 10
@@ -13,6 +15,7 @@ module apu_callstack #(
     input  logic [ADDR_W-1:0] push_addr,
     input  logic              pop,
     output logic [ADDR_W-1:0] top,
+    output logic [ADDR_W-1:0] top2,
     output logic              empty,
     output logic              full
 );
@@ -23,10 +26,12 @@ module apu_callstack #(
   logic [SP_W-1:0]   sp_q;  // number of entries
   logic [SP_W-1:0]   sp;    // ... as this cycle sees it
 
-  logic [IX_W-1:0] top_ix;
-  assign sp     = clear ? '0 : sp_q;
-  assign top_ix = IX_W'(sp - SP_W'(1));
-  assign top    = stack_q[top_ix];
+  logic [IX_W-1:0] top_ix, top2_ix;
+  assign sp      = clear ? '0 : sp_q;
+  assign top_ix  = IX_W'(sp - SP_W'(1));
+  assign top2_ix = IX_W'(sp - SP_W'(2));
+  assign top     = stack_q[top_ix];
+  assign top2    = stack_q[top2_ix];
   assign empty  = (sp == '0);
   assign full   = (sp == SP_W'(DEPTH));
 

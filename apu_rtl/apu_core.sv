@@ -2,12 +2,19 @@
 // (paper section 2; docs/apu-isa.md is normative, docs/apu-rtl.md describes
 // this implementation).
 //
-// One 128-bit microword per cycle, or a stall. The program memory is a
-// synchronous RAM whose output register is the microword register: in each
-// cycle the sequencer decides the address of the next cycle's word (the
-// branch target, PC + 1, or the same word again when this one stalls) and
-// the RAM reads it at the edge, so a taken branch costs no cycle. The word
-// is decoded in its cycle; if no stall condition holds, all its slots issue.
+// One 128-bit microword per cycle, or a stall, through three stages:
+//   F  the program memory, a synchronous RAM: the sequencer presents an
+//      address, the word is on the RAM's output register in the next cycle;
+//   D  decode: the word on the RAM's output reads its F operands (with the
+//      write-first bypass of this cycle's writes, and the units' results of
+//      the next cycle) into the D/I registers (`i_word_q`, `opnd_q`), and
+//      the sequencer predicts the next address from it (JMP, CALL, RET
+//      exact; a conditional branch taken iff it jumps backward);
+//   I  issue: the word in the D/I registers takes a LD's word completing in
+//      this cycle (`byp_ld_q`, the one multiplexer in front of the units),
+//      reads the A registers, decides its stall and fault, issues all its
+//      slots and resolves its branch; a miss (or a SWAPP) squashes the word
+//      in D and fetches the right one: BRANCH_MISS cycles.
 // FP ops enter fp24_mul / fp24_add / fp24_func; their results come back at
 // t + L and are written (and bypassed) in that cycle (the function unit can
 // return a SIN/COS and a RECIP/SQRT in one cycle: two ports). A LD reads the
@@ -19,8 +26,8 @@
 // presented: the core forwards them combinationally, so that an MPU call made
 // between two clock cycles behaves exactly as the ISA page says (a SWAPD in
 // the next cycle already sees `data_ready`). A start(pc) fetches the word at
-// pc in that cycle (START_FETCH: the start's fetch cycle issues nothing); it
-// runs in the next.
+// pc in that cycle and decodes it in the next (START_FETCH = 2 cycles that
+// issue nothing); it issues in the one after.
 //
 // The dbg_* outputs report, before the clock edge, what the cycle commits in
 // the ISA page's terms (Clarification 2): results that become visible in this
@@ -100,6 +107,13 @@ module apu_core
   localparam int CALL_DEPTH = apu_pkg::CALL_DEPTH;
   localparam int FLAGS_W = apu_pkg::FLAGS_W;
   localparam int CC_W = apu_pkg::CC_W;
+  // The front end's timing as the table states it, for the ISS: this
+  // pipeline's structure gives it (F then D after a start: 2; a redirect
+  // refetches in F, the bubble is its D cycle: 1), so nothing reads them.
+  /* verilator lint_off UNUSEDPARAM */
+  localparam int START_FETCH = apu_pkg::START_FETCH;
+  localparam int BRANCH_MISS = apu_pkg::BRANCH_MISS;
+  /* verilator lint_on UNUSEDPARAM */
 
   // The package's enum types under local names, and the microword's struct
   // declared here (generated from the table): Icarus Verilog 11 crashes on
@@ -116,7 +130,7 @@ module apu_core
   // =========================================================================
   run_e               run_state_q;
   fault_e             fault_q;
-  logic [PC_W-1:0]    pc_q;
+  logic [PC_W-1:0]    pc_q;      // the word in I (in a bubble: the word to issue next)
   logic               psel_q, dsel_q;
   logic               program_ready_q, data_ready_q;
   logic [CC_W-1:0]    cc_q;
@@ -130,10 +144,10 @@ module apu_core
   // start (which completes a pending program hand-over: the MPU says so with
   // mpu2apu_start_new_program), then the hand-overs. So "hand over, start,
   // hand over the next program" before one cycle is expressible.
-  localparam int FW_W = $clog2(apu_pkg::START_FETCH + 1);
   logic          start_req;       // start(pc) while idle: this cycle fetches the word at pc
-  logic [FW_W-1:0] fetch_wait_q;  // a start's fetch cycles still to come after this one
-  logic          running;         // the sequencer works on a word this cycle
+  logic          run_q;           // the run state is RUNNING
+  logic          i_valid_q;       // a word is in I (not a bubble after a start, miss or SWAPP)
+  logic          running;         // the word in I is issued, stalled or faulted this cycle
   logic          program_ready;   // after this cycle's MPU requests
   logic          data_ready;
   logic          start_swaps;     // start completes a pending program hand-over
@@ -141,7 +155,8 @@ module apu_core
   logic [PC_W-1:0] pc;            // address of the word of this cycle
 
   assign start_req     = mpu2apu_start && (run_state_q != apu_pkg::RUN_RUNNING);
-  assign running       = (run_state_q == apu_pkg::RUN_RUNNING) && (fetch_wait_q == '0);
+  assign run_q         = (run_state_q == apu_pkg::RUN_RUNNING);
+  assign running       = run_q && i_valid_q;
   assign start_swaps   = start_req && mpu2apu_start_new_program;
   assign program_ready = (program_ready_q && !start_swaps) || mpu2apu_hand_over_program;
   assign data_ready    = data_ready_q || mpu2apu_hand_over_data;
@@ -149,12 +164,17 @@ module apu_core
   assign pc            = pc_q;
 
   // =========================================================================
-  // Fetch and decode
+  // F: fetch; D: decode and F register read; the D/I registers
   // =========================================================================
-  logic [WORD_W-1:0] fetch_word;   // the word at pc, read at the last edge
-  logic [PC_W-1:0]   fetch_addr;   // the word of the next cycle
+  logic [WORD_W-1:0] fetch_word;   // the word in D: the one at pc_d_q, read at the last edge
+  logic [PC_W-1:0]   fetch_addr;   // the word D will hold in the next cycle
   logic              fetch_bank;
-  microword_t        w;
+  logic [PC_W-1:0]   pc_d_q;       // the address of the word in D
+  /* verilator lint_off UNUSEDSIGNAL */
+  microword_t        wd;           // the word in D (D reads its operand and sequencer fields)
+  /* verilator lint_on UNUSEDSIGNAL */
+  logic [WORD_W-1:0] i_word_q;     // D/I: the word in I
+  microword_t        w;            // ... as fields
 
   // The sequencer only fetches; the MPU only writes program words, into the
   // bank the sequencer does not use (before a swap of this cycle).
@@ -169,7 +189,9 @@ module apu_core
       .mpu_wdata (mpu2apu_pmem_wdata)
   );
 
-  assign w = fetch_word;  // same width; Yosys 0.23 takes no cast to a package's type
+  // Same width; Yosys 0.23 takes no cast to a package's type.
+  assign wd = fetch_word;
+  assign w  = i_word_q;
 
   // A reserved slot takes part in no hazard (Clarification 6); FLOAT, FIX,
   // NEG and ABS read `a` only (Clarification 4).
@@ -221,12 +243,28 @@ module apu_core
     dst_lat[DS_I]      = LAT_W'(apu_pkg::LAT_LOAD);
   end
 
+  // The word in D reads the same seven ports (read whether or not the slot
+  // is enabled: the hazards are checked in I, on the word's src_en).
+  logic [FREG_AW-1:0] d_src_addr [N_RD];
+  always_comb begin
+    d_src_addr[RD_MA]    = wd.m_a;
+    d_src_addr[RD_MB]    = wd.m_b;
+    d_src_addr[RD_AA]    = wd.a_a;
+    d_src_addr[RD_AB]    = wd.a_b;
+    d_src_addr[RD_FA]    = wd.f_a;
+    d_src_addr[RD_ST]    = wd.d_f;
+    d_src_addr[RD_MOVFA] = wd.i_imm[5:0];
+  end
+
   // The same as flat vectors, entry i at [i*FREG_AW +: FREG_AW] (the port
-  // convention of apu_regfile and apu_interlock).
+  // convention of apu_regfile and apu_interlock): the I word's sources for
+  // the interlock, the D word's for the register file.
+  logic [N_RD*FREG_AW-1:0] src_addr_v;
   logic [N_RD*FREG_AW-1:0] f_rd_addr_v;
   logic [N_DS*FREG_AW-1:0] dst_addr_v;
   always_comb begin
-    for (int i = 0; i < N_RD; i++) f_rd_addr_v[i*FREG_AW +: FREG_AW] = src_addr[i];
+    for (int i = 0; i < N_RD; i++) src_addr_v[i*FREG_AW +: FREG_AW] = src_addr[i];
+    for (int i = 0; i < N_RD; i++) f_rd_addr_v[i*FREG_AW +: FREG_AW] = d_src_addr[i];
     for (int i = 0; i < N_DS; i++) dst_addr_v[i*FREG_AW +: FREG_AW] = dst_addr[i];
   end
 
@@ -247,6 +285,8 @@ module apu_core
   logic               issue;
   logic               mul_out_valid, add_out_valid, fu_out_valid, fu_trig_valid;
   logic [FP_W-1:0]    mul_out_result, add_out_result, fu_out_result, fu_trig_result;
+  // the results the units' out_* take at the next edge (the operand registers' bypass)
+  logic [FP_W-1:0]    mul_nx_result, add_nx_result, fu_nx_result, fu_trig_nx_result;
   logic [FLAGS_W-1:0] mul_out_flags, add_out_flags, fu_out_flags, fu_trig_flags;
 
   logic mul_issue, add_issue, fu_issue;
@@ -262,7 +302,8 @@ module apu_core
       .in_b      (fop[RD_MB]),
       .out_valid (mul_out_valid),
       .out_result(mul_out_result),
-      .out_flags (mul_out_flags)
+      .out_flags (mul_out_flags),
+      .out_next_result(mul_nx_result)
   );
 
   fp24_add u_add (
@@ -274,7 +315,8 @@ module apu_core
       .in_b      (fop[RD_AB]),
       .out_valid (add_out_valid),
       .out_result(add_out_result),
-      .out_flags (add_out_flags)
+      .out_flags (add_out_flags),
+      .out_next_result(add_nx_result)
   );
 
   fp24_func u_func (
@@ -289,7 +331,9 @@ module apu_core
       .out_flags      (fu_out_flags),
       .out_trig_valid (fu_trig_valid),
       .out_trig_result(fu_trig_result),
-      .out_trig_flags (fu_trig_flags)
+      .out_trig_flags (fu_trig_flags),
+      .out_next_result     (fu_nx_result),
+      .out_trig_next_result(fu_trig_nx_result)
   );
 
   logic               raw_hazard, waw_hazard, cmp_in_flight, pipes_busy;
@@ -301,6 +345,8 @@ module apu_core
   logic [2:0]         raw_unit, waw_unit;
   logic               mul_wb_valid, add_wb_valid, add_wb_cmp, fu_wb_valid, fu_trig_wb_valid;
   logic [FREG_AW-1:0] mul_wb_d, add_wb_d, fu_wb_d, fu_trig_wb_d;
+  logic               mul_nx_valid, add_nx_valid, fu_nx_valid, fu_trig_nx_valid;
+  logic [FREG_AW-1:0] mul_nx_d, add_nx_d, fu_nx_d, fu_trig_nx_d;
   // The destinations' latencies as a flat vector for the interlock.
   logic [N_DS*LAT_W-1:0]   dst_lat_v;
   always_comb begin
@@ -327,7 +373,7 @@ module apu_core
       .fu_issue        (fu_issue),
       .fu_d            (w.f_d),
       .fu_trig         (fu_trig),
-      .src_addr        (f_rd_addr_v),
+      .src_addr        (src_addr_v),
       .src_en          (src_en),
       .dst_addr        (dst_addr_v),
       .dst_en          (dst_en),
@@ -348,7 +394,15 @@ module apu_core
       .fu_wb_valid     (fu_wb_valid),
       .fu_wb_d         (fu_wb_d),
       .fu_trig_wb_valid(fu_trig_wb_valid),
-      .fu_trig_wb_d    (fu_trig_wb_d)
+      .fu_trig_wb_d    (fu_trig_wb_d),
+      .mul_nx_valid    (mul_nx_valid),
+      .mul_nx_d        (mul_nx_d),
+      .add_nx_valid    (add_nx_valid),
+      .add_nx_d        (add_nx_d),
+      .fu_nx_valid     (fu_nx_valid),
+      .fu_nx_d         (fu_nx_d),
+      .fu_trig_nx_valid(fu_trig_nx_valid),
+      .fu_trig_nx_d    (fu_trig_nx_d)
   );
 
   // =========================================================================
@@ -366,8 +420,12 @@ module apu_core
   assign stall_cc     = is_bcc && cmp_in_flight;
   assign stall_drain  = (w.s_op == apu_pkg::S_HALT) && pipes_busy;
 
+  // A cycle that runs with no word in I (a start's F and D cycles, the bubble
+  // after a branch miss or a SWAPP) is a `fetch` stall.
   always_comb begin
-    if (!running)             stall_reason = apu_pkg::STALL_NONE;
+    if (start_req)            stall_reason = apu_pkg::STALL_FETCH;
+    else if (!run_q)          stall_reason = apu_pkg::STALL_NONE;
+    else if (!i_valid_q)      stall_reason = apu_pkg::STALL_FETCH;
     else if (stall_bank)      stall_reason = apu_pkg::STALL_BANK;
     else if (stall_raw)       stall_reason = apu_pkg::STALL_RAW;
     else if (stall_waw)       stall_reason = apu_pkg::STALL_WAW;
@@ -412,10 +470,12 @@ module apu_core
   // =========================================================================
   // Register files and data memory
   // =========================================================================
-  // Completion writes (write-first: the bypass that makes t + L usable). A
-  // LD reads the synchronous data memory at the edge ending its issue cycle
-  // t: the word comes out of the RAM in t + 1 and is written (and bypassed)
-  // then, like a unit's result of latency 1 (LAT_LOAD).
+  // Completion writes. A LD reads the synchronous data memory at the edge
+  // ending its issue cycle t: the word comes out of the RAM in t + 1 and is
+  // written (and bypassed) then, like a unit's result of latency 1
+  // (LAT_LOAD). Every write port is write-first for the word in D (its
+  // operands are those of the state after this cycle's writes); the word in
+  // I takes the results completing in its cycle from the late bypass below.
   localparam int N_WB = 5;  // mul, add, func RECIP/SQRT, func SIN/COS, LD
   localparam int N_WI = 1;  // MOVAF/LIF
   logic               wb_en   [N_WB];
@@ -453,8 +513,55 @@ module apu_core
   logic [(N_WB+N_WI)*FREG_AW-1:0] f_wr_addr_v;
   logic [(N_WB+N_WI)*FP_W-1:0]    f_wr_data_v;
 
+  // The bypass of the results completing while a word is in I. A unit's
+  // result is known in the cycle before it completes (its last stage's logic,
+  // out_*next_result): the operand registers take it at the edge into that
+  // cycle, from the tags a stage before completion, for the word moving into
+  // I or held there. A LD's word comes out of the data memory only in its
+  // completion cycle: that one is a late 2:1 multiplexer in front of the
+  // units, selected by `byp_ld_q`, which D (or I, for a word held) set in the
+  // last cycle. So the units' inputs are one multiplexer from registers.
+  logic [FP_W-1:0]    opnd_q    [N_RD];  // D/I: the operands
+  logic [N_RD-1:0]    byp_ld_q;          // operand i takes this cycle's LD word
+  logic [N_RD-1:0]    byp_ld_next;
+  logic [FP_W-1:0]    opnd_next [N_RD];
+  logic [N_RD*N_WB-1:0] byp_hit;         // [i*N_WB + p]: operand i is port p's write of the next cycle
+  logic               advance;           // the word in D moves into I at this edge
+
   always_comb begin
-    for (int i = 0; i < N_RD; i++) fop[i] = f_rd_data_v[i*FP_W +: FP_W];
+    for (int i = 0; i < N_RD; i++) fop[i] = byp_ld_q[i] ? wb_data[4] : opnd_q[i];
+  end
+
+  // The F writes of the next cycle (nx_*): the units' tags a stage before
+  // completion with their results, and a LD issued now.
+  logic               nx_en     [N_WB];
+  logic [FREG_AW-1:0] nx_addr   [N_WB];
+  logic [FP_W-1:0]    nx_result [N_WB-1];  // the units' (a LD's word is not known yet)
+  always_comb begin
+    nx_en[0] = mul_nx_valid;      nx_addr[0] = mul_nx_d;      nx_result[0] = mul_nx_result;
+    nx_en[1] = add_nx_valid;      nx_addr[1] = add_nx_d;      nx_result[1] = add_nx_result;
+    nx_en[2] = fu_nx_valid;       nx_addr[2] = fu_nx_d;       nx_result[2] = fu_nx_result;
+    nx_en[3] = fu_trig_nx_valid;  nx_addr[3] = fu_trig_nx_d;  nx_result[3] = fu_trig_nx_result;
+    nx_en[4] = issue && is_ld;    nx_addr[4] = w.d_f;
+    for (int i = 0; i < N_RD; i++) begin
+      for (int p = 0; p < N_WB; p++) begin
+        byp_hit[i*N_WB + p] = nx_en[p] && (nx_addr[p] == (advance ? d_src_addr[i] : src_addr[i]));
+      end
+      // The register file's word for a word moving in (the state after this
+      // cycle's writes), the operand as this cycle's word has it for a word
+      // held; a unit's result of the next cycle over either.
+      opnd_next[i] = advance ? f_rd_data_v[i*FP_W +: FP_W] : fop[i];
+      for (int p = 0; p < N_WB - 1; p++) begin
+        if (byp_hit[i*N_WB + p]) opnd_next[i] = nx_result[p];
+      end
+      byp_ld_next[i] = byp_hit[i*N_WB + 4];
+    end
+  end
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) byp_ld_q <= '0;
+    else        byp_ld_q <= byp_ld_next;
+    for (int i = 0; i < N_RD; i++) opnd_q[i] <= opnd_next[i];
   end
   always_comb begin
     for (int i = 0; i < N_WB + N_WI; i++) begin
@@ -469,7 +576,7 @@ module apu_core
       .ADDR_W    (FREG_AW),
       .N_RD      (N_RD),
       .N_WR      (N_WB + N_WI),
-      .N_WR_FIRST(N_WB)
+      .N_WR_FIRST(N_WB + N_WI)
   ) u_fregs (
       .clk    (clk),
       .rst_n  (rst_n),
@@ -568,7 +675,7 @@ module apu_core
   logic [CC_W-1:0] cc_now;     // CC as a BCC/BNCC of this cycle sees it
   logic            cc_update;
   logic            taken;
-  logic [PC_W-1:0] cs_top;
+  logic [PC_W-1:0] cs_top, cs_top2;
 
   assign cc_update = add_wb_valid && add_wb_cmp;
   assign cc_now    = cc_update ? add_out_result[CC_W-1:0] : cc_q;
@@ -598,6 +705,7 @@ module apu_core
       .push_addr(pc + 1'b1),  // 1023 cannot CALL (pc_overflow)
       .pop      (issue && (w.s_op == apu_pkg::S_RET)),
       .top      (cs_top),
+      .top2     (cs_top2),
       .empty    (cs_empty),
       .full     (cs_full)
   );
@@ -607,19 +715,60 @@ module apu_core
   assign swapd     = issue && (w.s_op == apu_pkg::S_SWAPD);
   assign swapp     = issue && (w.s_op == apu_pkg::S_SWAPP);
 
-  // The next cycle's word: the start PC, the word after an issued one, else
-  // (stall, fault, not running) the same word again. A HALT's pc_next is its
-  // own address. A SWAPP fetches its target from the new bank.
-  assign fetch_addr = start_req ? mpu2apu_start_pc : issue ? pc_next[PC_W-1:0] : pc_q;
+  // Prediction in D: the address after the word in D, fetched while it moves
+  // into I. JMP and CALL go to their target; RET to the call stack's top as
+  // the word issuing in I now leaves it; a conditional branch to its target
+  // iff that is not after it (a loop's back edge); anything else to the next
+  // word (a SWAPP's is refetched from the new bank when it issues).
+  logic            d_cond, d_taken;
+  logic [PC_W-1:0] d_ret, pred_d;
+  always_comb begin
+    unique case (wd.s_op)
+      apu_pkg::S_BCC, apu_pkg::S_BNCC, apu_pkg::S_DBNZ,
+      apu_pkg::S_BZ, apu_pkg::S_BNZ, apu_pkg::S_BLTZ: d_cond = 1'b1;
+      default: d_cond = 1'b0;
+    endcase
+    d_taken = (wd.s_op == apu_pkg::S_JMP) || (wd.s_op == apu_pkg::S_CALL)
+           || (d_cond && (wd.s_target <= pc_d_q));
+    if (issue && (w.s_op == apu_pkg::S_CALL))     d_ret = pc + 1'b1;
+    else if (issue && (w.s_op == apu_pkg::S_RET)) d_ret = cs_top2;
+    else                                          d_ret = cs_top;
+    if (wd.s_op == apu_pkg::S_RET) pred_d = d_ret;
+    else if (d_taken)              pred_d = wd.s_target;
+    else                           pred_d = pc_d_q + 1'b1;
+  end
+
+  // Resolution in I: the word in D is the wrong one when an issued word
+  // continues elsewhere than D's address (a mispredicted branch, a HALT) or
+  // swaps the program bank; the right one is fetched now and issues
+  // BRANCH_MISS cycles later (one: F now, D next cycle). The table's
+  // BRANCH_MISS and START_FETCH (the ISS counts from the same numbers) are
+  // what this structure gives.
+  logic redirect;
+  assign redirect = issue && (swapp || (pc_next != {1'b0, pc_d_q}));
+  assign advance  = run_q && !start_req && !redirect && (!i_valid_q || issue);
+
+  // D's next word: the start PC, the right word after a redirect, the
+  // predicted one after a word that moves into I, else (I holds its word)
+  // the same word again. A SWAPP fetches its target from the new bank.
+  assign fetch_addr = start_req ? mpu2apu_start_pc
+                    : redirect  ? pc_next[PC_W-1:0]
+                    : advance   ? pred_d
+                    : pc_d_q;
   assign fetch_bank = psel ^ swapp;
 
-  // A start's first word is read at the edge ending its cycle; the table's
-  // START_FETCH (1; the ISS counts from the same number) says how many cycles
-  // the start waits for it. Any more than one re-read pc_q (not running).
+  // The D/I registers.
   always_ff @(posedge clk) begin
-    if (!rst_n)                   fetch_wait_q <= '0;
-    else if (start_req)           fetch_wait_q <= FW_W'(apu_pkg::START_FETCH - 1);
-    else if (fetch_wait_q != '0)  fetch_wait_q <= fetch_wait_q - 1'b1;
+    if (!rst_n) begin
+      i_valid_q <= 1'b0;
+      i_word_q  <= '0;
+      pc_d_q    <= '0;
+    end else begin
+      if (start_req || redirect) i_valid_q <= 1'b0;
+      else if (advance)          i_valid_q <= 1'b1;
+      if (advance) i_word_q <= fetch_word;
+      pc_d_q <= fetch_addr;
+    end
   end
 
   // FLAGS: sticky OR of the flags of every op completing this cycle.
@@ -659,7 +808,11 @@ module apu_core
           run_state_q <= (issue && (w.s_op == apu_pkg::S_HALT)) ? apu_pkg::RUN_HALTED : apu_pkg::RUN_RUNNING;
         end
       end
-      pc_q <= fetch_addr;
+      // The word in I, or after a redirect the word to issue next (a
+      // bubble's record shows it; a HALT's pc_next is its own address).
+      if (start_req)     pc_q <= mpu2apu_start_pc;
+      else if (redirect) pc_q <= pc_next[PC_W-1:0];
+      else if (advance)  pc_q <= pc_d_q;
       psel_q          <= psel ^ swapp;
       program_ready_q <= program_ready && !swapp;
       dsel_q          <= dsel_q ^ swapd;

@@ -9,7 +9,9 @@
 //     pipes of one latency never reorder writes, so back-to-back writes to one
 //     register by one unit do not stall;
 //   - a tag in its completion stage names the register the unit's out_*
-//     (out_trig_* for SIN/COS) write, and bypass, in this cycle.
+//     (out_trig_* for SIN/COS) write, and bypass, in this cycle; one a stage
+//     before it (`*_nx_*`) the register written in the next cycle, from which
+//     the core selects the late bypass of the word it latches into I.
 // The cause of a hazard is visible as signals: raw_src / waw_dst (which
 // source / destination slot of the word) and raw_unit / waw_unit (whose tag:
 // bit 0 multiplier, 1 adder unit, 2 function unit).
@@ -62,7 +64,16 @@ module apu_interlock #(
     output logic                    fu_wb_valid,       // RECIP, SQRT
     output logic [ADDR_W-1:0]       fu_wb_d,
     output logic                    fu_trig_wb_valid,  // SIN, COS
-    output logic [ADDR_W-1:0]       fu_trig_wb_d
+    output logic [ADDR_W-1:0]       fu_trig_wb_d,
+    // F writes of the next cycle (a CMP writes none)
+    output logic                    mul_nx_valid,
+    output logic [ADDR_W-1:0]       mul_nx_d,
+    output logic                    add_nx_valid,
+    output logic [ADDR_W-1:0]       add_nx_d,
+    output logic                    fu_nx_valid,
+    output logic [ADDR_W-1:0]       fu_nx_d,
+    output logic                    fu_trig_nx_valid,
+    output logic [ADDR_W-1:0]       fu_trig_nx_d
 );
   localparam int D_MUL = LAT_MUL;
   localparam int D_ADD = LAT_ADD;
@@ -87,9 +98,13 @@ module apu_interlock #(
       .fl_rem    (fl_rem[0 +: D_MUL*LAT_W]),
       .wb0_valid (mul_wb_valid),
       .wb0_d     (mul_wb_d),
+      .nx0_valid (mul_nx_valid),
+      .nx0_d     (mul_nx_d),
       /* verilator lint_off PINCONNECTEMPTY */
       .wb1_valid (),
-      .wb1_d     ()
+      .wb1_d     (),
+      .nx1_valid (),
+      .nx1_d     ()
       /* verilator lint_on PINCONNECTEMPTY */
   );
 
@@ -107,8 +122,12 @@ module apu_interlock #(
       .wb0_valid (add_wb_f),
       .wb0_d     (add_wb_d),
       .wb1_valid (add_wb_cmp),
+      .nx0_valid (add_nx_valid),
+      .nx0_d     (add_nx_d),
       /* verilator lint_off PINCONNECTEMPTY */
-      .wb1_d     ()
+      .wb1_d     (),
+      .nx1_valid (),
+      .nx1_d     ()
       /* verilator lint_on PINCONNECTEMPTY */
   );
   assign add_wb_valid = add_wb_f || add_wb_cmp;
@@ -127,7 +146,11 @@ module apu_interlock #(
       .wb0_valid (fu_wb_valid),
       .wb0_d     (fu_wb_d),
       .wb1_valid (fu_trig_wb_valid),
-      .wb1_d     (fu_trig_wb_d)
+      .wb1_d     (fu_trig_wb_d),
+      .nx0_valid (fu_nx_valid),
+      .nx0_d     (fu_nx_d),
+      .nx1_valid (fu_trig_nx_valid),
+      .nx1_d     (fu_trig_nx_d)
   );
 
   // ---- hazards of the word at PC ---------------------------------------------

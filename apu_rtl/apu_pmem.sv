@@ -6,11 +6,11 @@
 // or a block RAM (Yosys infers it): the MPU's write port and the
 // sequencer's read port. Both banks read `fetch_addr` at every clock edge,
 // and the word of `fetch_bank` is on `fetch_word` in the next cycle: the RAM's
-// output register is the microword register. A word the MPU writes at the
-// same edge to the address being fetched is fetched as written (the RAM's
-// read port is transparent): so in a swap cycle the fetch into the bank just
-// handed over sees the MPU's last write, as an MPU call made between two
-// cycles would.
+// output register holds the word in decode (apu_core's D stage). A word the
+// MPU writes at the same edge to the address being fetched is fetched as
+// written (the RAM's read port is transparent): so in a swap cycle the fetch
+// into the bank just handed over sees the MPU's last write, as an MPU call
+// made between two cycles would.
 module apu_pmem #(
     parameter int DATA_W = 128,
     parameter int ADDR_W = 10

@@ -1,12 +1,12 @@
 // APU register file, used twice by apu_core (docs/apu-rtl.md "Register
-// files"): the F registers (64 x 24, 7 read ports, 4 write-first completion
-// ports and 2 issue ports) and the A registers (16 x 16, 4 read ports, 2
-// issue ports, A0 hardwired to 0).
+// files"): the F registers (64 x 24, 7 read ports, read in decode; 6 write
+// ports, all write-first: 5 completions and MOVAF/LIF) and the A registers
+// (16 x 16, 4 read ports, read in issue; 2 issue ports, A0 hardwired to 0).
 //
 // Read ports are combinational. Write ports 0 .. N_WR_FIRST-1 are
 // write-first: a read of the register one of them writes in this cycle
-// already returns the new value (the F file's bypass that makes a unit's
-// result usable by the word issued in its completion cycle). The others are
+// already returns the new value (the F file's bypass: the word in decode
+// reads the state after this cycle's writes). The others are
 // written at the end of the cycle only (usable from the next word on). When
 // two ports write one register in one cycle, the higher-numbered port wins.
 // With ZERO_REG, register 0 reads 0 and drops writes. Synchronous reset

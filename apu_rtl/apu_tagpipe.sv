@@ -6,7 +6,9 @@
 //     (`rem`), so readers and some writers of its register wait;
 //   - completing in stage L: the unit's out_* carry its result, which the F
 //     register file writes (and bypasses) in this cycle;
-// and leaves the pipe after stage L. One issue per unit and cycle, so each
+// and leaves the pipe after stage L. In stage L - 1 it completes in the next
+// cycle (`nx*`: the core's late bypass selects its operands from that, so
+// L >= 2). One issue per unit and cycle, so each
 // stage holds at most one op. The unit's own pipeline must have the same
 // depths; apu_core compares the two every cycle (dbg_unit_mismatch).
 //
@@ -30,7 +32,11 @@ module apu_tagpipe #(
     output logic                      wb0_valid, // a kind-0 op completes
     output logic [ADDR_W-1:0]         wb0_d,
     output logic                      wb1_valid, // a kind-1 op completes
-    output logic [ADDR_W-1:0]         wb1_d
+    output logic [ADDR_W-1:0]         wb1_d,
+    output logic                      nx0_valid, // a kind-0 op completes in the next cycle
+    output logic [ADDR_W-1:0]         nx0_d,
+    output logic                      nx1_valid, // a kind-1 op completes in the next cycle
+    output logic [ADDR_W-1:0]         nx1_d
 );
   logic [DEPTH-1:0]        v;     // stage k holds an op (in flight or completing)
   logic [DEPTH*ADDR_W-1:0] d;
@@ -66,5 +72,9 @@ module apu_tagpipe #(
   assign wb0_d     = d[(LAT0-1)*ADDR_W +: ADDR_W];
   assign wb1_valid = v[LAT1-1] && kind[LAT1-1];
   assign wb1_d     = d[(LAT1-1)*ADDR_W +: ADDR_W];
+  assign nx0_valid = v[LAT0-2] && !kind[LAT0-2];
+  assign nx0_d     = d[(LAT0-2)*ADDR_W +: ADDR_W];
+  assign nx1_valid = v[LAT1-2] && kind[LAT1-2];
+  assign nx1_d     = d[(LAT1-2)*ADDR_W +: ADDR_W];
 
 endmodule

@@ -23,7 +23,8 @@ module fp24_add #(
     input  logic [EXP_W+FRAC_W:0]  in_b,
     output logic                   out_valid,
     output logic [EXP_W+FRAC_W:0]  out_result,
-    output logic [4:0]             out_flags
+    output logic [4:0]             out_flags,
+    output logic [EXP_W+FRAC_W:0]  out_next_result  // out_result of the next cycle, when an op completes then
 );
   localparam logic [2:0] OP_ADD = 3'd0, OP_SUB = 3'd1, OP_CMP = 3'd2, OP_FLOAT = 3'd3,
                          OP_FIX = 3'd4, OP_NEG = 3'd5, OP_ABS = 3'd6;
@@ -258,7 +259,8 @@ module fp24_add #(
       .special_flags(s1_direct ? s1_flags : 5'b00000),
       .sign(s1_sign), .exp(rnd_exp), .frac(n0[NORM_W-2-:FRAC_W]), .guard(n0[NORM_W-2-FRAC_W]),
       .sticky(n0[NORM_W-3-FRAC_W:0] != '0),
-      .out_valid(s2_valid), .out_result(s2_result), .out_flags(s2_flags));
+      .out_valid(s2_valid), .out_result(s2_result), .out_flags(s2_flags),
+      .next_result(out_next_result));
 
   assign out_valid  = s2_valid;
   assign out_result = s2_result;

@@ -29,16 +29,21 @@ module fp24_func #(
     output logic [4:0]            out_flags,
     output logic                  out_trig_valid,   // SIN, COS
     output logic [EXP_W+FRAC_W:0] out_trig_result,
-    output logic [4:0]            out_trig_flags
+    output logic [4:0]            out_trig_flags,
+    // out_result / out_trig_result of the next cycle, when an op completes then
+    output logic [EXP_W+FRAC_W:0] out_next_result,
+    output logic [EXP_W+FRAC_W:0] out_trig_next_result
 );
 
   fp24_func_rsq #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_rsq (
       .clk(clk), .rst_n(rst_n), .in_valid(in_valid && (in_op == fp24_func_pkg::OP_RECIP || in_op == fp24_func_pkg::OP_SQRT)),
       .in_sqrt(in_op == fp24_func_pkg::OP_SQRT), .in_a(in_a),
-      .out_valid(out_valid), .out_result(out_result), .out_flags(out_flags));
+      .out_valid(out_valid), .out_result(out_result), .out_flags(out_flags),
+      .out_next_result(out_next_result));
 
   fp24_func_trig #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_trig (
       .clk(clk), .rst_n(rst_n), .in_valid(in_valid && (in_op == fp24_func_pkg::OP_SIN || in_op == fp24_func_pkg::OP_COS)),
       .in_cos(in_op == fp24_func_pkg::OP_COS), .in_a(in_a),
-      .out_valid(out_trig_valid), .out_result(out_trig_result), .out_flags(out_trig_flags));
+      .out_valid(out_trig_valid), .out_result(out_trig_result), .out_flags(out_trig_flags),
+      .out_next_result(out_trig_next_result));
 endmodule

@@ -20,7 +20,8 @@ module fp24_func_rsq #(
     input  logic [EXP_W+FRAC_W:0] in_a,
     output logic                  out_valid,
     output logic [EXP_W+FRAC_W:0] out_result,
-    output logic [4:0]            out_flags
+    output logic [4:0]            out_flags,
+    output logic [EXP_W+FRAC_W:0] out_next_result  // out_result of the next cycle, when an op completes then
 );
   localparam int W      = EXP_W + FRAC_W + 1;
   localparam int SIG_W  = FRAC_W + 1;
@@ -210,4 +211,5 @@ module fp24_func_rsq #(
   assign out_valid  = s3_valid;
   assign out_result = s3_result;
   assign out_flags  = s3_flags;
+  assign out_next_result = result;
 endmodule

@@ -29,7 +29,8 @@ module fp24_func_trig #(
     input  logic [EXP_W+FRAC_W:0] in_a,
     output logic                  out_valid,
     output logic [EXP_W+FRAC_W:0] out_result,
-    output logic [4:0]            out_flags
+    output logic [4:0]            out_flags,
+    output logic [EXP_W+FRAC_W:0] out_next_result  // out_result of the next cycle, when an op completes then
 );
   localparam int W      = EXP_W + FRAC_W + 1;
   localparam int SEXP_W = EXP_W + 2;
@@ -364,7 +365,7 @@ module fp24_func_trig #(
     if (!rst_n) s9_valid <= 1'b0;
     else        s9_valid <= s8_valid;
     if (s8_valid) begin
-      s9_result <= s8_known ? s8_result : trig_result;
+      s9_result <= out_next_result;
       s9_flags  <= s8_known ? s8_flags : trig_flags;
     end
   end
@@ -372,4 +373,5 @@ module fp24_func_trig #(
   assign out_valid  = s9_valid;
   assign out_result = s9_result;
   assign out_flags  = s9_flags;
+  assign out_next_result = s8_known ? s8_result : trig_result;
 endmodule

@@ -17,7 +17,8 @@ module fp24_mul #(
     input  logic [EXP_W+FRAC_W:0]  in_b,
     output logic                   out_valid,
     output logic [EXP_W+FRAC_W:0]  out_result,
-    output logic [4:0]             out_flags
+    output logic [4:0]             out_flags,
+    output logic [EXP_W+FRAC_W:0]  out_next_result  // out_result of the next cycle, when an op completes then
 );
   localparam int SIG_W  = FRAC_W + 1;   // significand 1.f
   localparam int PROD_W = 2 * SIG_W;    // exact product, in [1, 4) scaled
@@ -94,7 +95,8 @@ module fp24_mul #(
       .special(special), .special_result(special_result), .special_flags(special_flags),
       .sign(s1_sign), .exp(rnd_exp), .frac(prod_n[PROD_W-2-:FRAC_W]), .guard(prod_n[PROD_W-2-FRAC_W]),
       .sticky(|prod_n[PROD_W-3-FRAC_W:0]),
-      .out_valid(s2_valid), .out_result(s2_result), .out_flags(s2_flags));
+      .out_valid(s2_valid), .out_result(s2_result), .out_flags(s2_flags),
+      .next_result(out_next_result));
 
   assign out_valid  = s2_valid;
   assign out_result = s2_result;

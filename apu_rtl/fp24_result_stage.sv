@@ -6,8 +6,10 @@
 // rounding; the unit decides which, and with which flags) or stage 1 left a
 // normalised nonzero value, which fp24_round rounds and packs. The result and
 // its flags are registered at the edge that ends the cycle and drive out_*
-// from then on (docs/fp24-rtl.md "Timing"). rst_n is synchronous and clears
-// only the valid bit.
+// from then on (docs/fp24-rtl.md "Timing"); `next_result` is that result
+// before the register (the APU core's operand registers take it a cycle
+// early: docs/apu-rtl.md "Register files and the bypass"). rst_n is
+// synchronous and clears only the valid bit.
 module fp24_result_stage #(
     parameter int EXP_W  = 7,
     parameter int FRAC_W = 16,
@@ -28,7 +30,8 @@ module fp24_result_stage #(
     input  logic                  sticky,
     output logic                  out_valid,
     output logic [EXP_W+FRAC_W:0] out_result,
-    output logic [4:0]            out_flags
+    output logic [4:0]            out_flags,
+    output logic [EXP_W+FRAC_W:0] next_result  // the result out_result takes at the edge ending this cycle
 );
   logic [EXP_W+FRAC_W:0] rnd_result;
   logic [4:0]            rnd_flags;
@@ -37,11 +40,13 @@ module fp24_result_stage #(
       .sign(sign), .exp(exp), .frac(frac), .guard(guard), .sticky(sticky),
       .result(rnd_result), .flags(rnd_flags));
 
+  assign next_result = special ? special_result : rnd_result;
+
   always_ff @(posedge clk) begin
     if (!rst_n) out_valid <= 1'b0;
     else        out_valid <= in_valid;
     if (in_valid) begin
-      out_result <= special ? special_result : rnd_result;
+      out_result <= next_result;
       out_flags  <= special ? special_flags : rnd_flags;
     end
   end

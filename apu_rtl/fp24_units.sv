@@ -1,7 +1,8 @@
 // All three FP24 units of one APU side by side, each with its own issue port.
 // This is the top for waveforms (fp24-run --engine rtl --trace) and for tests
 // that keep every unit busy at once; it adds no logic, so a unit's signals in
-// the trace (u_mul.s1_valid, ...) are exactly those of the unit itself.
+// the trace (u_mul.s1_valid, ...) are exactly those of the unit itself. (The
+// units' out_*next_result, for the APU core's operand registers, stay open.)
 module fp24_units (
     input  logic        clk,
     input  logic        rst_n,
@@ -41,7 +42,10 @@ module fp24_units (
       .in_b      (mul_in_b),
       .out_valid (mul_out_valid),
       .out_result(mul_out_result),
-      .out_flags (mul_out_flags)
+      .out_flags (mul_out_flags),
+      /* verilator lint_off PINCONNECTEMPTY */
+      .out_next_result()
+      /* verilator lint_on PINCONNECTEMPTY */
   );
 
   fp24_add u_add (
@@ -53,7 +57,10 @@ module fp24_units (
       .in_b      (add_in_b),
       .out_valid (add_out_valid),
       .out_result(add_out_result),
-      .out_flags (add_out_flags)
+      .out_flags (add_out_flags),
+      /* verilator lint_off PINCONNECTEMPTY */
+      .out_next_result()
+      /* verilator lint_on PINCONNECTEMPTY */
   );
 
   fp24_func u_func (
@@ -68,7 +75,11 @@ module fp24_units (
       .out_flags      (func_out_flags),
       .out_trig_valid (func_out_trig_valid),
       .out_trig_result(func_out_trig_result),
-      .out_trig_flags (func_out_trig_flags)
+      .out_trig_flags (func_out_trig_flags),
+      /* verilator lint_off PINCONNECTEMPTY */
+      .out_next_result(),
+      .out_trig_next_result()
+      /* verilator lint_on PINCONNECTEMPTY */
   );
 
 endmodule

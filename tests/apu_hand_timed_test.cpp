@@ -5,6 +5,8 @@
 // What only one engine has: tests/apu_iss_test.cpp, tests/apu_rtl_test.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +25,19 @@ using namespace apu_test;
 using K = Commit::Kind;
 using Commits = std::vector<Commit>;
 constexpr Stall N = Stall::None;
+
+// The bubble after a mispredicted branch or a SWAPP (docs/apu-isa.md
+// "Timing"): BRANCH_MISS cycles of `fetch` that issue nothing.
+const std::vector<Stall> kMiss(kBranchMissCycles, Stall::Fetch);
+const std::vector<int> kMissPcs(kBranchMissCycles, -1);
+
+// The concatenation of vectors (stall and pc sequences around a bubble).
+template <class T>
+std::vector<T> cat(std::initializer_list<std::vector<T>> parts) {
+  std::vector<T> out;
+  for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
+  return out;
+}
 
 enum class EngineKind { Iss, Rtl };
 
@@ -101,7 +116,7 @@ TEST_P(ApuHandTimed, RawAtDistanceOneStallsOneCycleAndHaltDrains) {
   EXPECT_EQ(r.recs[6].commits, (Commits{{K::FReg, 4, kThree}}));
   EXPECT_EQ(r.apu->freg(4), kThree);
   EXPECT_EQ(r.apu->flags(), 0);
-  EXPECT_EQ(r.apu->cycle(), 8u);  // the start's fetch cycle, then the 7 records
+  EXPECT_EQ(r.apu->cycle(), kStartFetchCycles + 7u);  // the start's fetch and decode, then the 7 records
   if (const Iss* s = iss(r.apu)) {
     EXPECT_EQ(s->pc(), 4);  // PC stays at the HALT
   }
@@ -221,12 +236,15 @@ TEST_P(ApuHandTimed, OneWordLoopOfAllUnitsRunsAtOneCycleAnIteration) {
   r.go();
   ASSERT_EQ(r.apu->state(), RunState::Halted);
   const auto st = r.stalls();
-  // 2 words, the loop, HALT draining the last RECIP (issued at 101, visible
-  // at 101 + kFuncLatency), HALT
-  const std::size_t drain = kFuncLatency - 1;
-  ASSERT_EQ(st.size(), 2u + 100u + drain + 1u);
+  // 2 words, the loop (its back edge predicted taken: no cycle), the exit's
+  // miss, HALT draining the last RECIP (issued at 101, visible at 101 +
+  // kFuncLatency: the bubble's cycles count towards that), HALT
+  const std::size_t miss = kBranchMissCycles;
+  const std::size_t drain = std::max<std::size_t>(kFuncLatency - 1, miss) - miss;
+  ASSERT_EQ(st.size(), 2u + 100u + miss + drain + 1u);
   for (std::size_t c = 0; c < 102; ++c) EXPECT_EQ(st[c], N) << "cycle " << c;
-  for (std::size_t c = 102; c < 102 + drain; ++c) EXPECT_EQ(st[c], Stall::Drain) << "cycle " << c;
+  for (std::size_t c = 102; c < 102 + miss; ++c) EXPECT_EQ(st[c], Stall::Fetch) << "cycle " << c;
+  for (std::size_t c = 102 + miss; c < 102 + miss + drain; ++c) EXPECT_EQ(st[c], Stall::Drain) << "cycle " << c;
   EXPECT_EQ(st.back(), N);
   EXPECT_EQ(r.apu->freg(7), 0x3E0000u);  // 1/2
   EXPECT_EQ(r.apu->areg(1), 0);
@@ -315,12 +333,13 @@ TEST_P(ApuHandTimed, LoadedWordIsVisibleBetweenStepsAndToTheNextWord) {
 }
 
 TEST_P(ApuHandTimed, BranchOnCcWaitsForTheCompare) {
-  // CMP 1 < 2 at 2 (CC visible at 4); BCC LT at 3 stalls once, is taken.
+  // CMP 1 < 2 at 2 (CC visible at 4); BCC LT at 3 stalls once, is taken:
+  // forward, so predicted not taken, a miss.
   auto r = program({lif(1, 0x3F00), lif(2, 0x4000), addu(AddOp::Cmp, 0, 1, 2), seq(SeqOp::Bcc, fp24::kLT, 6), halt(),
                     halt(), li(5, 7) | halt()});
   r.go(100, 1);
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, Stall::Cc, N, N, N}));
-  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, 2, -1, 3, 6, -1}));
+  EXPECT_EQ(r.stalls(), cat<Stall>({{N, N, N, Stall::Cc, N}, kMiss, {N, N}}));
+  EXPECT_EQ(r.pcs(), cat<int>({{0, 1, 2, -1, 3}, kMissPcs, {6, -1}}));
   EXPECT_EQ(r.recs[4].commits, (Commits{{K::Cc, 0, fp24::kLT}}));
   EXPECT_EQ(r.apu->cc(), fp24::kLT);
   EXPECT_EQ(r.apu->areg(5), 7);  // the HALT word's own LI lands the cycle after
@@ -336,10 +355,11 @@ TEST_P(ApuHandTimed, BnccNotTakenFallsThrough) {
 }
 
 TEST_P(ApuHandTimed, CompareWithNanSetsUnorderedAndInvalid) {
-  // LIF 0x7F80 is the canonical NaN. BNCC UN at 4 (CC visible at 4): not taken.
+  // LIF 0x7F80 is the canonical NaN. BNCC UN at 3 (CC visible at 3): not
+  // taken, but backward, so predicted taken: a miss before the HALT.
   auto r = program({lif(1, 0x7F80), addu(AddOp::Cmp, 0, 1, 1), nop(), seq(SeqOp::Bncc, fp24::kUN, 0), halt()});
   r.go();
-  EXPECT_EQ(r.stalls(), (std::vector<Stall>{N, N, N, N, N}));
+  EXPECT_EQ(r.stalls(), cat<Stall>({{N, N, N, N}, kMiss, {N}}));
   EXPECT_EQ(r.recs[3].commits, (Commits{{K::Cc, 0, fp24::kUN}, {K::Flags, 0, fp24::kNV}}));
   EXPECT_EQ(r.apu->flags(), fp24::kNV);
 }
@@ -353,9 +373,11 @@ TEST_P(ApuHandTimed, BankStallUntilTheMpuHandsOverData) {
   drv.hand_over_program();
   drv.start(0);
   CycleRecord rec;
-  apu.step(rec);  // the start's fetch cycle
-  EXPECT_FALSE(rec.issued);
-  EXPECT_EQ(rec.stall, N);
+  for (int i = 0; i < kStartFetchCycles; ++i) {  // the start's fetch and decode
+    apu.step(rec);
+    EXPECT_FALSE(rec.issued);
+    EXPECT_EQ(rec.stall, Stall::Fetch);
+  }
   for (int i = 0; i < 10; ++i) {
     apu.step(rec);
     EXPECT_EQ(rec.stall, Stall::Bank);
@@ -367,16 +389,16 @@ TEST_P(ApuHandTimed, BankStallUntilTheMpuHandsOverData) {
   }
   drv.hand_over_data();
   EXPECT_TRUE(apu.data_ready());
-  apu.step(rec);  // cycle 11: SWAPD issues
+  apu.step(rec);  // SWAPD issues
   EXPECT_TRUE(rec.issued);
   EXPECT_EQ(rec.dsel, 0);  // the select in effect during the swap cycle
   EXPECT_FALSE(apu.data_ready());
   if (const Iss* s = iss(&apu)) {
     EXPECT_EQ(s->dsel(), 1);
   }
-  apu.step(rec);  // cycle 12: LD F1 <- [5] of bank 1
+  apu.step(rec);  // LD F1 <- [5] of bank 1
   EXPECT_EQ(rec.dsel, 1);
-  apu.step(rec);  // cycle 13: ST [6] <- F1; F1 visible
+  apu.step(rec);  // ST [6] <- F1; F1 visible
   EXPECT_EQ(rec.commits, (Commits{{K::FReg, 1, 0x123456}, {K::Mem, 6, 0x123456}}));
   for (int i = 0; i < 3; ++i) {
     apu.step(rec);
@@ -389,7 +411,7 @@ TEST_P(ApuHandTimed, BankStallUntilTheMpuHandsOverData) {
   drv.hand_over_data();
   EXPECT_EQ(drv.run_until_done(100), 2u);  // SWAPD, HALT
   EXPECT_EQ(drv.read_results(5, 2), (std::vector<std::uint32_t>{0x123456, 0x123456}));
-  EXPECT_EQ(apu.cycle(), 1u + 10 + 3 + 3 + 2 + ApuDriver::kSettleCycles);  // the fetch first
+  EXPECT_EQ(apu.cycle(), kStartFetchCycles + 10u + 3 + 3 + 2 + ApuDriver::kSettleCycles);  // the start's cycles first
 }
 
 TEST_P(ApuHandTimed, ProgramBankHandOverContinuesInTheNewBank) {
@@ -413,7 +435,7 @@ TEST_P(ApuHandTimed, ProgramBankHandOverContinuesInTheNewBank) {
     EXPECT_EQ(s->pc(), 1);
   }
   drv.hand_over_program();
-  EXPECT_EQ(drv.run_until_done(100), 3u);  // SWAPP, LI, HALT
+  EXPECT_EQ(drv.run_until_done(100), 3u + kBranchMissCycles);  // SWAPP, the new bank's fetch, LI, HALT
   if (const Iss* s = iss(&apu)) {
     EXPECT_EQ(s->psel(), 0);
     EXPECT_EQ(s->pc(), 3);
@@ -425,7 +447,7 @@ TEST_P(ApuHandTimed, ProgramBankHandOverContinuesInTheNewBank) {
 TEST_P(ApuHandTimed, DbnzLoopRunsItsCount) {
   auto r = program({li(1, 5), ialu(IntOp::Addi, 2, 2, 0, 3) | seq(SeqOp::Dbnz, 1, 1), halt()});
   r.go(100, 1);
-  EXPECT_EQ(r.recs.size(), 8u);  // LI, 5 loop words, HALT, +1
+  EXPECT_EQ(r.recs.size(), 8u + kBranchMissCycles);  // LI, 5 loop words, the exit's miss, HALT, +1
   EXPECT_EQ(r.apu->areg(2), 15);
   EXPECT_EQ(r.apu->areg(1), 0);
   EXPECT_EQ(r.recs[2].commits, (Commits{{K::AReg, 1, 4}, {K::AReg, 2, 3}}));
@@ -433,15 +455,17 @@ TEST_P(ApuHandTimed, DbnzLoopRunsItsCount) {
 
 TEST_P(ApuHandTimed, DbnzLoopCommitsItsCounterEachCycle) {
   // 0 LI A1=3  1 ADDI A2+=1 ; DBNZ A1 -> 1  2 HALT. The loop word issues at
-  // 1, 2, 3 (A1: 2, 1, 0); HALT at 4; every A write is visible a cycle later.
+  // 1, 2, 3 (A1: 2, 1, 0; the back edge is predicted taken); the exit
+  // misses, HALT issues after the bubble; every A write is visible a cycle
+  // later.
   auto r = program({li(1, 3), ialu(IntOp::Addi, 2, 2, 0, 1) | seq(SeqOp::Dbnz, 1, 1), halt()});
   r.go(100, 1);
-  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 1, 1, 1, 2, -1}));
+  EXPECT_EQ(r.pcs(), cat<int>({{0, 1, 1, 1}, kMissPcs, {2, -1}}));
   EXPECT_EQ(r.recs[1].commits, (Commits{{K::AReg, 1, 3}}));
   EXPECT_EQ(r.recs[2].commits, (Commits{{K::AReg, 1, 2}, {K::AReg, 2, 1}}));
   EXPECT_EQ(r.recs[3].commits, (Commits{{K::AReg, 1, 1}, {K::AReg, 2, 2}}));
   EXPECT_EQ(r.recs[4].commits, (Commits{{K::AReg, 1, 0}, {K::AReg, 2, 3}}));
-  EXPECT_TRUE(r.recs[5].commits.empty());
+  for (std::size_t c = 5; c < r.recs.size(); ++c) EXPECT_TRUE(r.recs[c].commits.empty()) << c;
   EXPECT_EQ(r.apu->areg(2), 3);
 }
 
@@ -609,9 +633,13 @@ TEST_P(ApuHandTimed, PcPast1023Faults) {
     } catch (const ApuError& e) {
       EXPECT_EQ(e.kind(), ApuError::Kind::Fault);
       EXPECT_EQ(e.fault(), Fault::PcOverflow);
-      EXPECT_EQ(e.cycle(), 3u);  // 0 fetch, 1 JMP, 2 LI, 3 BZ
+      // the start's cycles, JMP (exact: no cycle), LI, BZ
+      const std::uint64_t at = kStartFetchCycles + 2u;
+      EXPECT_EQ(e.cycle(), at);
       EXPECT_EQ(e.pc(), 1023);
-      EXPECT_NE(std::string(e.what()).find("pc-overflow at cycle 3, pc 0x3ff"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("pc-overflow at cycle " + std::to_string(at) + ", pc 0x3ff"),
+                std::string::npos)
+          << e.what();
     }
   }
   // Cycle by cycle.
@@ -621,9 +649,9 @@ TEST_P(ApuHandTimed, PcPast1023Faults) {
   drv.hand_over_program();
   drv.start(0);
   CycleRecord rec;
-  for (int i = 0; i < 4; ++i) apu.step(rec);
+  for (int i = 0; i < kStartFetchCycles + 3; ++i) apu.step(rec);
   EXPECT_EQ(apu.fault(), Fault::PcOverflow);
-  EXPECT_EQ(rec.cycle, 3u);
+  EXPECT_EQ(rec.cycle, kStartFetchCycles + 2u);
   EXPECT_EQ(rec.pc, 1023);
   EXPECT_FALSE(rec.issued);
   // CALL at 1023 would push 1024: also a PC overflow; a taken branch is fine.
@@ -632,7 +660,7 @@ TEST_P(ApuHandTimed, PcPast1023Faults) {
   drv.load_program(prog);
   drv.hand_over_program();
   drv.start(1023);
-  apu.step(rec);  // fetch
+  for (int i = 0; i < kStartFetchCycles; ++i) apu.step(rec);  // fetch, decode
   EXPECT_EQ(apu.fault(), Fault::None);
   apu.step(rec);
   EXPECT_EQ(apu.fault(), Fault::PcOverflow);
@@ -640,7 +668,8 @@ TEST_P(ApuHandTimed, PcPast1023Faults) {
   drv.load_program(prog);
   drv.hand_over_program();
   drv.start(1023);
-  EXPECT_EQ(drv.run_until_done(10), 3u);  // fetch, BNZ, HALT
+  // fetch, decode, BNZ (taken backward to 5: predicted so, no cycle), HALT
+  EXPECT_EQ(drv.run_until_done(10), kStartFetchCycles + 2u);
 }
 
 TEST_P(ApuHandTimed, StartAfterHaltKeepsStateAndEmptiesTheStack) {
@@ -659,14 +688,15 @@ TEST_P(ApuHandTimed, StartAfterHaltKeepsStateAndEmptiesTheStack) {
   EXPECT_EQ(r.apu->fault(), Fault::None);
   r.go(2000);
   EXPECT_EQ(r.apu->fault(), Fault::PcOverflow);
-  EXPECT_EQ(r.recs.size() - before, 1021u);  // the fetch cycle, words 4..1023
+  EXPECT_EQ(r.recs.size() - before, kStartFetchCycles + 1020u);  // the start's cycles, words 4..1023
   EXPECT_EQ(r.recs.back().pc, 1023);
 }
 
-TEST_P(ApuHandTimed, StartFetchesOnceThenBranchesCostNoCycle) {
-  // LIF F1 | HALT at 0 (record 0, cycle 1). start(2): cycle 2 fetches word 2
-  // and records the LIF's write; then JMP 5, CALL 8, RET (to 6), HALT issue
-  // in consecutive cycles: the next word's address is known a cycle ahead.
+TEST_P(ApuHandTimed, StartFetchesAndDecodesThenJumpsCallsAndReturnsCostNoCycle) {
+  // LIF F1 | HALT at 0 (record 0, cycle S = kStartFetchCycles). start(2):
+  // cycles S + 1 .. 2S fetch and decode word 2, the first records the LIF's
+  // write; then JMP 5, CALL 8, RET (to 6), HALT issue in consecutive cycles:
+  // the sequencer fetches their targets while they are in decode.
   std::vector<MicroWord> prog(9);
   prog[0] = lif(1, 0x3F00) | halt();
   prog[2] = seq(SeqOp::Jmp, 0, 5);
@@ -677,19 +707,51 @@ TEST_P(ApuHandTimed, StartFetchesOnceThenBranchesCostNoCycle) {
   r.go();
   ASSERT_EQ(r.apu->state(), RunState::Halted);
   r.apu->start(2);
-  const CycleRecord& fetch = r.step();
-  EXPECT_EQ(fetch.cycle, 2u);
-  EXPECT_FALSE(fetch.issued);
-  EXPECT_EQ(fetch.stall, N);
-  EXPECT_EQ(fetch.pc, 2);
-  EXPECT_EQ(fetch.commits, (Commits{{K::FReg, 1, kOne}}));
-  EXPECT_EQ(r.apu->state(), RunState::Running);
+  for (int i = 0; i < kStartFetchCycles; ++i) {
+    const CycleRecord& fetch = r.step();
+    EXPECT_EQ(fetch.cycle, kStartFetchCycles + 1u + i);
+    EXPECT_FALSE(fetch.issued);
+    EXPECT_EQ(fetch.stall, Stall::Fetch);
+    EXPECT_EQ(fetch.pc, 2);
+    if (i == 0) {
+      EXPECT_EQ(fetch.commits, (Commits{{K::FReg, 1, kOne}}));
+    } else {
+      EXPECT_TRUE(fetch.commits.empty());
+    }
+    EXPECT_EQ(r.apu->state(), RunState::Running);
+  }
   const std::size_t first = r.recs.size();
   r.go();
   ASSERT_EQ(r.apu->state(), RunState::Halted);
   EXPECT_EQ(r.recs.size() - first, 4u);
-  EXPECT_EQ(r.pcs(), (std::vector<int>{0, -1, 2, 5, 8, 6}));
-  EXPECT_EQ(r.apu->cycle(), 7u);
+  EXPECT_EQ(r.pcs(), cat<int>({{0}, std::vector<int>(kStartFetchCycles, -1), {2, 5, 8, 6}}));
+  EXPECT_EQ(r.apu->cycle(), 2u * kStartFetchCycles + 5u);
+}
+
+TEST_P(ApuHandTimed, ConditionalBranchesArePredictedTakenBackward) {
+  // 0 LI A1=1  1 BNZ A1 -> 3: forward and taken, a miss  3 BZ A1 -> 5:
+  // forward, not taken, no cycle  4 BLTZ A1 -> 0: backward, not taken, a
+  // miss  5 HALT. A bubble's record names the word that issues after it.
+  auto r = program({li(1, 1), seq(SeqOp::Bnz, 1, 3), halt(), seq(SeqOp::Bz, 1, 5), seq(SeqOp::Bltz, 1, 0), halt()});
+  r.go();
+  ASSERT_EQ(r.apu->state(), RunState::Halted);
+  EXPECT_EQ(r.stalls(), cat<Stall>({{N, N}, kMiss, {N, N}, kMiss, {N}}));
+  EXPECT_EQ(r.pcs(), cat<int>({{0, 1}, kMissPcs, {3, 4}, kMissPcs, {5}}));
+  EXPECT_EQ(r.recs[2].pc, 3);
+  EXPECT_EQ(r.recs[3 + kBranchMissCycles + 1].pc, 5);
+  if (const Iss* s = iss(r.apu)) {
+    EXPECT_EQ(s->counters().stalls[int(Stall::Fetch)], std::uint64_t(kStartFetchCycles + 2 * kBranchMissCycles));
+  }
+}
+
+TEST_P(ApuHandTimed, ReturnsBackToBackArePredictedExactly) {
+  // 0 CALL 3  3 CALL 5  5 RET (to 4: the CALL in issue pushes it as the RET
+  // is decoded)  4 RET (to 1: the RET in issue pops 4 as it is decoded)
+  // 1 HALT: no cycle lost.
+  auto r = program({seq(SeqOp::Call, 0, 3), halt(), nop(), seq(SeqOp::Call, 0, 5), seq(SeqOp::Ret), seq(SeqOp::Ret)});
+  r.go();
+  ASSERT_EQ(r.apu->state(), RunState::Halted);
+  EXPECT_EQ(r.pcs(), (std::vector<int>{0, 3, 5, 4, 1}));
 }
 
 TEST_P(ApuHandTimed, CycleLimitThrowsWithTheStall) {
@@ -699,12 +761,12 @@ TEST_P(ApuHandTimed, CycleLimitThrowsWithTheStall) {
     FAIL() << "no limit";
   } catch (const ApuError& e) {
     EXPECT_EQ(e.kind(), ApuError::Kind::CycleLimit);
-    EXPECT_EQ(e.cycle(), 50u);  // cycle 0 was the program's fetch
+    EXPECT_EQ(e.cycle(), kStartFetchCycles - 1u + 50u);  // the program's start took cycles 0 .. S - 1
     EXPECT_NE(std::string(e.what()).find("stalled: bank"), std::string::npos) << e.what();
   }
   // To name the stall, the driver steps a copy of the ISS, but any other
   // engine itself, once (a stuck APU stays stuck).
-  EXPECT_EQ(r.apu->cycle(), iss(r.apu) ? 51u : 52u);
+  EXPECT_EQ(r.apu->cycle(), kStartFetchCycles + (iss(r.apu) ? 50u : 51u));
 }
 
 TEST_P(ApuHandTimed, MpuHookHandsOverDuringTheRun) {
@@ -715,9 +777,10 @@ TEST_P(ApuHandTimed, MpuHookHandsOverDuringTheRun) {
     ++calls;
     if (!drv.data_ready() && r.apu->cycle() >= 20) drv.hand_over_data();
   }, 10);
-  // Cycle 0 was the program's fetch: the run clocks 1..31, the hook at 10,
-  // 20 and 30, hand-overs at 20 and 30, HALT at 31.
-  EXPECT_EQ(cycles, 31u);
+  // Cycles 0 .. S - 1 were the program's start (S = kStartFetchCycles): the
+  // run clocks S..31, the hook at 10, 20 and 30, hand-overs at 20 and 30,
+  // HALT at 31.
+  EXPECT_EQ(cycles, 32u - kStartFetchCycles);
   EXPECT_EQ(calls, 3);
 }
 
@@ -767,7 +830,9 @@ TEST_P(ApuHandTimed, RunThroughABankStallAgreesWithSteps) {
     const Iss* f = iss(&fast);
     EXPECT_EQ(f->pc(), s->pc());
     EXPECT_EQ(f->counters().stalls[int(Stall::Bank)], s->counters().stalls[int(Stall::Bank)]);
-    EXPECT_EQ(f->counters().stalls[int(Stall::Bank)], 500u - 4);  // fetch, lif, mul|sqrt, add issue first
+    // the start's cycles, then lif, mul|sqrt, add issue first
+    EXPECT_EQ(f->counters().stalls[int(Stall::Bank)], 500u - kStartFetchCycles - 3);
+    EXPECT_EQ(f->counters().stalls[int(Stall::Fetch)], std::uint64_t(kStartFetchCycles));
     EXPECT_EQ(f->counters().issued, s->counters().issued);
   }
   // Hand the bank over: both finish alike.

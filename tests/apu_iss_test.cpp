@@ -91,24 +91,29 @@ TEST(ApuProfile, CountsUnitsStallsAndHotWords) {
   drv.start(0);
   Profile prof([&drv](int bank, std::uint16_t pc) { return drv.program_word(bank, pc); });
   drv.set_observer([&](const CycleRecord& r) { prof.add(r); });
-  // fetch at 0 (not profiled), raw at 4, drain at 6 (RECIP done at 6, ADD at 7)
-  EXPECT_EQ(drv.run_until_done(100), 8u);
-  EXPECT_EQ(prof.cycles(), 7u);
+  // the start's fetch and decode (`fetch` stalls of word 0), then raw at 3
+  // and drain at 4 (RECIP done at 4 + S, ADD at 5 + S; S = kStartFetchCycles)
+  const std::uint64_t n = kStartFetchCycles + 7u;
+  EXPECT_EQ(drv.run_until_done(100), n);
+  EXPECT_EQ(prof.cycles(), n);
   EXPECT_EQ(prof.issued(), 5u);
   EXPECT_EQ(prof.unit_ops(0), 1u);
   EXPECT_EQ(prof.unit_ops(1), 1u);
   EXPECT_EQ(prof.unit_ops(2), 1u);
   EXPECT_EQ(prof.stalls(Stall::Raw), 1u);
   EXPECT_EQ(prof.stalls(Stall::Drain), 1u);
+  EXPECT_EQ(prof.stalls(Stall::Fetch), std::uint64_t(kStartFetchCycles));
+  EXPECT_EQ(prof.at(1, 0).stalls[int(Stall::Fetch)], std::uint64_t(kStartFetchCycles));
   EXPECT_EQ(prof.at(1, 3).stalls[int(Stall::Raw)], 1u);
   EXPECT_EQ(prof.at(1, 4).stalls[int(Stall::Drain)], 1u);
-  EXPECT_NEAR(prof.utilization(0), 1.0 / 7, 1e-12);
-  EXPECT_NEAR(prof.mflops(), 3.0 / 7 * 4, 1e-9);
-  const std::string rep = prof.report(1);
-  EXPECT_NE(rep.find("APU profile: 7 cycles"), std::string::npos) << rep;
-  EXPECT_NE(rep.find("raw          1           14.3%"), std::string::npos) << rep;
-  EXPECT_NE(rep.find("1    0x003 1         50.0% 1"), std::string::npos) << rep;
-  EXPECT_EQ(rep.find("0x004 1"), std::string::npos) << rep;  // --top 1
+  EXPECT_NEAR(prof.utilization(0), 1.0 / n, 1e-12);
+  EXPECT_NEAR(prof.mflops(), 3.0 / n * 4, 1e-9);
+  const std::string rep = prof.report(2);
+  EXPECT_NE(rep.find("APU profile: " + std::to_string(n) + " cycles"), std::string::npos) << rep;
+  EXPECT_NE(rep.find("raw          1 "), std::string::npos) << rep;
+  EXPECT_NE(rep.find("fetch        " + std::to_string(kStartFetchCycles) + " "), std::string::npos) << rep;
+  EXPECT_NE(rep.find("1    0x003 1  "), std::string::npos) << rep;
+  EXPECT_EQ(rep.find("0x004 1"), std::string::npos) << rep;  // --top 2: words 0 and 3
 }
 
 TEST(ApuDriverFiles, DataFileAddressesAndErrors) {

@@ -53,7 +53,8 @@ TEST(ApuRtlBackdoor, ProgramBanksMatchTheMpuPortAndTheFetch) {
     jmp.s = {SeqOp::Jmp, 0, 679};
     core.backdoor.write_program(bank, 40, jmp.encode());
     core.backdoor.write_program(bank, 679, halt().encode());
-    EXPECT_EQ(core.run_handed_over(40, false), 3) << name << ": the backdoor's words did not run";  // fetch, JMP, HALT
+    // the start's fetch and decode, JMP, HALT
+    EXPECT_EQ(core.run_handed_over(40, false), kStartFetchCycles + 2) << name << ": the backdoor's words did not run";
     EXPECT_EQ(core.top.apu2mpu_run_state, static_cast<int>(RunState::Halted)) << name;
     EXPECT_EQ(core.top.dbg_pc, 679) << name;
   }
@@ -90,7 +91,7 @@ TEST(ApuRtlBackdoor, RegisterArraysHoldWhatTheProgramWrote) {
   const MicroWord words[] = {int_op(IntOp::Lif, 1, 0x3fc0), int_op(IntOp::Lif, 62, 0xc123),
                              int_op(IntOp::Li, 1, 0x0101), int_op(IntOp::Li, 15, 0xfedc), halt()};
   for (std::uint16_t i = 0; i < 5; ++i) core.write_program(i, words[i].encode());
-  EXPECT_EQ(core.run_handed_over(0, false), 6);  // the start's fetch cycle, 5 words
+  EXPECT_EQ(core.run_handed_over(0, false), kStartFetchCycles + 5);  // the start's cycles, 5 words
   const char* f = RtlBackdoor::signal_name(Signal::FRegs);
   const char* a = RtlBackdoor::signal_name(Signal::ARegs);
   EXPECT_EQ(core.backdoor.freg_array(1), 0x3fc000u) << f;

@@ -37,16 +37,20 @@ TEST(ApuRtl, MpuPortsOfTheCoreFillAndReadTheIdleBanks) {
   top.mpu2apu_start_pc = 0;
   top.eval();
   EXPECT_EQ(top.apu2mpu_psel, 1);
-  EXPECT_FALSE(top.dbg_issue);  // the start's cycle fetches word 0
-  EXPECT_EQ(top.dbg_pc, 0);
-  core.edge();
+  // The start's cycles fetch word 0, then decode it (`fetch`).
+  for (int i = 0; i < kStartFetchCycles; ++i) {
+    EXPECT_FALSE(top.dbg_issue);
+    EXPECT_EQ(top.dbg_stall_reason, static_cast<int>(Stall::Fetch));
+    EXPECT_EQ(top.dbg_pc, 0);
+    core.edge();
+  }
   EXPECT_TRUE(top.dbg_issue);  // the SWAPD issues in the next
   core.edge();
   EXPECT_EQ(top.apu2mpu_dsel, 1);
   core.write_data(7, 0x123456);  // the MPU owns bank 0 now: the APU does not see this
-  // (that port write was APU cycle 2, the LD.) The second SWAPD (cycle 6)
+  // (that port write was the LD's cycle.) The second SWAPD (5 words on)
   // waits for a hand-over; presented in that cycle, it lets it issue there.
-  int cycles = 3, bank_stalls = 0;
+  int cycles = kStartFetchCycles + 2, bank_stalls = 0;
   for (; cycles < 50 && top.apu2mpu_run_state == 1; ++cycles) {
     if (top.dbg_stall_reason == static_cast<int>(Stall::Bank)) {
       ++bank_stalls;
@@ -58,7 +62,7 @@ TEST(ApuRtl, MpuPortsOfTheCoreFillAndReadTheIdleBanks) {
     core.edge();
   }
   EXPECT_EQ(top.apu2mpu_run_state, 2);  // halted
-  EXPECT_EQ(cycles, 8);                 // the fetch, 7 words, no stall left
+  EXPECT_EQ(cycles, kStartFetchCycles + 7);  // the start's cycles, 7 words, no stall left
   EXPECT_EQ(bank_stalls, 1);
   EXPECT_EQ(top.apu2mpu_dsel, 0);
   EXPECT_EQ(core.read_data(8), 0x410000u);  // 2 * 2, stored in bank 1, handed back
@@ -93,14 +97,20 @@ TEST(ApuRtl, StallCauseSignalsNameTheSlotAndTheUnit) {
     core.edge();
   }
   const int R = static_cast<int>(Stall::Raw), W = static_cast<int>(Stall::Waw), D = static_cast<int>(Stall::Drain);
-  // cycles: 0 fetch, 1 LIF, 2 MUL, 3 raw, 4 ADD, 5 SIN (lands at 14),
-  // 6..12 waw (the MUL would land at c + 2 <= 14), 13 ST|MUL, 14 drain, 15 HALT
+  const int F = static_cast<int>(Stall::Fetch);
+  // The start's cycles (kStartFetchCycles of `fetch`), then by the first
+  // word's cycle: 0 LIF, 1 MUL, 2 raw, 3 ADD, 4 SIN (lands at 13), 5..11 waw
+  // (the MUL would land at c + 2 <= 13), 12 ST|MUL, 13 drain, 14 HALT.
+  const auto from_start = [](int start, std::vector<int> words) {
+    words.insert(words.begin(), kStartFetchCycles, start);
+    return words;
+  };
   constexpr int kD = 1 << 0, kU = 1 << 2;
-  EXPECT_EQ(stall, (std::vector<int>{0, 0, 0, R, 0, 0, W, W, W, W, W, W, W, 0, D, 0}));
-  EXPECT_EQ(raw_src, (std::vector<int>{0, 0, 0, 1 << 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}));
-  EXPECT_EQ(raw_unit, (std::vector<int>{0, 0, 0, 1 << 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}));
-  EXPECT_EQ(waw_dst, (std::vector<int>{0, 0, 0, 0, 0, 0, kD, kD, kD, kD, kD, kD, kD, 0, 0, 0}));
-  EXPECT_EQ(waw_unit, (std::vector<int>{0, 0, 0, 0, 0, 0, kU, kU, kU, kU, kU, kU, kU, 0, 0, 0}));
+  EXPECT_EQ(stall, from_start(F, {0, 0, R, 0, 0, W, W, W, W, W, W, W, 0, D, 0}));
+  EXPECT_EQ(raw_src, from_start(0, {0, 0, 1 << 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(raw_unit, from_start(0, {0, 0, 1 << 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(waw_dst, from_start(0, {0, 0, 0, 0, 0, kD, kD, kD, kD, kD, kD, kD, 0, 0, 0}));
+  EXPECT_EQ(waw_unit, from_start(0, {0, 0, 0, 0, 0, kU, kU, kU, kU, kU, kU, kU, 0, 0, 0}));
   EXPECT_FALSE(top.dbg_unit_mismatch);
 }
 

@@ -83,13 +83,14 @@ struct EngineProgram {
     drv->load_program(encode(prog));
     drv->hand_over_program();
     drv->start(0);
-    // The start's fetch cycle(s) (docs/apu-isa.md "Timing"): the program RAM
-    // reads the word at 0; nothing issues. recs[0] is the first word's cycle.
+    // The start's fetch and decode cycles (docs/apu-isa.md "Timing"): the
+    // program RAM reads the word at 0, then it is decoded; nothing issues
+    // (`fetch`). recs[0] is the first word's cycle.
     for (int i = 0; i < kStartFetchCycles; ++i) {
       CycleRecord rec;
       apu->step(rec);
       EXPECT_FALSE(rec.issued);
-      EXPECT_EQ(rec.stall, Stall::None);
+      EXPECT_EQ(rec.stall, Stall::Fetch);
       EXPECT_EQ(rec.pc, 0);
     }
   }

@@ -134,13 +134,23 @@ def generic(gen, top, work):
 UNIT_INSTANCES = ("u_mul", "u_add", "u_func")
 
 
+# The core's D/I registers: a path into them is the decode stage (the word on
+# the program memory's output, the F register read with its write-first
+# bypass and the units' results of the next cycle, the LD bypass's select),
+# docs/apu-rtl.md "One cycle".
+DECODE_REGISTERS = ("i_word_q", "opnd_q", "byp_ld_q")
+
+
 def stage_of(path):
-    """The pipeline stage a register-to-register path belongs to: "issue"
-    (the word's cycle: fetch register, decode, interlock, register-file read
-    and bypass, a unit's stage-1 logic, the sequencer, the writes) or a
-    unit's own stage, "u_add s2" (named by the register it ends in)."""
+    """The pipeline stage a register-to-register path belongs to: "decode"
+    (into the D/I registers), "issue" (the word's cycle in I: interlock, the
+    late bypass, a unit's stage-1 logic, the sequencer up to the program
+    memory's address, the writes) or a unit's own stage, "u_add s2" (named
+    by the register it ends in)."""
     to, src = path["to"], path["from"]
     top = to.split(".", 1)[0]
+    if re.sub(r"\[.*$", "", top) in DECODE_REGISTERS:
+        return "decode"
     if top not in UNIT_INSTANCES or not src.startswith(top + "."):
         return "issue"
     inst, leaf = to.rsplit(".", 1)
@@ -152,7 +162,7 @@ def stage_of(path):
 
 def stages_by_name(paths):
     """Per stage_of() class: the deepest path, and the registers it ends in
-    with their own deepest paths (deepest first), in the order issue, then
+    with their own deepest paths (deepest first), in the order decode, issue, then
     the units' stages."""
     out = {}
     for p in paths:  # deepest first
@@ -160,8 +170,8 @@ def stages_by_name(paths):
         e["ends"].append({"to": p["to"], "depth": p["depth"], "from": p["from"]})
 
     def key(e):
-        if e["stage"] == "issue":
-            return (0, "", 0)
+        if e["stage"] in ("decode", "issue"):
+            return (0, e["stage"], 0)
         inst, _, st = e["stage"].partition(" ")
         return (1, inst, int(st[1:]) if re.fullmatch(r"s\d+", st) else 99)
     return sorted(out.values(), key=key)
@@ -236,7 +246,7 @@ def text_report(units):
                 p = e["path"]
                 way = " > ".join([p["from"]] + [f"{n} ({lv})" for n, lv in p["through"]] + [p["to"]])
                 out.append(f"{'':<12}{e['stage']:<22} {e['depth']:>3}  {way}")
-                if e["stage"] == "issue":
+                if e["stage"] in ("decode", "issue"):
                     for end in e["ends"][1:8]:
                         out.append(f"{'':<12}{'':<22} {end['depth']:>3}  ... > {end['to']} (from {end['from']})")
         for m in g["memories"]:

@@ -23,7 +23,7 @@ file(READ ${WORK}/good/apu_isa.hpp hpp)
 file(READ ${WORK}/good/apu_pkg.sv sv)
 file(READ ${WORK}/good/apu_microword.svh svh)
 foreach(expected "constexpr int kTrigLatency = 9;" "case FuncOp::Sin: return kTrigLatency;"
-                 "visit(Field{118, 10}, w.s.target);" "constexpr int kStallKinds = 6;")
+                 "visit(Field{118, 10}, w.s.target);" "constexpr int kStallKinds = 7;")
   string(FIND "${hpp}" "${expected}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "apu_isa.hpp lacks: ${expected}")

@@ -53,18 +53,22 @@ void ApuDriver::hand_over_program() {
 }
 
 void ApuDriver::load_data(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
-  access();
-  if (addr + n > static_cast<std::size_t>(kDataWords))
+  if (addr + n > static_cast<std::size_t>(kDataWords)) {
+    access();
     fail(ApuError::Kind::Usage, "load_data: " + std::to_string(n) + " words at " + std::to_string(addr) +
                                     " do not fit the 4096-word bank");
+  }
+  access_bank();
   engine_.write_data_block(addr, values, n);
 }
 
 std::vector<std::uint32_t> ApuDriver::read_results(std::uint16_t addr, std::size_t n) const {
-  access();
-  if (addr + n > static_cast<std::size_t>(kDataWords))
+  if (addr + n > static_cast<std::size_t>(kDataWords)) {
+    access();
     fail(ApuError::Kind::Usage, "read_results: " + std::to_string(n) + " words at " + std::to_string(addr) +
                                     " do not fit the 4096-word bank");
+  }
+  access_bank();
   std::vector<std::uint32_t> out(n);
   engine_.read_data_block(addr, out.data(), n);
   return out;
@@ -77,6 +81,12 @@ void ApuDriver::start(std::uint16_t pc) {
   engine_.start(pc);
   pc_ = pc % kProgramWords;
   last_stall_ = Stall::None;
+}
+
+void ApuDriver::access_bank() const {
+  if (!data_pending_ && bank_hook_) return bank_hook_();
+  access();
+  data_pending_ = engine_.data_ready();  // a hand-over not yet taken
 }
 
 std::uint64_t ApuDriver::clock(std::uint64_t cycles, bool until_data_taken) {
@@ -121,10 +131,7 @@ std::uint64_t ApuDriver::run_until_data_taken(std::uint64_t cycles) {
 
 std::uint64_t ApuDriver::run_until_done(std::uint64_t max_cycles, const std::function<void()>& mpu,
                                         std::uint64_t mpu_interval) {
-  access();
-  if (engine_.state() != RunState::Running)
-    fail(ApuError::Kind::NotRunning, "run_until_done: the APU was not started");
-  probe_cycle_ = 0;
+  begin_run();
   if (mpu_interval == 0) mpu_interval = 1;
   std::uint64_t done = 0;
   while (engine_.state() == RunState::Running && done < max_cycles) {
@@ -135,6 +142,17 @@ std::uint64_t ApuDriver::run_until_done(std::uint64_t max_cycles, const std::fun
     }
     done += clock(chunk);
   }
+  return end_run(done, max_cycles);
+}
+
+void ApuDriver::begin_run() {
+  access();
+  if (engine_.state() != RunState::Running)
+    fail(ApuError::Kind::NotRunning, "run_until_done: the APU was not started");
+  probe_cycle_ = 0;
+}
+
+std::uint64_t ApuDriver::end_run(std::uint64_t done, std::uint64_t max_cycles) {
   if (!pc_known_ && engine_.state() != RunState::Halted) {
     // The fast path keeps no records. Which word faulted or is stuck, and
     // on what: the ISS answers through a copy clocked once; any other engine

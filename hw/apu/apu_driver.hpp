@@ -53,6 +53,7 @@ class ApuDriver {
   void hand_over_program();
   void hand_over_data() {
     access();
+    data_pending_ = true;
     engine_.hand_over_data();
   }
   bool program_ready() const {
@@ -75,6 +76,12 @@ class ApuDriver {
   // (hand over the next block when data_ready() clears, ...).
   std::uint64_t run_until_done(std::uint64_t max_cycles, const std::function<void()>& mpu = {},
                                std::uint64_t mpu_interval = 1);
+  // run_until_done() in pieces, for a caller that clocks the run itself:
+  // begin_run() (throws if the APU is not running), run() while it runs and
+  // `done` (the cycles so far) < max_cycles, then end_run(done, max_cycles),
+  // which returns or throws as run_until_done() would.
+  void begin_run();
+  std::uint64_t end_run(std::uint64_t done, std::uint64_t max_cycles);
 
   // Clocks at most `cycles` cycles, stopping early when the APU stops
   // running; returns the cycles clocked. No exception: look at state().
@@ -120,11 +127,17 @@ class ApuDriver {
   // APU lazily, on other threads (hw/nc/apu_pool.hpp), and brings it up to
   // date here, before the MPU touches it.
   void set_access_hook(std::function<void()> hook) { hook_ = std::move(hook); }
+  // Called instead before load_data() and read_results() while no data
+  // hand-over is pending: the APU cannot swap the data banks in the cycles
+  // the NC owes it, so the MPU's bank is the same whenever they are clocked.
+  // Without it, those calls call the access hook.
+  void set_bank_hook(std::function<void()> hook) { bank_hook_ = std::move(hook); }
 
  private:
   void access() const {
     if (hook_) hook_();
   }
+  void access_bank() const;  // before a call on the MPU's data bank alone
   // Stops when not running (and, until_data_taken, once data_ready() clears).
   std::uint64_t clock(std::uint64_t cycles, bool until_data_taken = false);
   [[noreturn]] void fail(ApuError::Kind kind, const std::string& why) const;
@@ -132,7 +145,11 @@ class ApuDriver {
   ApuEngine& engine_;
   Iss* iss_;  // the ISS when engine_ is one: its bank and pc without records
   std::function<void(const CycleRecord&)> observer_;
-  std::function<void()> hook_;
+  std::function<void()> hook_, bank_hook_;
+  // A data hand-over the APU may not have taken yet (false only once the
+  // driver has seen data_ready() clear, the APU up to date; written by the
+  // MPU's calls alone, never by a clocking thread).
+  mutable bool data_pending_ = true;
   std::function<void(int, const std::vector<Encoded>&)> on_hand_over_;
   CycleRecord rec_;
   int psel_ = 0;  // the APU's program bank as seen by the driver

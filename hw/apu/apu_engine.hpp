@@ -54,6 +54,11 @@ class ApuEngine {
   virtual void read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const {
     for (std::size_t i = 0; i < n; ++i) out[i] = read_data(static_cast<std::uint16_t>(addr + i));
   }
+  // Whether the *_data calls above may run on one thread while another
+  // clocks the engine, no data hand-over pending (the APU cannot swap the
+  // banks then, and touches its own bank only): the ISS's banks are plain
+  // arrays; a verilated model is one object to a thread.
+  virtual bool mpu_bank_while_running() const { return false; }
   virtual void hand_over_program() = 0;
   virtual void hand_over_data() = 0;
   virtual bool program_ready() const = 0;

@@ -74,10 +74,14 @@ DecodedWord DecodedWord::from(const Encoded& e) {
     default: break;
   }
   switch (w.s.op) {
-    case SeqOp::Swapd:
-    case SeqOp::Swapp: d.kind |= kSwap; break;
+    case SeqOp::Swapd: d.kind |= kSwap; break;
+    case SeqOp::Swapp: d.kind |= kSwap | kRefetch; break;
     case SeqOp::Bcc:
-    case SeqOp::Bncc: d.kind |= kCcBranch; break;
+    case SeqOp::Bncc: d.kind |= kCcBranch | kRefetch; break;
+    case SeqOp::Dbnz:
+    case SeqOp::Bz:
+    case SeqOp::Bnz:
+    case SeqOp::Bltz: d.kind |= kRefetch; break;
     case SeqOp::Halt: d.kind |= kHalt; break;
     case SeqOp::Call:
     case SeqOp::Ret: d.kind |= kStack; break;
@@ -264,6 +268,17 @@ MC1_HOT std::uint32_t Iss::next_pc(const DecodedWord& dw) const {
   }
 }
 
+// The sequencer fetches the word after a word while it decodes it
+// (docs/apu-isa.md "Timing"): JMP, CALL and RET exactly, a conditional branch
+// as taken iff its target is not after it; a SWAPP's next word only once it
+// has issued (from the new bank). Any other next word costs kBranchMissCycles.
+MC1_HOT bool Iss::fetch_missed(const DecodedWord& dw, std::uint32_t next) const {
+  const SeqSlot& s = dw.w.s;
+  if (s.op == SeqOp::Swapp) return true;
+  const std::uint32_t predicted = s.target <= pc_ ? s.target : pc_ + 1u;
+  return next != predicted;
+}
+
 MC1_HOT Fault Iss::check_fault(const DecodedWord& dw, std::uint32_t next) const {
   if (dw.kind & DecodedWord::kReserved) return Fault::ReservedOp;
   const MemSlot& d = dw.w.d;
@@ -340,6 +355,7 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
 
   if (w.i.op != IntOp::None) int_op(dw);
   if (w.s.op != SeqOp::Next) seq_op(dw);
+  if ((dw.kind & DecodedWord::kRefetch) && fetch_missed(dw, next)) fetching_ = kBranchMissCycles;
   pc_ = static_cast<std::uint16_t>(next);
   ++counters_.issued;
 }
@@ -396,11 +412,13 @@ MC1_HOT void Iss::seq_op(const DecodedWord& dw) {
 // one's: the word at pc issues, stalls or faults.
 template <bool kRecord>
 MC1_HOT Stall Iss::execute(CycleRecord* rec) {
-  if (fetching_ > 0) {
-    --fetching_;  // the program RAM reads the word at pc: nothing issues
-    return Stall::None;
-  }
   if (state_ != RunState::Running) return Stall::None;
+  if (fetching_ > 0) {
+    --fetching_;  // the word at pc is in the program RAM or in decode: nothing issues
+    ++counters_.stalls[static_cast<int>(Stall::Fetch)];
+    if constexpr (kRecord) rec->stall = Stall::Fetch;
+    return Stall::Fetch;
+  }
   const DecodedWord& dw = decoded_[psel_][pc_];
   const Stall s = stall_reason(dw);
   if (s != Stall::None) {

@@ -34,6 +34,7 @@ struct DecodedWord {
     kReserved = 8,   // a reserved op in some slot: faults when it would issue
     kMem = 16,       // LD/ST: the data address is checked
     kStack = 32,     // CALL/RET: the call stack is checked
+    kRefetch = 64,   // a conditional branch or SWAPP: the next word may miss the fetch
   };
   // An F register write and the latency after which it is visible.
   struct FDst {
@@ -67,6 +68,7 @@ class Iss final : public ApuEngine {
   void read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const override;
   void hand_over_program() override { program_ready_ = true; }
   void hand_over_data() override { data_ready_ = true; }
+  bool mpu_bank_while_running() const override { return true; }
   bool program_ready() const override { return program_ready_; }
   bool data_ready() const override { return data_ready_; }
   void start(std::uint16_t pc) override;
@@ -135,6 +137,8 @@ class Iss final : public ApuEngine {
   // The sequencer's next PC (1024 when it would run off the bank) and the
   // fault, if any, that keeps the word from issuing.
   std::uint32_t next_pc(const DecodedWord& dw) const;
+  // Whether `next` is not the word the sequencer fetched behind this one.
+  bool fetch_missed(const DecodedWord& dw, std::uint32_t next) const;
   Fault check_fault(const DecodedWord& dw, std::uint32_t next) const;
   template <bool kRecord>
   void issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec);
@@ -154,7 +158,9 @@ class Iss final : public ApuEngine {
   std::uint64_t cmp_done_ = 0;     // first cycle with no CMP in flight
   std::uint32_t pc_ = 0;
   RunState state_ = RunState::Idle;
-  int fetching_ = 0;  // cycles left in which a start fetches its first word
+  // Cycles left with no word to issue (`fetch`): a start's fetch and decode,
+  // the bubble after a branch miss or a SWAPP.
+  int fetching_ = 0;
   int psel_ = 0, dsel_ = 0;
   bool program_ready_ = false, data_ready_ = false;
   std::uint32_t cc_ = 0, flags_ = 0;

@@ -1,69 +1,61 @@
 #include "apu_pool.hpp"
 
+#include <algorithm>
+
 namespace mc1::nc {
 namespace {
 thread_local bool t_in_job = false;
+
+// A stretch takes some microseconds: a thread out of work spins about as
+// long before it sleeps (a sleep and a wake-up cost more than that).
+constexpr int kSpins = 4000;
+
+void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#else
+  std::this_thread::yield();
+#endif
+}
 }  // namespace
 
 bool ApuJob::in_job() { return t_in_job; }
 
-void ApuJob::reached(std::uint64_t cycles) {
-  reached_.store(cycles);
-  if (cycles >= wanted_.load()) {
-    std::lock_guard<std::mutex> lock(m_);
-    cv_.notify_all();
-  }
-}
-
 bool ApuJob::lasts(std::uint64_t cycles) {
-  if (reached_.load() >= cycles) return true;
-  wanted_.store(cycles);
-  std::unique_lock<std::mutex> lock(m_);
-  cv_.wait(lock, [&] { return done_ || reached_.load() >= cycles; });
-  if (reached_.load() >= cycles) return true;
+  pool_.help(*this, [&] { return done_ || reached_ >= cycles; });
+  if (reached_ >= cycles) return true;
   return !error_ && cycles_ >= cycles;
 }
 
-void ApuJob::wait_done() {
-  std::unique_lock<std::mutex> lock(m_);
-  cv_.wait(lock, [&] { return done_; });
-}
-
 std::uint64_t ApuJob::result() {
-  wait_done();
+  pool_.help(*this, [&] { return done_; });
   if (error_) std::rethrow_exception(error_);
   return cycles_;
 }
 
-void ApuJob::execute() {
-  std::uint64_t n = 0;
-  std::exception_ptr e;
-  const bool outer = t_in_job;
-  t_in_job = true;
-  try {
-    n = work_(*this);
-  } catch (...) {
-    e = std::current_exception();
-  }
-  t_in_job = outer;
-  std::lock_guard<std::mutex> lock(m_);
-  cycles_ = n;
-  error_ = e;
+bool ApuJob::over() {
+  ApuPool::Lock lock(pool_.m_);
+  return done_;
+}
+
+void ApuJob::cancel() {
+  ApuPool::Lock lock(pool_.m_);
+  pool_.take(*this);
   done_ = true;
-  cv_.notify_all();
+  pool_.progress_cv_.wait(lock, [&] { return !held_; });
 }
 
 ApuPool::ApuPool(unsigned threads) : threads_(threads < 1 ? 1 : threads) {
-  if (threads_ > 1)
-    for (unsigned i = 0; i < threads_; ++i) workers_.emplace_back([this] { worker(); });
+  for (unsigned i = 1; i < threads_; ++i) workers_.emplace_back([this] { worker(); });
 }
 
 ApuPool::~ApuPool() {
   {
-    std::lock_guard<std::mutex> lock(m_);
+    Lock lock(m_);
     stopping_ = true;
+    ready_n_.store(1);  // no more spinning
   }
-  cv_.notify_all();
+  work_cv_.notify_all();
   for (std::thread& t : workers_) t.join();
 }
 
@@ -72,31 +64,98 @@ unsigned ApuPool::default_threads() {
   return n ? n : 1;
 }
 
-std::shared_ptr<ApuJob> ApuPool::post(ApuJob::Work work) {
-  auto job = std::make_shared<ApuJob>(std::move(work));
+std::shared_ptr<ApuJob> ApuPool::post(ApuJob::Stretch stretch) {
+  auto job = std::make_shared<ApuJob>(*this, std::move(stretch));
+  Lock lock(m_);
   if (workers_.empty()) {
-    job->execute();
+    while (!job->done_) clock_stretch(lock, job, false);
     return job;
   }
-  {
-    std::lock_guard<std::mutex> lock(m_);
-    queue_.push_back(job);
-  }
-  cv_.notify_one();
+  push_ready(job);
   return job;
 }
 
-void ApuPool::worker() {
-  for (;;) {
-    std::shared_ptr<ApuJob> job;
-    {
-      std::unique_lock<std::mutex> lock(m_);
-      cv_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
-      if (queue_.empty()) return;  // stopping, nothing left
-      job = std::move(queue_.front());
-      queue_.pop_front();
+void ApuPool::push_ready(const std::shared_ptr<ApuJob>& job) {
+  ready_.push_back(job);
+  ready_n_.store(ready_.size(), std::memory_order_release);
+  if (sleepers_) work_cv_.notify_one();
+}
+
+std::shared_ptr<ApuJob> ApuPool::pop_ready() {
+  std::shared_ptr<ApuJob> job = std::move(ready_.front());
+  ready_.pop_front();
+  ready_n_.store(ready_.size(), std::memory_order_relaxed);
+  return job;
+}
+
+std::shared_ptr<ApuJob> ApuPool::take(ApuJob& job) {
+  const auto it = std::find_if(ready_.begin(), ready_.end(), [&](const auto& j) { return j.get() == &job; });
+  if (it == ready_.end()) return nullptr;
+  std::shared_ptr<ApuJob> held = std::move(*it);
+  ready_.erase(it);
+  ready_n_.store(ready_.size(), std::memory_order_relaxed);
+  return held;
+}
+
+template <class Over>
+void ApuPool::help(ApuJob& job, Over over) {
+  Lock lock(m_);
+  while (!over()) {
+    std::shared_ptr<ApuJob> next = take(job);
+    if (!next && !ready_.empty()) next = pop_ready();
+    if (next) {
+      clock_stretch(lock, next, true);
+      continue;
     }
-    job->execute();
+    // A worker holds the job: its stretch ends soon.
+    const std::uint64_t ended = ended_.load(std::memory_order_relaxed);
+    lock.unlock();
+    for (int i = 0; i < kSpins && ended_.load(std::memory_order_acquire) == ended; ++i) cpu_relax();
+    lock.lock();
+    if (ended_.load(std::memory_order_relaxed) == ended) progress_cv_.wait(lock);
+  }
+}
+
+void ApuPool::clock_stretch(Lock& lock, const std::shared_ptr<ApuJob>& job, bool requeue) {
+  job->held_ = true;
+  lock.unlock();
+  std::optional<std::uint64_t> cycles;
+  std::exception_ptr error;
+  const bool outer = t_in_job;
+  t_in_job = true;
+  try {
+    cycles = job->stretch_(*job);
+  } catch (...) {
+    error = std::current_exception();
+  }
+  t_in_job = outer;
+  lock.lock();
+  job->held_ = false;
+  ended_.fetch_add(1, std::memory_order_release);
+  job->reached_ = std::max(job->reached_, job->stretch_reached_);
+  if (cycles || error) {
+    job->cycles_ = cycles.value_or(0);
+    job->error_ = error;
+    job->done_ = true;
+  } else if (requeue && !job->done_) {  // not cancelled meanwhile: its next turn
+    push_ready(job);
+  }
+  progress_cv_.notify_all();
+}
+
+void ApuPool::worker() {
+  Lock lock(m_);
+  for (;;) {
+    if (ready_.empty() && !stopping_) {
+      lock.unlock();
+      for (int i = 0; i < kSpins && ready_n_.load(std::memory_order_acquire) == 0; ++i) cpu_relax();
+      lock.lock();
+      ++sleepers_;
+      work_cv_.wait(lock, [&] { return stopping_ || !ready_.empty(); });
+      --sleepers_;
+    }
+    if (stopping_) return;
+    clock_stretch(lock, pop_ready(), true);
   }
 }
 

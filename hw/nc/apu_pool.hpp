@@ -6,6 +6,13 @@
 // time. Nothing simulated depends on the threads: the job reports how far
 // the run has got, and the NC only ever waits as far as the run is known to
 // last (NodeComputer::run_on_pool), so every time is the one-thread time.
+//
+// A run is clocked a stretch at a time (a few hundred cycles), and the
+// runs waiting take turns: the N - 1 workers and the simulation's own
+// thread, which clocks stretches whenever it would otherwise wait for a run
+// to get far enough (the run it waits for first, if no worker has it). So
+// N threads keep N cores busy, and every run moves on at about the pace the
+// simulation needs it.
 #pragma once
 
 #include <atomic>
@@ -16,68 +23,98 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
 namespace mc1::nc {
 
-// One APU run on the pool. The work returns the run's cycle count and says
-// on the way how long the run lasts at least (reached()).
+class ApuPool;
+
+// One APU run on the pool.
 class ApuJob {
  public:
-  using Work = std::function<std::uint64_t(ApuJob&)>;
-  explicit ApuJob(Work work) : work_(std::move(work)) {}
+  // Clocks the run's next stretch: the run's cycle count once it is over,
+  // nothing while it goes on. Stretches of one job run one at a time, in
+  // order, on any of the pool's threads.
+  using Stretch = std::function<std::optional<std::uint64_t>(ApuJob&)>;
+  ApuJob(ApuPool& pool, Stretch stretch) : pool_(pool), stretch_(std::move(stretch)) {}
 
-  // Worker side: the run lasts at least `cycles` cycles.
-  void reached(std::uint64_t cycles);
+  // In a stretch: the run lasts at least `cycles` cycles (told the
+  // simulation when the stretch ends).
+  void reached(std::uint64_t cycles) { stretch_reached_ = cycles; }
 
-  // Simulation side. Blocks until it is known whether the run lasts at
-  // least `cycles` cycles; false also when the work threw.
+  // Simulation side. These clock stretches on the calling thread while they
+  // wait. Whether the run lasts at least `cycles` cycles (false also when
+  // the work threw).
   bool lasts(std::uint64_t cycles);
-  // Blocks until the work is done: its cycle count, or its exception.
+  // The run's cycle count, or its exception, once it is over.
   std::uint64_t result();
-  void wait_done();
+  // Whether the run is over, at once (clocks nothing, waits for nothing).
+  bool over();
+  // No more stretches: returns once none runs (the job is dropped).
+  void cancel();
 
-  void execute();  // the pool's
-  // True on a thread while it executes a job (the job's own calls into the
-  // driver need no bringing up to date).
+  // True on a thread while it clocks a stretch (the job's own calls into
+  // the driver need no bringing up to date).
   static bool in_job();
 
  private:
-  Work work_;
-  std::atomic<std::uint64_t> reached_{0};
-  std::atomic<std::uint64_t> wanted_{~std::uint64_t{0}};
-  std::mutex m_;
-  std::condition_variable cv_;
+  friend class ApuPool;
+  ApuPool& pool_;
+  Stretch stretch_;
+  std::uint64_t stretch_reached_ = 0;  // the holding thread's alone
+  // Guarded by pool_.m_.
+  bool held_ = false;  // a thread clocks a stretch
   bool done_ = false;
+  std::uint64_t reached_ = 0;
   std::uint64_t cycles_ = 0;
   std::exception_ptr error_;
 };
 
 class ApuPool {
  public:
-  // threads <= 1: no worker, a job runs inside post(); 0 is not a count
-  // (the machine's cores are the caller's default: default_threads()).
+  // `threads` host threads clock the APUs: the simulation's own and
+  // threads - 1 workers. threads <= 1: no worker, a job is clocked to its
+  // end inside post(). 0 is not a count (the caller's default is
+  // default_threads()).
   explicit ApuPool(unsigned threads);
   ~ApuPool();
   ApuPool(const ApuPool&) = delete;
   ApuPool& operator=(const ApuPool&) = delete;
 
   unsigned threads() const { return threads_; }
-  std::shared_ptr<ApuJob> post(ApuJob::Work work);
+  std::shared_ptr<ApuJob> post(ApuJob::Stretch stretch);
 
   // The host's cores (at least 1).
   static unsigned default_threads();
 
  private:
+  friend class ApuJob;
+  using Lock = std::unique_lock<std::mutex>;
+  // Clocks stretches on this thread until `over` holds for `job`: the
+  // job's own when it is free, else any waiting one, else waits.
+  template <class Over>
+  void help(ApuJob& job, Over over);
+  // Clocks `job`'s next stretch, `lock` released meanwhile; the job must
+  // be free and out of ready_, and goes back to its end if `requeue`.
+  void clock_stretch(Lock& lock, const std::shared_ptr<ApuJob>& job, bool requeue);
+  std::shared_ptr<ApuJob> take(ApuJob& job);  // out of ready_, or null
+  void push_ready(const std::shared_ptr<ApuJob>& job);
+  std::shared_ptr<ApuJob> pop_ready();
   void worker();
 
   unsigned threads_;
   std::vector<std::thread> workers_;
   std::mutex m_;
-  std::condition_variable cv_;
-  std::deque<std::shared_ptr<ApuJob>> queue_;
+  std::condition_variable work_cv_;      // ready_ got a job, or stopping_
+  std::condition_variable progress_cv_;  // a stretch ended
+  std::deque<std::shared_ptr<ApuJob>> ready_;  // free jobs not over, in turn
   bool stopping_ = false;
+  int sleepers_ = 0;  // workers waiting on work_cv_
+  // Read without m_ by spinning threads: ready_'s size, stretches ended.
+  std::atomic<std::size_t> ready_n_{0};
+  std::atomic<std::uint64_t> ended_{0};
 };
 
 }  // namespace mc1::nc

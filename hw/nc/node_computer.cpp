@@ -83,12 +83,13 @@ NodeComputer::NodeComputer(sc_core::sc_module_name name, const TimingParams& t, 
       cycle_ps_(t.apu_cycle_ps()) {
   hdlc2nc.register_b_transport(this, &NodeComputer::b_transport);
   driver_.set_access_hook([this] { settle_apu(); });
+  driver_.set_bank_hook([this] { touch_mpu_bank(); });
   SC_HAS_PROCESS(NodeComputer);
   SC_THREAD(run);
 }
 
 NodeComputer::~NodeComputer() {
-  if (job_) job_->wait_done();  // the simulation ended while the NC waited: the run still uses the engine
+  if (job_) job_->cancel();  // the simulation ended while the NC waited: no more of the run
 }
 
 // The APU run the MPU waits for, from apu_time_ on, clocked by the pool's
@@ -99,9 +100,8 @@ NodeComputer::~NodeComputer() {
 // the pool. The steps depend on the run's length alone, so the simulation
 // is the same for any number of threads; the caller then advances to the
 // run's end as without a pool.
-std::uint64_t NodeComputer::run_on_pool(ApuJob::Work work) {
-  settle_apu();
-  job_ = (pool_ ? *pool_ : inline_).post(std::move(work));
+std::uint64_t NodeComputer::run_on_pool(ApuJob::Stretch stretch) {
+  job_ = (pool_ ? *pool_ : inline_).post(std::move(stretch));
   const Picos start = apu_time_;
   for (std::uint64_t step = kPoolStepCycles;; step += kPoolStepCycles) {
     const Picos target = start + step * cycle_ps_;
@@ -173,6 +173,16 @@ void NodeComputer::settle_apu() {
   }
 }
 
+// The MPU reads or writes its data bank, no hand-over pending: the APU
+// cannot swap the banks in what it is owed (apu_due_, a job on the pool), so
+// it is not clocked for it, and a job goes on clocking it meanwhile where
+// the engine allows.
+void NodeComputer::touch_mpu_bank() {
+  if (settling_ || ApuJob::in_job() || !job_ || engine_->mpu_bank_while_running()) return;
+  const std::shared_ptr<ApuJob> job = std::move(job_);
+  job->result();
+}
+
 void NodeComputer::catch_up_to(Picos t) {
   if (engine_->state() != apu::RunState::Running) {
     apu_stopped(apu_time_);
@@ -218,11 +228,18 @@ void NodeComputer::advance(Picos ps) {
   qk_.inc(to_sc_time(ps));
   apu_due_ = now();
   apu_due_set_ = true;
+  chase_due_.store(apu_due_, std::memory_order_release);
   if (!qk_.need_sync()) return;
   // At a synchronisation, what the APU owes goes to the pool and the NC
   // syncs: the kernel runs the others (their APUs on the pool too), and the
   // firmware goes on until it next looks at the APU. A short catch-up is not
-  // worth a host thread's hand-over: it waits for the next.
+  // worth a host thread's hand-over: it waits for the next. The job chases
+  // the NC's time as it moves on (chase_due_), and while it runs, the NC
+  // syncs and goes on.
+  if (job_ && !job_->over()) {
+    qk_.sync();
+    return;
+  }
   if (job_) {
     const std::shared_ptr<ApuJob> job = std::move(job_);
     job->result();
@@ -230,10 +247,11 @@ void NodeComputer::advance(Picos ps) {
   const Picos until = apu_due_;
   if (engine_->state() == apu::RunState::Running && until > apu_time_ &&
       (until - apu_time_) / cycle_ps_ >= kPoolStepCycles) {
-    apu_due_set_ = false;
-    job_ = (pool_ ? *pool_ : inline_).post([this, until](ApuJob&) -> std::uint64_t {
-      catch_up_to(until);
-      return 0;
+    job_ = (pool_ ? *pool_ : inline_).post([this](ApuJob&) -> std::optional<std::uint64_t> {
+      const Picos due = chase_due_.load(std::memory_order_acquire);
+      catch_up_to(std::min(due, apu_time_ + kPoolStepCycles * cycle_ps_));
+      if (engine_->state() != apu::RunState::Running || apu_time_ + cycle_ps_ > due) return 0;
+      return std::nullopt;
     });
   }
   qk_.sync();
@@ -303,18 +321,17 @@ void NodeComputer::apu_wait_swap() {
   const std::uint64_t to_kill =
       kill_at_ == ~Picos{0} ? ~std::uint64_t{0} : kill_at_ > apu_time_ ? (kill_at_ - apu_time_) / cycle_ps_ : 0;
   const std::uint64_t limit = std::min(to_kill, t_.apu_watchdog_cycles);
-  const std::uint64_t n = run_on_pool([this, limit](ApuJob& job) {
-    engine_->set_time(apu_time_, cycle_ps_);  // the run starts at apu_time_ (waveforms, profiles)
-    // Up to the cycle the APU takes the bank (the swap interrupt comes in
-    // it), in stretches that end where the NC's steps on the pool do.
+  settle_apu();
+  engine_->set_time(apu_time_, cycle_ps_);  // the run starts at apu_time_ (waveforms, profiles)
+  // Up to the cycle the APU takes the bank (the swap interrupt comes in it),
+  // in stretches that end where the NC's steps on the pool do.
+  const std::uint64_t n = run_on_pool([this, limit, k = std::uint64_t{0}](ApuJob& job) mutable -> std::optional<std::uint64_t> {
     HostTimer timer(apu_host_ticks_);
-    std::uint64_t k = 0;
     const auto waiting = [&] { return driver_.data_ready() && engine_->state() == apu::RunState::Running && k < limit; };
-    while (waiting()) {
-      k += driver_.run_until_data_taken(std::min(limit - k, kPoolStepCycles - (k + 1) % kPoolStepCycles));
-      if (waiting()) job.reached(k + 1);
-    }
-    return k;
+    if (waiting()) k += driver_.run_until_data_taken(std::min(limit - k, kPoolStepCycles - (k + 1) % kPoolStepCycles));
+    if (!waiting()) return k;
+    job.reached(k + 1);
+    return std::nullopt;
   });
   stats_.apu_cycles += n;
   apu_time_ += n * cycle_ps_;
@@ -337,14 +354,25 @@ void NodeComputer::apu_wait_halt() {
   catch_up();
   if (engine_->state() != apu::RunState::Running) return;
   std::string runaway;  // the driver's account of a run the watchdog stops
-  const std::uint64_t n = run_on_pool([this, &runaway](ApuJob& job) -> std::uint64_t {
-    engine_->set_time(apu_time_, cycle_ps_);  // the run starts at apu_time_ (waveforms, profiles)
+  settle_apu();
+  engine_->set_time(apu_time_, cycle_ps_);  // the run starts at apu_time_ (waveforms, profiles)
+  driver_.begin_run();
+  // run_until_done() a stretch at a time: each up to the next cycle whose
+  // number is a multiple of kPoolStepCycles, where the NC's steps end.
+  const std::uint64_t c0 = engine_->cycle();
+  const std::uint64_t n = run_on_pool([this, &runaway, c0, done = std::uint64_t{0}](
+                                          ApuJob& job) mutable -> std::optional<std::uint64_t> {
     HostTimer timer(apu_host_ticks_);
-    const std::uint64_t c0 = engine_->cycle();
-    // Called before every kPoolStepCycles-th cycle, the APU still running.
-    const auto progress = [&] { job.reached(engine_->cycle() - c0 + 1); };
+    const std::uint64_t max = t_.apu_watchdog_cycles;
+    const auto running = [&] { return engine_->state() == apu::RunState::Running && done < max; };
+    if (running()) {
+      const std::uint64_t c = engine_->cycle();
+      if (c % kPoolStepCycles == 0) job.reached(c - c0 + 1);
+      done += driver_.run(std::min(max - done, kPoolStepCycles - c % kPoolStepCycles));
+      if (running()) return std::nullopt;
+    }
     try {
-      return driver_.run_until_done(t_.apu_watchdog_cycles, progress, kPoolStepCycles);
+      return driver_.end_run(done, max);
     } catch (const apu::ApuError& e) {
       if (e.kind() != apu::ApuError::Kind::CycleLimit)
         throw std::runtime_error("NC " + std::to_string(id_) + ": " + e.what());

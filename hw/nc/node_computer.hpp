@@ -26,6 +26,8 @@
 // its cycles count in apu_cycles.)
 #pragma once
 
+#include <atomic>
+
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -140,13 +142,14 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   void catch_up();                     // clock the APU up to now()
   void catch_up_to(Picos t);           // ... up to t (on any thread: no SystemC)
   void settle_apu();                   // the lazy catch-up done: the engine up to date
+  void touch_mpu_bank();               // driver_'s bank hook
   void apu_stopped(Picos at);
   void check_fault() const;
   void mark(Activity a, Picos at);     // from `at` on, the NC does `a`
   void check_alive();                  // throws Killed at or after the kill time
   void die();
   [[noreturn]] void watchdog_expired(const std::string& what);
-  std::uint64_t run_on_pool(ApuJob::Work work);
+  std::uint64_t run_on_pool(ApuJob::Stretch stretch);
 
   TimingParams t_;
   unsigned id_;
@@ -177,6 +180,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   std::shared_ptr<ApuJob> job_;  // the run on the pool, until the NC has its result
   Picos apu_due_ = 0;            // the APU is to be clocked up to here (advance(): lazily)
   bool apu_due_set_ = false;
+  std::atomic<Picos> chase_due_{0};  // apu_due_, for a catch-up job on the pool
   bool settling_ = false;
 
   tlm::tlm_generic_payload pixels_;

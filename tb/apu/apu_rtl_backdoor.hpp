@@ -4,6 +4,12 @@
 // MPU's banks through it (exact between two clock edges: apu_rtl_engine.hpp)
 // and reads the register arrays for the ISA's observers.
 //
+// Two models are verilated from apu_rtl/ (tb/apu/CMakeLists.txt): Vapu_core,
+// traced, with every port of the core, and Vapu_fast, untraced, the core
+// inside tb/apu/apu_fast.sv without the stall-cause ports (the engine's
+// model when it writes no waveform). The backdoor is one template over the
+// two; RtlBackdoor is the traced model's.
+//
 // When an RTL instance or array is renamed, only apu_rtl_backdoor.cpp stops
 // compiling, and tests/apu_rtl_backdoor_test.cpp checks every accessor
 // against the core's own ports, naming the signal (signal_name) that
@@ -17,10 +23,13 @@
 #include "microword.hpp"
 
 class Vapu_core;
+class Vapu_fast;
 
 namespace mc1::apu {
 
-class RtlBackdoor {
+// Top: Vapu_core or Vapu_fast (instantiated for these two only).
+template <class Top>
+class BasicRtlBackdoor {
  public:
   // Every internal signal the backdoor reads or writes.
   enum class Signal { ProgramBank0, ProgramBank1, DataBank0, DataBank1, FRegs, ARegs };
@@ -31,7 +40,7 @@ class RtlBackdoor {
   static Signal program_bank(int bank) { return bank & 1 ? Signal::ProgramBank1 : Signal::ProgramBank0; }
   static Signal data_bank(int bank) { return bank & 1 ? Signal::DataBank1 : Signal::DataBank0; }
 
-  explicit RtlBackdoor(Vapu_core& top);
+  explicit BasicRtlBackdoor(Top& top);
 
   // A program or data bank by number (0, 1), whoever owns it now.
   void write_program(int bank, std::uint16_t addr, const Encoded& word);
@@ -60,8 +69,11 @@ class RtlBackdoor {
   bool same_state(const Snapshot& s) const;
 
  private:
-  Vapu_core& top_;
+  Top& top_;
   std::vector<std::pair<const unsigned char*, std::size_t>> state_;  // the root's bytes but the banks
 };
+
+using RtlBackdoor = BasicRtlBackdoor<Vapu_core>;
+using RtlFastBackdoor = BasicRtlBackdoor<Vapu_fast>;
 
 }  // namespace mc1::apu

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "Vapu_core.h"
+#include "Vapu_fast.h"
 #include "verilated.h"
 #include "verilated_fst_c.h"
 
@@ -27,13 +28,91 @@ std::uint32_t wide_bits(const Wide& w, int pos, int width) {
 
 }  // namespace
 
-RtlEngine::RtlEngine(const char* fst_path) : ctx_(std::make_unique<VerilatedContext>()) {
-  ctx_->randReset(0);  // the ISA's power-on state: every register and word is 0
-  if (fst_path) ctx_->traceEverOn(true);
-  top_ = std::make_unique<Vapu_core>(ctx_.get());
-  backdoor_ = std::make_unique<RtlBackdoor>(*top_);
-  Vapu_core& t = *top_;
+// The engine on one verilated model. Top is Vapu_core (kTraced: the FST
+// waveform and the trace module's kernel ids) or Vapu_fast; both have the
+// ports this code reads and drives, under the same names. Its own
+// set_time() is not used: the waveform's times are RtlEngine's.
+class RtlEngine::Model : public ApuEngine {
+ public:
+  virtual bool unit_mismatch() const = 0;
+};
 
+template <class Top, bool kTraced>
+class RtlEngine::ModelOf final : public Model {
+ public:
+  // time: the engine, whose set_time() stamps the waveform's cycles.
+  ModelOf(const ApuEngine& time, const char* fst_path);
+  ~ModelOf() override;
+
+  void write_program(std::uint16_t addr, const Encoded& word) override;
+  void write_data(std::uint16_t addr, std::uint32_t value) override;
+  std::uint32_t read_data(std::uint16_t addr) const override;
+  void write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) override;
+  void hand_over_program() override;
+  void hand_over_data() override;
+  bool program_ready() const override { return top_->apu2mpu_program_ready; }
+  bool data_ready() const override { return top_->apu2mpu_data_ready; }
+  void start(std::uint16_t pc) override;
+  void step(CycleRecord& rec) override;
+  std::uint64_t run(std::uint64_t max_cycles) override { return clock_until(max_cycles, false); }
+  std::uint64_t run_until_data_taken(std::uint64_t max_cycles) override { return clock_until(max_cycles, true); }
+  RunState state() const override { return static_cast<RunState>(top_->apu2mpu_run_state); }
+  Fault fault() const override { return static_cast<Fault>(top_->apu2mpu_fault); }
+  std::uint64_t cycle() const override { return cycle_; }
+  std::uint32_t freg(int i) const override;
+  std::uint16_t areg(int i) const override { return backdoor_.areg_array(i); }
+  std::uint8_t flags() const override { return top_->apu2mpu_flags; }
+  std::uint8_t cc() const override { return top_->apu2mpu_cc; }
+  void trace_window(std::uint64_t from_ps, std::uint64_t to_ps) override;
+  void trace_kernel(int bank, std::uint16_t id) override;
+  bool unit_mismatch() const override { return top_->dbg_unit_mismatch; }
+
+ private:
+  // run(), and with until_data_taken also up to the cycle in which the APU
+  // takes the handed-over data bank.
+  std::uint64_t clock_until(std::uint64_t max_cycles, bool until_data_taken);
+  void clock();        // one rising edge and the falling edge after it
+  void settle();       // re-evaluate after an MPU-side input change
+  void dump(std::uint64_t ps);  // at simulated time ps, if in the window (times strictly increase)
+  void dump_requests();         // the MPU's requests, before the edge that takes them
+  std::uint64_t time_of(std::uint64_t cycle) const { return time_.time_of(cycle); }
+
+  const ApuEngine& time_;
+  std::unique_ptr<VerilatedContext> ctx_;
+  std::unique_ptr<Top> top_;
+  std::unique_ptr<VerilatedFstC> fst_;  // kTraced only
+  BasicRtlBackdoor<Top> backdoor_;      // into *top_
+  typename BasicRtlBackdoor<Top>::Snapshot snapshot_;  // run()'s fixed-point test
+  std::uint64_t cycle_ = 0;
+  bool dump_pending_ = false;  // MPU inputs changed since the last waveform dump
+  std::uint64_t from_ = 0, to_ = ~std::uint64_t{0};  // the dump window (ps)
+  bool dumped_ = false;        // a dump was written; last_dump_ is its time
+  std::uint64_t last_dump_ = 0;
+  // An MPU call changed an input or a bank word since the last eval(): the
+  // next edge is a full eval() (clock()).
+  bool changed_ = true;
+};
+
+namespace {
+
+// A model with its context: the context first (the model's constructor
+// needs it), all registers and words 0 (the ISA's power-on state).
+std::unique_ptr<VerilatedContext> make_context(bool traced) {
+  auto ctx = std::make_unique<VerilatedContext>();
+  ctx->randReset(0);
+  if (traced) ctx->traceEverOn(true);
+  return ctx;
+}
+
+}  // namespace
+
+template <class Top, bool kTraced>
+RtlEngine::ModelOf<Top, kTraced>::ModelOf(const ApuEngine& time, const char* fst_path)
+    : time_(time),
+      ctx_(make_context(fst_path != nullptr)),
+      top_(std::make_unique<Top>(ctx_.get())),
+      backdoor_(*top_) {
+  Top& t = *top_;
   // Synchronous reset: one clock with rst_n low; it is not an APU cycle.
   t.rst_n = 0;
   t.clk = 0;
@@ -44,19 +123,27 @@ RtlEngine::RtlEngine(const char* fst_path) : ctx_(std::make_unique<VerilatedCont
   t.rst_n = 1;
   t.eval();
 
-  if (fst_path) {
-    fst_ = std::make_unique<VerilatedFstC>();
-    t.trace(fst_.get(), 99);
-    fst_->open(fst_path);
+  if constexpr (kTraced) {
+    if (fst_path) {
+      fst_ = std::make_unique<VerilatedFstC>();
+      t.trace(fst_.get(), 99);
+      fst_->open(fst_path);
+    }
   }
 }
 
-void RtlEngine::trace_kernel(int bank, std::uint16_t id) {
-  (bank & 1 ? top_->bank1_kernel : top_->bank0_kernel) = id;
-  changed_ = true;
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::trace_kernel(int bank, std::uint16_t id) {
+  if constexpr (kTraced) {
+    (bank & 1 ? top_->bank1_kernel : top_->bank0_kernel) = id;
+    changed_ = true;
+  } else {
+    (void)bank, (void)id;  // no waveform, no trace module
+  }
 }
 
-void RtlEngine::trace_window(std::uint64_t from_ps, std::uint64_t to_ps) {
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::trace_window(std::uint64_t from_ps, std::uint64_t to_ps) {
   from_ = from_ps;
   to_ = to_ps;
 }
@@ -64,30 +151,44 @@ void RtlEngine::trace_window(std::uint64_t from_ps, std::uint64_t to_ps) {
 // The first dump in the window is at its start: the state the APU holds
 // there (it is clocked in bursts, and between them nothing changes), without
 // the MPU's requests of the burst that follows.
-void RtlEngine::dump(std::uint64_t ps) {
-  if (ps >= to_ || (ps < from_ && !dumped_)) return;
-  if (!dumped_) {
-    dumped_ = true;
-    last_dump_ = from_;
-    Vapu_core& t = *top_;
-    const auto program = t.mpu2apu_hand_over_program, data = t.mpu2apu_hand_over_data, start = t.mpu2apu_start,
-               fresh = t.mpu2apu_start_new_program;
-    t.mpu2apu_hand_over_program = t.mpu2apu_hand_over_data = t.mpu2apu_start = t.mpu2apu_start_new_program = 0;
-    t.eval();
-    fst_->dump(from_);
-    t.mpu2apu_hand_over_program = program;
-    t.mpu2apu_hand_over_data = data;
-    t.mpu2apu_start = start;
-    t.mpu2apu_start_new_program = fresh;
-    t.eval();
-    if (ps == from_) return;
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::dump(std::uint64_t ps) {
+  if constexpr (kTraced) {
+    if (ps >= to_ || (ps < from_ && !dumped_)) return;
+    if (!dumped_) {
+      dumped_ = true;
+      last_dump_ = from_;
+      Top& t = *top_;
+      const auto program = t.mpu2apu_hand_over_program, data = t.mpu2apu_hand_over_data, start = t.mpu2apu_start,
+                 fresh = t.mpu2apu_start_new_program;
+      t.mpu2apu_hand_over_program = t.mpu2apu_hand_over_data = t.mpu2apu_start = t.mpu2apu_start_new_program = 0;
+      t.eval();
+      fst_->dump(from_);
+      t.mpu2apu_hand_over_program = program;
+      t.mpu2apu_hand_over_data = data;
+      t.mpu2apu_start = start;
+      t.mpu2apu_start_new_program = fresh;
+      t.eval();
+      if (ps == from_) return;
+    }
+    if (ps <= last_dump_) ps = last_dump_ + 1;  // a burst that starts inside the last one's settle cycles
+    last_dump_ = ps;
+    fst_->dump(ps);
+  } else {
+    (void)ps;
   }
-  if (ps <= last_dump_) ps = last_dump_ + 1;  // a burst that starts inside the last one's settle cycles
-  last_dump_ = ps;
-  fst_->dump(ps);
 }
 
-RtlEngine::~RtlEngine() {
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::dump_requests() {
+  if (dump_pending_) {
+    dump(time_of(cycle_) + time_.cycle_ps() / 4);
+    dump_pending_ = false;
+  }
+}
+
+template <class Top, bool kTraced>
+RtlEngine::ModelOf<Top, kTraced>::~ModelOf() {
   // Verilator 5.006 erases the model's scopes from the thread's current
   // context (Verilated::threadContextp()), not the model's own: with several
   // engines, that may be one already destroyed (a hang on its freed mutex,
@@ -104,40 +205,45 @@ RtlEngine::~RtlEngine() {
 // ---- MPU side -----------------------------------------------------------------
 
 // The MPU owns the bank the APU does not use.
-void RtlEngine::write_program(std::uint16_t addr, const Encoded& word) {
-  backdoor_->write_program(top_->apu2mpu_psel ^ 1, addr, word);
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::write_program(std::uint16_t addr, const Encoded& word) {
+  backdoor_.write_program(top_->apu2mpu_psel ^ 1, addr, word);
   changed_ = true;
 }
 
-void RtlEngine::write_data(std::uint16_t addr, std::uint32_t value) {
-  backdoor_->write_data(top_->apu2mpu_dsel ^ 1, addr, value);
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::write_data(std::uint16_t addr, std::uint32_t value) {
+  backdoor_.write_data(top_->apu2mpu_dsel ^ 1, addr, value);
   changed_ = true;
 }
 
-void RtlEngine::write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::write_data_block(std::uint16_t addr, const std::uint32_t* values,
+                                                        std::size_t n) {
   const int bank = top_->apu2mpu_dsel ^ 1;
-  for (std::size_t i = 0; i < n; ++i) backdoor_->write_data(bank, static_cast<std::uint16_t>(addr + i), values[i]);
+  for (std::size_t i = 0; i < n; ++i) backdoor_.write_data(bank, static_cast<std::uint16_t>(addr + i), values[i]);
   changed_ = true;
 }
 
-std::uint32_t RtlEngine::read_data(std::uint16_t addr) const {
-  return backdoor_->read_data(top_->apu2mpu_dsel ^ 1, addr);
+template <class Top, bool kTraced>
+std::uint32_t RtlEngine::ModelOf<Top, kTraced>::read_data(std::uint16_t addr) const {
+  return backdoor_.read_data(top_->apu2mpu_dsel ^ 1, addr);
 }
 
-void RtlEngine::hand_over_program() {
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::hand_over_program() {
   top_->mpu2apu_hand_over_program = 1;
   settle();
 }
 
-void RtlEngine::hand_over_data() {
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::hand_over_data() {
   top_->mpu2apu_hand_over_data = 1;
   settle();
 }
 
-bool RtlEngine::program_ready() const { return top_->apu2mpu_program_ready; }
-bool RtlEngine::data_ready() const { return top_->apu2mpu_data_ready; }
-
-void RtlEngine::start(std::uint16_t pc) {
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::start(std::uint16_t pc) {
   if (state() == RunState::Running) return;  // only an idle APU starts
   // The start completes a pending program hand-over, one made since the last
   // cycle included; a hand-over after this call sets the flag anew.
@@ -148,7 +254,8 @@ void RtlEngine::start(std::uint16_t pc) {
   settle();
 }
 
-void RtlEngine::settle() {
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::settle() {
   top_->eval();
   changed_ = true;  // the inputs: the next rising edge recomputes their logic
   dump_pending_ = fst_ != nullptr;
@@ -156,23 +263,25 @@ void RtlEngine::settle() {
 
 // ---- clocking -----------------------------------------------------------------
 
-void RtlEngine::clock() {
-  Vapu_core& t = *top_;
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::clock() {
+  Top& t = *top_;
+  const bool traced = kTraced && fst_;
   // Time in ps (Verilator's default precision): 250 ns cycles, 4 MHz.
-  if (changed_ || fst_) {
+  if (changed_ || traced) {
     t.clk = 1;
     t.eval();
     changed_ = false;
   } else {
     // Nothing the MPU does has reached the model since its last eval(): the
     // edge without recomputing the input logic (a third of the host time).
-    backdoor_->rising_edge_unchanged();
+    backdoor_.rising_edge_unchanged();
   }
-  if (fst_) dump(time_of(cycle_) + cycle_ps() / 2);
+  if (traced) dump(time_of(cycle_) + time_.cycle_ps() / 2);
   // MPU requests last exactly the cycle after the call that made them.
   const bool requests =
       t.mpu2apu_hand_over_program | t.mpu2apu_hand_over_data | t.mpu2apu_start | t.mpu2apu_start_new_program;
-  if (requests || fst_) {
+  if (requests || traced) {
     t.mpu2apu_hand_over_program = 0;
     t.mpu2apu_hand_over_data = 0;
     t.mpu2apu_start = 0;
@@ -182,19 +291,17 @@ void RtlEngine::clock() {
   } else {
     // No input changed since the rising edge: the falling edge's eval()
     // would compute the same values again.
-    backdoor_->clock_low_unchanged();
+    backdoor_.clock_low_unchanged();
   }
   ++cycle_;
-  if (fst_) dump(time_of(cycle_));
+  if (traced) dump(time_of(cycle_));
 }
 
-void RtlEngine::step(CycleRecord& rec) {
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::step(CycleRecord& rec) {
   // Show forwarded MPU requests in the waveform before the edge that takes them.
-  if (dump_pending_) {
-    dump(time_of(cycle_) + cycle_ps() / 4);
-    dump_pending_ = false;
-  }
-  const Vapu_core& t = *top_;
+  dump_requests();
+  const Top& t = *top_;
   rec.cycle = cycle_;
   rec.pc = t.dbg_pc;
   rec.issued = t.dbg_issue;
@@ -234,24 +341,23 @@ void RtlEngine::step(CycleRecord& rec) {
   clock();
 }
 
-std::uint64_t RtlEngine::run(std::uint64_t max_cycles) {
-  if (dump_pending_) {
-    dump(time_of(cycle_) + cycle_ps() / 4);
-    dump_pending_ = false;
-  }
-  const Vapu_core& t = *top_;
+template <class Top, bool kTraced>
+std::uint64_t RtlEngine::ModelOf<Top, kTraced>::clock_until(std::uint64_t max_cycles, bool until_data_taken) {
+  dump_requests();
+  const Top& t = *top_;
+  const bool traced = kTraced && fst_;
   std::uint64_t n = 0;
-  while (n < max_cycles && state() == RunState::Running) {
-    if (t.dbg_stall_reason == static_cast<std::uint8_t>(Stall::Bank) && !t.dbg_mc_en && !fst_) {
+  while (n < max_cycles && state() == RunState::Running && (!until_data_taken || t.apu2mpu_data_ready)) {
+    if (t.dbg_stall_reason == static_cast<std::uint8_t>(Stall::Bank) && !t.dbg_mc_en && !traced) {
       // Waiting for a bank the MPU has not handed over: the MPU acts only
       // between calls, so the inputs stay as they are. Once a clock leaves
       // every bit of the model as it was (the pipelines have drained; the
       // banks change only by a store, and none issues), every further clock
       // would too: the rest of the call's cycles are taken at once.
-      backdoor_->snapshot(snapshot_);
+      backdoor_.snapshot(snapshot_);
       clock();
       ++n;
-      if (n < max_cycles && backdoor_->same_state(snapshot_)) {
+      if (n < max_cycles && backdoor_.same_state(snapshot_)) {
         cycle_ += max_cycles - n;
         n = max_cycles;
       }
@@ -263,26 +369,56 @@ std::uint64_t RtlEngine::run(std::uint64_t max_cycles) {
   return n;
 }
 
-// ---- observers ----------------------------------------------------------------
-
-RunState RtlEngine::state() const { return static_cast<RunState>(top_->apu2mpu_run_state); }
-Fault RtlEngine::fault() const { return static_cast<Fault>(top_->apu2mpu_fault); }
-std::uint8_t RtlEngine::flags() const { return top_->apu2mpu_flags; }
-std::uint8_t RtlEngine::cc() const { return top_->apu2mpu_cc; }
-bool RtlEngine::unit_mismatch() const { return top_->dbg_unit_mismatch; }
-
 // The register as the next word reads it: a result completing in the coming
 // cycle is written at its end but already bypassed to that word
 // (docs/apu-isa.md, Clarification 2: the state between two steps).
-std::uint32_t RtlEngine::freg(int i) const {
-  const Vapu_core& t = *top_;
+template <class Top, bool kTraced>
+std::uint32_t RtlEngine::ModelOf<Top, kTraced>::freg(int i) const {
+  const Top& t = *top_;
   i &= 63;
   for (int p = 0; p < kFCompletionPorts; ++p) {
     if (((t.dbg_fc_en >> p) & 1) && static_cast<int>((t.dbg_fc_idx >> (6 * p)) & 63) == i)
       return wide_bits(t.dbg_fc_val, 24 * p, 24);
   }
-  return backdoor_->freg_array(i);
+  return backdoor_.freg_array(i);
 }
-std::uint16_t RtlEngine::areg(int i) const { return backdoor_->areg_array(i); }
+
+// ---- RtlEngine: the model its waveform needs ------------------------------------
+
+RtlEngine::RtlEngine(const char* fst_path) {
+  if (fst_path)
+    model_ = std::make_unique<ModelOf<Vapu_core, true>>(*this, fst_path);
+  else
+    model_ = std::make_unique<ModelOf<Vapu_fast, false>>(*this, nullptr);
+}
+
+RtlEngine::~RtlEngine() = default;
+
+void RtlEngine::write_program(std::uint16_t addr, const Encoded& word) { model_->write_program(addr, word); }
+void RtlEngine::write_data(std::uint16_t addr, std::uint32_t value) { model_->write_data(addr, value); }
+std::uint32_t RtlEngine::read_data(std::uint16_t addr) const { return model_->read_data(addr); }
+void RtlEngine::write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
+  model_->write_data_block(addr, values, n);
+}
+void RtlEngine::hand_over_program() { model_->hand_over_program(); }
+void RtlEngine::hand_over_data() { model_->hand_over_data(); }
+bool RtlEngine::program_ready() const { return model_->program_ready(); }
+bool RtlEngine::data_ready() const { return model_->data_ready(); }
+void RtlEngine::start(std::uint16_t pc) { model_->start(pc); }
+void RtlEngine::step(CycleRecord& rec) { model_->step(rec); }
+std::uint64_t RtlEngine::run(std::uint64_t max_cycles) { return model_->run(max_cycles); }
+std::uint64_t RtlEngine::run_until_data_taken(std::uint64_t max_cycles) {
+  return model_->run_until_data_taken(max_cycles);
+}
+RunState RtlEngine::state() const { return model_->state(); }
+Fault RtlEngine::fault() const { return model_->fault(); }
+std::uint64_t RtlEngine::cycle() const { return model_->cycle(); }
+std::uint32_t RtlEngine::freg(int i) const { return model_->freg(i); }
+std::uint16_t RtlEngine::areg(int i) const { return model_->areg(i); }
+std::uint8_t RtlEngine::flags() const { return model_->flags(); }
+std::uint8_t RtlEngine::cc() const { return model_->cc(); }
+void RtlEngine::trace_window(std::uint64_t from_ps, std::uint64_t to_ps) { model_->trace_window(from_ps, to_ps); }
+void RtlEngine::trace_kernel(int bank, std::uint16_t id) { model_->trace_kernel(bank, id); }
+bool RtlEngine::unit_mismatch() const { return model_->unit_mismatch(); }
 
 }  // namespace mc1::apu

@@ -9,6 +9,13 @@
 // into the memory arrays of the bank the APU does not use, through the
 // backdoor (apu_rtl_backdoor.hpp; a write there cannot be seen by the APU
 // before a swap, so writing it between two clock edges is exact).
+//
+// Two verilated models of the same RTL (tb/apu/CMakeLists.txt): with a
+// waveform path, Vapu_core, traced, every port of the core; without,
+// Vapu_fast (tb/apu/apu_fast.sv), untraced and without the ports only
+// waveforms read, about a quarter less host time per cycle (docs/platform.md
+// "Rendering benchmark"). The engine's code is one template over the two
+// (apu_rtl_engine.cpp).
 #pragma once
 
 #include <cstdint>
@@ -16,10 +23,6 @@
 
 #include "apu_engine.hpp"
 #include "apu_rtl_backdoor.hpp"
-
-class Vapu_core;
-class VerilatedContext;
-class VerilatedFstC;
 
 namespace mc1::apu {
 
@@ -45,7 +48,7 @@ class RtlEngine final : public ApuEngine {
 
   RunState state() const override;
   Fault fault() const override;
-  std::uint64_t cycle() const override { return cycle_; }
+  std::uint64_t cycle() const override;
   std::uint32_t freg(int i) const override;
   std::uint16_t areg(int i) const override;
   std::uint8_t flags() const override;
@@ -54,6 +57,9 @@ class RtlEngine final : public ApuEngine {
   // Clocks without records until the APU stops running or max_cycles have
   // passed; returns the cycles clocked (the fast path, as Iss::run).
   std::uint64_t run(std::uint64_t max_cycles) override;
+  // As run(), and it stops after the cycle in which the APU takes the data
+  // bank the MPU handed over (apu2mpu_data_ready falls), in one call.
+  std::uint64_t run_until_data_taken(std::uint64_t max_cycles) override;
 
   // Dumps only simulated times in [from_ps, to_ps) (mc1 render --trace-from/--trace-to).
   void trace_window(std::uint64_t from_ps, std::uint64_t to_ps) override;
@@ -68,23 +74,10 @@ class RtlEngine final : public ApuEngine {
   bool unit_mismatch() const;
 
  private:
-  void clock();        // one rising edge and the falling edge after it
-  void settle();       // re-evaluate after an MPU-side input change
-  void dump(std::uint64_t ps);  // at simulated time ps, if in the window (times strictly increase)
-
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<Vapu_core> top_;
-  std::unique_ptr<VerilatedFstC> fst_;
-  std::unique_ptr<RtlBackdoor> backdoor_;  // into *top_
-  RtlBackdoor::Snapshot snapshot_;         // run()'s fixed-point test
-  std::uint64_t cycle_ = 0;
-  bool dump_pending_ = false;  // MPU inputs changed since the last waveform dump
-  std::uint64_t from_ = 0, to_ = ~std::uint64_t{0};  // the dump window (ps)
-  bool dumped_ = false;        // a dump was written; last_dump_ is its time
-  std::uint64_t last_dump_ = 0;
-  // An MPU call changed an input or a bank word since the last eval(): the
-  // next edge is a full eval() (clock()).
-  bool changed_ = true;
+  class Model;  // the engine on one verilated model (apu_rtl_engine.cpp)
+  template <class Top, bool kTraced>
+  class ModelOf;
+  std::unique_ptr<Model> model_;
 };
 
 }  // namespace mc1::apu

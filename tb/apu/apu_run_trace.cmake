@@ -144,8 +144,8 @@ file(READ ${WORK_DIR}/s.fst.gtkw save)
 foreach(want "\n\\^([0-9]+) [^\n]*/s\\.fst\\.kpc\\.txt\nTOP\\.mc1\\.kpc\\[27:0\\]\n"
              "\n\\^([0-9]+) [^\n]*/s\\.fst\\.kernel\\.txt\nTOP\\.mc1\\.kernel_id\\[15:0\\]\n"
              "\n\\[dumpfile\\] \"[^\n]*/s\\.fst\"\n"
-             "\n\\[\\*\\] A 1000000 ps \\(1\\.000 us\\): stall\\.apu pc 0x003, 3 stalled cycles, 1 in a row: add f3, f2, f1\n"
-             "\n\\*-19\\.000000 1000000 1000000 -1 ")
+             "\n\\[\\*\\] A 1250000 ps \\(1\\.250 us\\): stall\\.apu pc 0x003, 3 stalled cycles, 1 in a row: add f3, f2, f1\n"
+             "\n\\*-19\\.000000 1250000 1250000 0 4500000 -1 ")
   if(NOT save MATCHES "${want}")
     message(SEND_ERROR "s.fst.gtkw has no match of '${want}':\n${save}")
   endif()

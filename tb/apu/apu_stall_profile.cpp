@@ -24,8 +24,8 @@ std::string stalls_json(const std::array<std::uint64_t, kStallKinds>& a) {
 }
 
 std::string counts_json(const StallProfile::Counts& c) {
-  return format("\"cycles\": %llu, \"issued\": %llu, \"fetch\": %llu, \"stalled\": %llu, \"stalls\": ",
-                static_cast<ull>(c.cycles), static_cast<ull>(c.issued), static_cast<ull>(c.fetch),
+  return format("\"cycles\": %llu, \"issued\": %llu, \"faulted\": %llu, \"stalled\": %llu, \"stalls\": ",
+                static_cast<ull>(c.cycles), static_cast<ull>(c.issued), static_cast<ull>(c.faulted),
                 static_cast<ull>(c.stalled())) +
          stalls_json(c.stalls);
 }
@@ -109,7 +109,7 @@ std::uint64_t StallProfile::Counts::stalled() const {
 void StallProfile::Counts::operator+=(const Counts& o) {
   cycles += o.cycles;
   issued += o.issued;
-  fetch += o.fetch;
+  faulted += o.faulted;
   for (int k = 0; k < kStallKinds; ++k) stalls[k] += o.stalls[k];
 }
 
@@ -127,9 +127,9 @@ void StallProfile::NcState::add(unsigned kernel, const CycleRecord& r, std::uint
     end_run();
     return;
   }
-  if (r.stall == Stall::None) {  // a start's fetch (or a faulting word)
-    ++counts.fetch;
-    ++site.counts.fetch;
+  if (r.stall == Stall::None) {  // a faulting word (a start's cycles are `fetch` stalls)
+    ++counts.faulted;
+    ++site.counts.faulted;
     end_run();
     return;
   }
@@ -266,10 +266,10 @@ std::string StallProfile::text(const KernelTable& kernels, int top_n) const {
   const std::vector<std::vector<Site>> all = sites();
   auto pct = [](std::uint64_t a, std::uint64_t b) { return b ? 100.0 * static_cast<double>(a) / static_cast<double>(b) : 0.0; };
   std::string s = format("stall profile: %llu APU cycles on %zu NCs, %llu issued (%.1f%%), %llu stalled (%.1f%%), "
-                         "%llu fetch\n",
+                         "%llu faulted\n",
                          static_cast<ull>(t.cycles), static_cast<std::size_t>(std::count_if(ncs_.begin(), ncs_.end(), [](const auto& n) { return n != nullptr; })),
                          static_cast<ull>(t.issued), pct(t.issued, t.cycles), static_cast<ull>(t.stalled()),
-                         pct(t.stalled(), t.cycles), static_cast<ull>(t.fetch));
+                         pct(t.stalled(), t.cycles), static_cast<ull>(t.faulted));
   s += format("%-12s %11s %11s %11s", "kernel", "cycles", "issued", "stalled");
   for (int k = 1; k < kStallKinds; ++k) s += format(" %9s", stall_name(static_cast<Stall>(k)));
   s += "\n";

@@ -63,7 +63,7 @@ class StallProfile {
   }
 
   struct Counts {
-    std::uint64_t cycles = 0, issued = 0, fetch = 0;  // fetch: running, neither issued nor stalled
+    std::uint64_t cycles = 0, issued = 0, faulted = 0;  // faulted: running, neither issued nor stalled (a faulting word)
     std::array<std::uint64_t, kStallKinds> stalls{};  // [0] unused
     std::uint64_t stalled() const;
     void operator+=(const Counts& o);
