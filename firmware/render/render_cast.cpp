@@ -1,7 +1,7 @@
 // The intersection pass of s1, s2 and s4 (r_cast): rays in batches with
 // their candidate lists, the lists' primitives in chunks of the bank's
 // slots. r_inside (render_solid.cpp) batches its rays the same way.
-#include <map>
+#include <algorithm>
 #include <set>
 #include <stdexcept>
 
@@ -74,16 +74,15 @@ std::vector<int> RenderFirmware::write_lists(
 // the rays as r_cast reads them.
 void RenderFirmware::fill_cast(const std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists,
                                const BatchPlan& p, std::size_t c, const std::vector<int>& slots, Step step) {
-  const auto& chunk = p.chunks[c];
-  std::map<int, int> slot_of;
-  for (std::size_t k = 0; k < chunk.size(); ++k) slot_of[chunk[k]] = slots[k];
+  const auto& chunk = p.chunks[c];  // ascending (plan_batches), chunk[k] in slots[k]
   const std::vector<int> list_n = write_lists(
       p.keys.size(),
       [&](std::size_t k) {
         std::vector<std::uint32_t> out;
         for (int prim : lists[p.keys[k]]) {
-          auto it = slot_of.find(prim);
-          if (it != slot_of.end()) out.push_back(static_cast<std::uint32_t>(it->second));
+          const auto it = std::lower_bound(chunk.begin(), chunk.end(), prim);
+          if (it != chunk.end() && *it == prim)
+            out.push_back(static_cast<std::uint32_t>(slots[static_cast<std::size_t>(it - chunk.begin())]));
         }
         cost(step).list_elements += lists[p.keys[k]].size();
         return out;

@@ -5,14 +5,6 @@
 
 namespace mc1::hdlc {
 
-std::uint16_t fcs16(const std::uint8_t* data, std::size_t n) {
-  std::uint16_t crc = 0xFFFF;
-  for (std::size_t i = 0; i < n; ++i) {
-    crc ^= data[i];
-    for (int b = 0; b < 8; ++b) crc = (crc & 1) ? (crc >> 1) ^ 0x8408 : crc >> 1;
-  }
-  return crc ^ 0xFFFF;
-}
 
 Control Control::info(std::uint8_t ns, std::uint8_t nr, bool pf) {
   Control c;
@@ -127,7 +119,49 @@ Bits encode(const Frame& f) {
   return b;
 }
 
-std::size_t wire_bits(const Frame& f) { return stuff(frame_octets(f)).size() + 16; }
+namespace {
+// Zero insertion's count over one octet, LSB first: `ones` carries the run of 1s.
+unsigned stuffed_zeros(std::uint8_t o, unsigned& ones) {
+  unsigned zeros = 0;
+  for (int i = 0; i < 8; ++i) {
+    ones = (o >> i) & 1 ? ones + 1 : 0;
+    if (ones == 5) {
+      ++zeros;
+      ones = 0;
+    }
+  }
+  return zeros;
+}
+
+std::uint16_t fcs16_step(std::uint16_t crc, std::uint8_t o) {
+  crc ^= o;
+  for (int b = 0; b < 8; ++b) crc = (crc & 1) ? (crc >> 1) ^ 0x8408 : crc >> 1;
+  return crc;
+}
+}  // namespace
+
+std::uint16_t fcs16(const std::uint8_t* data, std::size_t n) {
+  std::uint16_t crc = 0xFFFF;
+  for (std::size_t i = 0; i < n; ++i) crc = fcs16_step(crc, data[i]);
+  return crc ^ 0xFFFF;
+}
+
+std::size_t wire_bits(const Frame& f) {
+  unsigned ones = 0;
+  std::size_t zeros = 0;
+  std::uint16_t crc = 0xFFFF;
+  auto octet = [&](std::uint8_t o) {
+    crc = fcs16_step(crc, o);
+    zeros += stuffed_zeros(o, ones);
+  };
+  octet(f.address);
+  octet(f.control);
+  for (std::uint8_t o : f.info) octet(o);
+  const std::uint16_t fcs = crc ^ 0xFFFF;
+  zeros += stuffed_zeros(static_cast<std::uint8_t>(fcs & 0xFF), ones);
+  zeros += stuffed_zeros(static_cast<std::uint8_t>(fcs >> 8), ones);
+  return 16 + 8 * (f.info.size() + kMinFrameOctets) + zeros;
+}
 
 std::uint64_t wire_time_ps(const Frame& f, std::uint64_t bit_rate_bps) {
   const unsigned __int128 num =
@@ -190,6 +224,12 @@ void Decoder::on_flag(std::vector<Frame>& out) {
   }
   in_frame_ = true;
   data_.clear();
+}
+
+void Decoder::take_whole() {
+  assert(at_rest());
+  ++counters_.frames_ok;
+  in_frame_ = true;  // the closing flag opens the next frame
 }
 
 void Decoder::idle() {

@@ -68,6 +68,7 @@ Bits stuff(const Bytes& octets);
 // The complete wire image: opening flag, stuffed frame octets, closing flag.
 Bits encode(const Frame& f);
 // Bits of the wire image (flags included): what the line is busy for.
+// Counted from the octets, no image built: encode(f).size().
 std::size_t wire_bits(const Frame& f);
 // Exact wire time in picoseconds at `bit_rate_bps` (rounded up to 1 ps).
 std::uint64_t wire_time_ps(const Frame& f, std::uint64_t bit_rate_bps);
@@ -91,6 +92,13 @@ class Decoder {
   void feed_bit(std::uint8_t bit, std::vector<Frame>& out);
   // The line idled (marking, all 1s) long enough to abort any frame.
   void idle();
+  // Between frames: no bits held back, nothing since the last flag. Fed
+  // encode(f) now, the decoder yields exactly f and is at rest again.
+  bool at_rest() const { return ones_ == 0 && data_.empty(); }
+  // What feed(encode(f), out) does to a decoder at rest, without the bits
+  // (the fault-free receiver's fast path, Network::frame_end): counts the
+  // good frame and stays at rest; the frame taken is f itself.
+  void take_whole();
   const Counters& counters() const { return counters_; }
 
  private:

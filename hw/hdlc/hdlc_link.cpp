@@ -52,10 +52,12 @@ void FaultyWire::draw_gap() {
 Bits FaultyWire::receive(const Bits& sent, Picos start, std::uint64_t bit_rate_bps) {
   Bits out = sent;
   for (std::size_t i = 0; i < out.size(); ++i, ++seen_) {
-    const Picos t = start + static_cast<Picos>(static_cast<unsigned __int128>(i) *
-                                               1'000'000'000'000ULL / bit_rate_bps);
     bool dead = false;
-    for (const DeadWindow& w : f_.dead) dead = dead || (t >= w.begin && t < w.end);
+    if (!f_.dead.empty()) {
+      const Picos t = start + static_cast<Picos>(static_cast<unsigned __int128>(i) *
+                                                 1'000'000'000'000ULL / bit_rate_bps);
+      for (const DeadWindow& w : f_.dead) dead = dead || (t >= w.begin && t < w.end);
+    }
     bool flip = std::binary_search(f_.flip_bits.begin(), f_.flip_bits.end(), seen_);
     if (gap_ == 0) {
       flip = !flip;
@@ -177,7 +179,8 @@ void Network::at(Picos t, std::function<void()> fn) {
 }
 
 void Network::step() {
-  Event e = events_.top();
+  // Moved out, not copied (a frame rides in it): pop() orders by t and seq alone.
+  Event e = std::move(const_cast<Event&>(events_.top()));
   events_.pop();
   now_ = e.t;
   e.fn();
@@ -355,18 +358,20 @@ bool Network::transmit_poll(Line& l) {
   return false;
 }
 
-void Network::transmit(Line& l, const Frame& f, Sender* s, unsigned poll_nc) {
+void Network::transmit(Line& l, Frame f, Sender* s, unsigned poll_nc) {
   if (trace_) trace_(now_, l.index, f);
-  Bits bits = encode(f);
+  const std::size_t bits = wire_bits(f);
   const Picos start = now_;
-  const Picos dur = t_.hdlc_bits_ps(bits.size());
+  const Picos dur = t_.hdlc_bits_ps(bits);
   l.busy = true;
   ++l.stats.frames;
   (s ? l.stats.i_frames : l.stats.s_frames)++;
   if (!s && (f.control & 0x10)) ++l.stats.poll_frames;
   if (s) l.stats.info_bytes += f.info.size();
-  l.stats.wire_bits += bits.size();
-  at(start + dur, [this, &l, bits = std::move(bits), start, s, poll_nc] { frame_end(l, bits, start, s, poll_nc); });
+  l.stats.wire_bits += bits;
+  at(start + dur, [this, &l, f = std::move(f), bits, start, s, poll_nc] {
+    frame_end(l, f, bits, start, s, poll_nc);
+  });
 }
 
 void Network::start_timer(Sender& s, Picos from) {

@@ -65,6 +65,10 @@ class FaultyWire {
   explicit FaultyWire(LinkFaults f);
   // Bit i of `sent` is on the wire from start + i * 1e12 / bit_rate_bps.
   Bits receive(const Bits& sent, Picos start, std::uint64_t bit_rate_bps);
+  // No faults at all: receive() returns what was sent, whatever it is.
+  bool clean() const { return f_.bit_error_rate <= 0.0 && f_.dead.empty() && f_.flip_bits.empty(); }
+  // What receive() does to a clean wire for `bits` bits: counts them.
+  void pass(std::uint64_t bits) { seen_ += bits; }
   std::uint64_t bits_flipped() const { return flipped_; }
   std::uint64_t bits_dead() const { return dead_; }
 
@@ -206,8 +210,9 @@ class Network {
   void try_transmit(Line& l);
   bool transmit_ack(Line& l, Picos& earliest);
   bool transmit_poll(Line& l);
-  void transmit(Line& l, const Frame& f, Sender* s, unsigned poll_nc = 0);
-  void frame_end(Line& l, const Bits& bits, Picos start, Sender* s, unsigned poll_nc);
+  void transmit(Line& l, Frame f, Sender* s, unsigned poll_nc = 0);
+  void frame_end(Line& l, const Frame& f, std::size_t bits, Picos start, Sender* s, unsigned poll_nc);
+  void receive(Line& l, Endpoint& ep, const Frame& f, std::size_t bits, Bits& image, Picos start);
   void dispatch(Line& l, Endpoint& ep, const Frame& f);
   void on_info(Receiver& r, const Frame& f, const Control& c);
   void on_ack(Sender& s, std::size_t peer, std::uint8_t nr, bool rej);

@@ -93,8 +93,13 @@ bool parse_u64(std::string_view text, std::uint64_t& out) {
   return r.ec == std::errc() && r.ptr == digits.data() + digits.size();
 }
 
-// Rounds up: a duration is never shorter than the hardware needs.
+// Rounds up: a duration is never shorter than the hardware needs. In 64
+// bits when the numerator fits (every MPU work span, every HDLC frame: a
+// 128-bit division is a library call), the same quotient either way.
 Picos scaled_ps(std::uint64_t count, std::uint64_t ps_numerator, std::uint64_t rate) {
+  std::uint64_t num64 = 0;
+  if (!__builtin_mul_overflow(count, ps_numerator, &num64) && num64 <= ~std::uint64_t{0} - (rate - 1))
+    return (num64 + rate - 1) / rate;
   const unsigned __int128 num = static_cast<unsigned __int128>(count) * ps_numerator;
   return static_cast<Picos>((num + rate - 1) / rate);
 }
