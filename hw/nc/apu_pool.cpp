@@ -22,9 +22,13 @@ void cpu_relax() {
 bool ApuJob::in_job() { return t_in_job; }
 
 bool ApuJob::lasts(std::uint64_t cycles) {
-  pool_.help(*this, [&] { return done_ || reached_ >= cycles; });
-  if (reached_ >= cycles) return true;
-  return !error_ && cycles_ >= cycles;
+  bool known = false;  // decided under the pool's lock: a worker may publish reached_ after help()
+  pool_.help(*this, [&] {
+    if (reached_ >= cycles) return known = true;
+    if (done_) known = !error_ && cycles_ >= cycles;
+    return done_;
+  });
+  return known;
 }
 
 std::uint64_t ApuJob::result() {
