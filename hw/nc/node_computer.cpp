@@ -321,7 +321,6 @@ void NodeComputer::apu_wait_swap() {
   const std::uint64_t to_kill =
       kill_at_ == ~Picos{0} ? ~std::uint64_t{0} : kill_at_ > apu_time_ ? (kill_at_ - apu_time_) / cycle_ps_ : 0;
   const std::uint64_t limit = std::min(to_kill, t_.apu_watchdog_cycles);
-  settle_apu();
   engine_->set_time(apu_time_, cycle_ps_);  // the run starts at apu_time_ (waveforms, profiles)
   // Up to the cycle the APU takes the bank (the swap interrupt comes in it),
   // in stretches that end where the NC's steps on the pool do.
@@ -354,7 +353,6 @@ void NodeComputer::apu_wait_halt() {
   catch_up();
   if (engine_->state() != apu::RunState::Running) return;
   std::string runaway;  // the driver's account of a run the watchdog stops
-  settle_apu();
   engine_->set_time(apu_time_, cycle_ps_);  // the run starts at apu_time_ (waveforms, profiles)
   driver_.begin_run();
   // run_until_done() a stretch at a time: each up to the next cycle whose
