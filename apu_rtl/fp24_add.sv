@@ -80,7 +80,7 @@ module fp24_add #(
   logic [SHIFT_W-1:0]     shift;
   logic [SUM_W-2:0]       small_al;      // aligned small significand
   logic [SUM_W-2:0]       small_lost;    // bits shifted out below GRS
-  logic [SUM_W-1:0]       small_ext, big_ext, sum;
+  logic [SUM_W-1:0]       small_ext, big_ext;
 
   always_comb begin
     b_sign_eff = b_sign ^ (in_op == OP_SUB);
@@ -101,7 +101,6 @@ module fp24_add #(
     // 2 LSBs, and the guard bit of the result is never below bit 1.
     small_ext  = {1'b0, small_al[SUM_W-2:1], small_al[0] | (small_lost != '0)};
     big_ext    = {1'b0, big_sig, {GRS_W{1'b0}}};
-    sum        = eff_sub ? big_ext - small_ext : big_ext + small_ext;
   end
 
   // FLOAT: the magnitude of the two's-complement integer in in_a[15:0].
@@ -161,7 +160,9 @@ module fp24_add #(
   logic              s1_sign;       // sign of a nonzero sum
   logic              s1_zero_sign;  // sign of an exact zero sum
   logic [SEXP_W-1:0] s1_exp;        // exponent of sum bit SUM_W-2, plus 1
-  logic [SUM_W-1:0]  s1_sum;
+  logic [SUM_W-2:0]  s1_big;        // the operands of the sum
+  logic [SUM_W-2:0]  s1_small;
+  logic              s1_sub;
 
   logic              d_direct;
   logic [W-1:0]      d_result;
@@ -212,36 +213,63 @@ module fp24_add #(
         s1_sign      <= int_sign;
         s1_zero_sign <= 1'b0;
         s1_exp       <= FLOAT_EXP;
-        s1_sum       <= {{(SUM_W - INT_W) {1'b0}}, int_mag};
+        s1_big       <= {{(SUM_W - 1 - INT_W) {1'b0}}, int_mag};
+        s1_small     <= '0;
+        s1_sub       <= 1'b0;
       end else begin
         s1_sign      <= big_sign;
         // An exact zero sum is +0 but for (-0) + (-0) and (-0) - (+0).
         s1_zero_sign <= a_sign && b_sign_eff;
         s1_exp       <= {2'b00, big_exp} + {{(SEXP_W - 1) {1'b0}}, 1'b1};
-        s1_sum       <= sum;
+        s1_big       <= big_ext[SUM_W-2:0];
+        s1_small     <= small_ext[SUM_W-2:0];
+        s1_sub       <= eff_sub;
       end
     end
   end
 
   // ---- stage 2: normalise, round, pack -----------------------------------------
+  logic [SUM_W-1:0]  s1_sum;
   logic [NORM_W-1:0] n16, n8, n4, n2, n1, n0;
   logic [4:0]        lzc;
+  logic [15:0]       z1, c1;         // per group of 2, 4, 8, 16 bits: all zero,
+  logic [7:0]        z2;             // leading zeros below the group's top
+  logic [15:0]       c2;
+  logic [3:0]        z3;
+  logic [11:0]       c3;
+  logic [1:0]        z4;
+  logic [7:0]        c4;
   logic              sum_zero;
   logic [SEXP_W-1:0] rnd_exp;
 
   always_comb begin
-    // Leading-zero count and left shift in one pass, 16/8/4/2/1.
-    n16    = {s1_sum, {(NORM_W - SUM_W) {1'b0}}};
-    lzc[4] = (n16[NORM_W-1-:16] == '0);
-    n8     = lzc[4] ? {n16[NORM_W-17:0], 16'b0} : n16;
-    lzc[3] = (n8[NORM_W-1-:8] == '0);
-    n4     = lzc[3] ? {n8[NORM_W-9:0], 8'b0} : n8;
-    lzc[2] = (n4[NORM_W-1-:4] == '0);
-    n2     = lzc[2] ? {n4[NORM_W-5:0], 4'b0} : n4;
-    lzc[1] = (n2[NORM_W-1-:2] == '0);
-    n1     = lzc[1] ? {n2[NORM_W-3:0], 2'b0} : n2;
-    lzc[0] = !n1[NORM_W-1];
-    n0     = lzc[0] ? {n1[NORM_W-2:0], 1'b0} : n1;
+    s1_sum = s1_sub ? {1'b0, s1_big} - {1'b0, s1_small} : {1'b0, s1_big} + {1'b0, s1_small};
+    // Leading-zero count as a tree (pairs, then 4, 8, 16, 32 bits: a
+    // group's count is its upper half's, or its lower half's after a zero
+    // upper half), so lzc[4] comes first and the shift takes 16/8/4/2/1.
+    n16 = {s1_sum, {(NORM_W - SUM_W) {1'b0}}};
+    for (int j = 0; j < 16; j++) begin
+      z1[j] = !(n16[2*j+1] | n16[2*j]);
+      c1[j] = !n16[2*j+1];
+    end
+    for (int j = 0; j < 8; j++) begin
+      z2[j] = z1[2*j+1] & z1[2*j];
+      c2[2*j +: 2] = z1[2*j+1] ? {1'b1, c1[2*j]} : {1'b0, c1[2*j+1]};
+    end
+    for (int j = 0; j < 4; j++) begin
+      z3[j] = z2[2*j+1] & z2[2*j];
+      c3[3*j +: 3] = z2[2*j+1] ? {1'b1, c2[4*j +: 2]} : {1'b0, c2[4*j+2 +: 2]};
+    end
+    for (int j = 0; j < 2; j++) begin
+      z4[j] = z3[2*j+1] & z3[2*j];
+      c4[4*j +: 4] = z3[2*j+1] ? {1'b1, c3[6*j +: 3]} : {1'b0, c3[6*j+3 +: 3]};
+    end
+    lzc = z4[1] ? {1'b1, c4[3:0]} : {1'b0, c4[7:4]};
+    n8  = lzc[4] ? {n16[NORM_W-17:0], 16'b0} : n16;
+    n4  = lzc[3] ? {n8[NORM_W-9:0], 8'b0} : n8;
+    n2  = lzc[2] ? {n4[NORM_W-5:0], 4'b0} : n4;
+    n1  = lzc[1] ? {n2[NORM_W-3:0], 2'b0} : n2;
+    n0  = lzc[0] ? {n1[NORM_W-2:0], 1'b0} : n1;
     sum_zero = !n0[NORM_W-1];
     rnd_exp  = s1_exp - {{(SEXP_W - 5) {1'b0}}, lzc};
   end
