@@ -221,18 +221,18 @@ module fp24_func_trig #(
     end
   end
 
-  // ---- stage 3 -> 4: u = phi^2 in 0.64 quarter turns squared ----------------
+  // ---- stage 3 -> 4: phi^2 ---------------------------------------------------
+  /* verilator lint_off UNUSEDSIGNAL */
   logic [87:0] sq;
-  logic [45:0] u;
-  always_comb begin
-    sq = {44'd0, s3_phi} * {44'd0, s3_phi};
-    u  = (s3_s >= 6'd23) ? 46'd0 : 46'(sq >> (7'd42 + {s3_s, 1'b0}));
-  end
+  /* verilator lint_on UNUSEDSIGNAL */
+  assign sq = {44'd0, s3_phi} * {44'd0, s3_phi};
 
-  logic [45:0] s4_u, s5_u;
-  always_ff @(posedge clk) if (s3_valid) s4_u <= u;
+  logic [87:42] s4_sq;  // the bits u takes
+  always_ff @(posedge clk) if (s3_valid) s4_sq <= sq[87:42];
 
-  // ---- stage 4 -> 5: T_s = k3 u, w = k2 - k4 u --------------------------------
+  // ---- stage 4 -> 5: u = phi^2 in 0.64 quarter turns squared; T_s = k3 u,
+  // w = k2 - k4 u ---------------------------------------------------------------
+  logic [45:0] u, s5_u;
   logic [44:0] ts;
   logic [40:0] w;
   /* verilator lint_off UNUSEDSIGNAL */
@@ -240,9 +240,10 @@ module fp24_func_trig #(
   logic [45:0] w_prod;
   /* verilator lint_on UNUSEDSIGNAL */
   always_comb begin
-    ts_full = {41'd0, s4_u} * {46'd0, fp24_func_pkg::TRIG_K3};
+    u       = (s4_s >= 6'd23) ? 46'd0 : 46'(s4_sq >> {s4_s, 1'b0});
+    ts_full = {41'd0, u} * {46'd0, fp24_func_pkg::TRIG_K3};
     ts      = ts_full[84:40];
-    w_prod  = {24'd0, s4_u[45:24]} * {22'd0, fp24_func_pkg::TRIG_K4};
+    w_prod  = {24'd0, u[45:24]} * {22'd0, fp24_func_pkg::TRIG_K4};
     w       = fp24_func_pkg::TRIG_K2 - {19'd0, w_prod[45:24]};
   end
 
@@ -250,7 +251,7 @@ module fp24_func_trig #(
   logic [40:0] s5_w;
   always_ff @(posedge clk) begin
     if (s4_valid) begin
-      s5_u  <= s4_u;
+      s5_u  <= u;
       s5_ts <= ts;
       s5_w  <= w;
     end
@@ -313,47 +314,52 @@ module fp24_func_trig #(
     end
   end
 
-  // ---- stage 7 -> 8: y = A - A T_c +- (pi/2) B X, normalized ----------------
-  logic [52:0]       y, ny;   // 1.52, 0 < y <= 1
+  // ---- stage 7 -> 8: y = A - A T_c +- (pi/2) B X ----------------------------
+  logic [52:0] y;   // 1.52, 0 < y <= 1
+  always_comb
+    y = s7_plus ? s7_av - {17'd0, s7_at} + {9'd0, s7_bx} : s7_av - {17'd0, s7_at} - {9'd0, s7_bx};
+
+  logic              s8_valid, s8_known, s8_sign, s8_sin0;
+  logic [W-1:0]      s8_result;
+  logic [4:0]        s8_flags;
+  logic [5:0]        s8_s;
+  logic [52:0]       s8_y;
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) s8_valid <= 1'b0;
+    else        s8_valid <= s7_valid;
+    if (s7_valid) begin
+      {s8_known, s8_result, s8_flags, s8_sign, s8_sin0, s8_s} <=
+          {s7_known, s7_result, s7_flags, s7_sign, s7_sin0, s7_s};
+      s8_y <= y;
+    end
+  end
+
+  // ---- stage 8 -> 9: normalize, round, pack ----------------------------------
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [52:0]       ny;
+  /* verilator lint_on UNUSEDSIGNAL */
   logic [3:0]        ylz;
   logic [SEXP_W-1:0] yexp;
 
   always_comb begin
-    y = s7_plus ? s7_av - {17'd0, s7_at} + {9'd0, s7_bx} : s7_av - {17'd0, s7_at} - {9'd0, s7_bx};
     // y >= 2^-11 (the generator checks it): a shift of at most 15.
-    ny  = y;
+    ny  = s8_y;
     ylz = '0;
     if (ny[52-:8] == '0) begin ny = {ny[44:0], 8'd0}; ylz[3] = 1'b1; end
     if (ny[52-:4] == '0) begin ny = {ny[48:0], 4'd0}; ylz[2] = 1'b1; end
     if (ny[52-:2] == '0) begin ny = {ny[50:0], 2'd0}; ylz[1] = 1'b1; end
     if (ny[52] == 1'b0)  begin ny = {ny[51:0], 1'b0}; ylz[0] = 1'b1; end
     // |y| = ny * 2^(-ylz - 52) (times 2^-s for a sine at j = 0); biased.
-    yexp = BIAS - SEXP_W'(ylz) - (s7_sin0 ? SEXP_W'(s7_s) : SEXP_W'(0));
+    yexp = BIAS - SEXP_W'(ylz) - (s8_sin0 ? SEXP_W'(s8_s) : SEXP_W'(0));
   end
 
-  logic              s8_valid, s8_known, s8_sign;
-  logic [W-1:0]      s8_result;
-  logic [4:0]        s8_flags;
-  logic [FRAC_W:0]   s8_sig;    // the 16 fraction bits and the guard bit
-  logic [SEXP_W-1:0] s8_exp;
-
-  always_ff @(posedge clk) begin
-    if (!rst_n) s8_valid <= 1'b0;
-    else        s8_valid <= s7_valid;
-    if (s7_valid) begin
-      {s8_known, s8_result, s8_flags, s8_sign} <= {s7_known, s7_result, s7_flags, s7_sign};
-      s8_sig <= ny[51-:FRAC_W+1];
-      s8_exp <= yexp;
-    end
-  end
-
-  // ---- stage 8 -> 9: round, pack ---------------------------------------------
   logic [W-1:0] trig_result;
   logic [4:0]   trig_flags;
 
   // sin and cos are transcendental: never exact, never a tie (sticky = 1).
   fp24_round #(.EXP_W(EXP_W), .FRAC_W(FRAC_W), .SEXP_W(SEXP_W)) u_round (
-      .sign(s8_sign), .exp(s8_exp), .frac(s8_sig[FRAC_W:1]), .guard(s8_sig[0]), .sticky(1'b1),
+      .sign(s8_sign), .exp(yexp), .frac(ny[51-:FRAC_W]), .guard(ny[51-FRAC_W]), .sticky(1'b1),
       .result(trig_result), .flags(trig_flags));
 
   // ---- stage 9 registers: the result ------------------------------------------
