@@ -173,15 +173,16 @@ module fp24_func_trig #(
   logic [W-1:0] s3_result, s4_result, s5_result, s6_result, s7_result;
   logic [4:0]   s3_flags, s4_flags, s5_flags, s6_flags, s7_flags;
   // The datapath's control, carried to the end.
-  logic [7:0]   s3_j, s4_j;
-  logic         s3_cos, s4_cos, s5_cos, s6_cos;             // use_cos
+  logic [7:0]   s3_j;
+  logic         s3_cos, s4_cos, s5_cos;                     // use_cos
   logic         s3_plus, s4_plus, s5_plus, s6_plus, s7_plus;  // the B term adds
   logic         s3_sin0, s4_sin0, s5_sin0, s6_sin0, s7_sin0;  // j = 0 sine: y = B X, scaled by 2^-s
   logic         s3_sign, s4_sign, s5_sign, s6_sign, s7_sign;
   logic [5:0]   s3_s, s4_s, s5_s, s6_s, s7_s;
   logic [43:0]  s3_phi, s4_phi, s5_phi;
-  logic         s5_j0, s6_j0;  // j = 0: the table entry is TRIG_TAB0
-  logic [6:0]   s5_addr;
+  logic         s4_j0, s5_j0;  // j = 0: the table entry is TRIG_TAB0
+  logic [6:0]   s4_addr;
+  logic         s4_uz;
 
   always_ff @(posedge clk) begin
     if (!rst_n) begin
@@ -200,20 +201,21 @@ module fp24_func_trig #(
       s3_phi  <= phi;
     end
     if (s3_valid) begin
-      {s4_known, s4_result, s4_flags, s4_j, s4_cos, s4_plus, s4_sin0, s4_sign, s4_s, s4_phi} <=
-          {s3_known, s3_result, s3_flags, s3_j, s3_cos, s3_plus, s3_sin0, s3_sign, s3_s, s3_phi};
+      {s4_known, s4_result, s4_flags, s4_cos, s4_plus, s4_sin0, s4_sign, s4_s, s4_phi} <=
+          {s3_known, s3_result, s3_flags, s3_cos, s3_plus, s3_sin0, s3_sign, s3_s, s3_phi};
+      // The ROM holds j = 1..128 at j - 1; j = 0 is a constant.
+      s4_j0   <= s3_j == 8'd0;
+      s4_uz   <= s3_s >= 6'd23;   // u = 0
+      s4_addr <= 7'(s3_j - 8'd1);
     end
     if (s4_valid) begin
       {s5_known, s5_result, s5_flags, s5_cos, s5_plus, s5_sin0, s5_sign, s5_s, s5_phi} <=
           {s4_known, s4_result, s4_flags, s4_cos, s4_plus, s4_sin0, s4_sign, s4_s, s4_phi};
-      // The ROM holds j = 1..128 at j - 1; j = 0 is a constant.
-      s5_j0   <= s4_j == 8'd0;
-      s5_addr <= 7'(s4_j - 8'd1);
+      s5_j0 <= s4_j0;
     end
     if (s5_valid) begin
-      {s6_known, s6_result, s6_flags, s6_cos, s6_plus, s6_sin0, s6_sign, s6_s} <=
-          {s5_known, s5_result, s5_flags, s5_cos, s5_plus, s5_sin0, s5_sign, s5_s};
-      s6_j0 <= s5_j0;
+      {s6_known, s6_result, s6_flags, s6_plus, s6_sin0, s6_sign, s6_s} <=
+          {s5_known, s5_result, s5_flags, s5_plus, s5_sin0, s5_sign, s5_s};
     end
     if (s6_valid) begin
       {s7_known, s7_result, s7_flags, s7_plus, s7_sin0, s7_sign, s7_s} <=
@@ -240,26 +242,32 @@ module fp24_func_trig #(
   logic [45:0] w_prod;
   /* verilator lint_on UNUSEDSIGNAL */
   always_comb begin
-    u       = (s4_s >= 6'd23) ? 46'd0 : 46'(s4_sq >> {s4_s, 1'b0});
+    u       = s4_uz ? 46'd0 : 46'(s4_sq >> {s4_s[4:0], 1'b0});
     ts_full = {41'd0, u} * {46'd0, fp24_func_pkg::TRIG_K3};
     ts      = ts_full[84:40];
     w_prod  = {24'd0, u[45:24]} * {22'd0, fp24_func_pkg::TRIG_K4};
     w       = fp24_func_pkg::TRIG_K2 - {19'd0, w_prod[45:24]};
   end
 
-  logic [44:0] s5_ts;
-  logic [40:0] s5_w;
+  logic [44:0]  s5_ts;
+  logic [40:0]  s5_w;
+  logic [195:0] s5_tab;  // {S_j, C_j, pi/2 S_j, pi/2 C_j}
   always_ff @(posedge clk) begin
     if (s4_valid) begin
-      s5_u  <= u;
-      s5_ts <= ts;
-      s5_w  <= w;
+      s5_u   <= u;
+      s5_ts  <= ts;
+      s5_w   <= w;
+      s5_tab <= fp24_func_pkg::rom_trig_table(s4_addr);
     end
   end
 
-  // ---- stage 5 -> 6: T_c = u w, X = phi (1 - T_s); the table entry ----------
+  // ---- stage 5 -> 6: T_c = u w, X = phi (1 - T_s); A and B from the table
+  // entry ----------------------------------------------------------------------
   logic [46:12] tc;  // T_c in 0.64, but for the 12 bits A T_c does not need
   logic [43:0] x;
+  logic [195:0] tab;
+  logic [52:0] av;
+  logic [44:0] bv;
   /* verilator lint_off UNUSEDSIGNAL */
   logic [86:0]  tc_full;
   logic [107:0] x_full;
@@ -270,36 +278,35 @@ module fp24_func_trig #(
     // One multiply-subtract, floored once (as the C++ twin).
     x_full  = {s5_phi, 64'd0} - {64'd0, s5_phi} * {63'd0, s5_ts};
     x       = x_full[107:64];
+    tab     = s5_j0 ? fp24_func_pkg::TRIG_TAB0 : s5_tab;
+    av      = s5_cos ? tab[142:90] : tab[195:143];
+    bv      = s5_cos ? tab[89:45] : tab[44:0];
   end
 
   logic [46:12] s6_tc;
   logic [43:0]  s6_x;
-  logic [195:0] s6_tab;  // {S_j, C_j, pi/2 S_j, pi/2 C_j}
+  logic [52:0]  s6_av;
+  logic [44:0]  s6_bv;
   always_ff @(posedge clk) begin
     if (s5_valid) begin
-      s6_tc  <= tc;
-      s6_x   <= x;
-      s6_tab <= fp24_func_pkg::rom_trig_table(s5_addr);
+      s6_tc <= tc;
+      s6_x  <= x;
+      s6_av <= av;
+      s6_bv <= bv;
     end
   end
 
   // ---- stage 6 -> 7: A T_c and (pi/2) B X ------------------------------------
-  logic [52:0] av;
-  logic [44:0] bv;
   logic [35:0] at;
   logic [43:0] bx;
   /* verilator lint_off UNUSEDSIGNAL */
   logic [71:0] at_full;
   logic [88:0] bx_full;
   /* verilator lint_on UNUSEDSIGNAL */
-  logic [195:0] tab;
   always_comb begin
-    tab     = s6_j0 ? fp24_func_pkg::TRIG_TAB0 : s6_tab;
-    av      = s6_cos ? tab[142:90] : tab[195:143];
-    bv      = s6_cos ? tab[89:45] : tab[44:0];
-    at_full = {35'd0, av[52:16]} * {37'd0, s6_tc[46:12]};
+    at_full = {35'd0, s6_av[52:16]} * {37'd0, s6_tc[46:12]};
     at      = at_full[71:36];
-    bx_full = {44'd0, bv} * {45'd0, s6_x};
+    bx_full = {44'd0, s6_bv} * {45'd0, s6_x};
     bx      = bx_full[88:45];
   end
 
@@ -308,7 +315,7 @@ module fp24_func_trig #(
   logic [43:0] s7_bx;
   always_ff @(posedge clk) begin
     if (s6_valid) begin
-      s7_av <= av;
+      s7_av <= s6_av;
       s7_at <= at;
       s7_bx <= bx;
     end
