@@ -81,6 +81,7 @@ module fp24_add #(
   logic [SUM_W-2:0]       small_al;      // aligned small significand
   logic [SUM_W-2:0]       small_lost;    // bits shifted out below GRS
   logic [SUM_W-1:0]       small_ext, big_ext;
+  logic [SUM_W-2:0]       small_op;      // small_ext, inverted for a subtraction
 
   always_comb begin
     b_sign_eff = b_sign ^ (in_op == OP_SUB);
@@ -101,6 +102,8 @@ module fp24_add #(
     // 2 LSBs, and the guard bit of the result is never below bit 1.
     small_ext  = {1'b0, small_al[SUM_W-2:1], small_al[0] | (small_lost != '0)};
     big_ext    = {1'b0, big_sig, {GRS_W{1'b0}}};
+    // big - small = big + ~small + 1 (mod 2^SUM_W; no borrow, big >= small)
+    small_op   = small_ext[SUM_W-2:0] ^ {(SUM_W - 1) {eff_sub}};
   end
 
   // FLOAT: the magnitude of the two's-complement integer in in_a[15:0].
@@ -160,9 +163,8 @@ module fp24_add #(
   logic              s1_sign;       // sign of a nonzero sum
   logic              s1_zero_sign;  // sign of an exact zero sum
   logic [SEXP_W-1:0] s1_exp;        // exponent of sum bit SUM_W-2, plus 1
-  logic [SUM_W-2:0]  s1_big;        // the operands of the sum
-  logic [SUM_W-2:0]  s1_small;
-  logic              s1_sub;
+  logic [SUM_W-2:0]  s1_p, s1_g;    // the sum's propagate and generate bits
+  logic              s1_sub;        // carry in (and out) of a subtraction
 
   logic              d_direct;
   logic [W-1:0]      d_result;
@@ -213,16 +215,16 @@ module fp24_add #(
         s1_sign      <= int_sign;
         s1_zero_sign <= 1'b0;
         s1_exp       <= FLOAT_EXP;
-        s1_big       <= {{(SUM_W - 1 - INT_W) {1'b0}}, int_mag};
-        s1_small     <= '0;
+        s1_p         <= {{(SUM_W - 1 - INT_W) {1'b0}}, int_mag};
+        s1_g         <= '0;
         s1_sub       <= 1'b0;
       end else begin
         s1_sign      <= big_sign;
         // An exact zero sum is +0 but for (-0) + (-0) and (-0) - (+0).
         s1_zero_sign <= a_sign && b_sign_eff;
         s1_exp       <= {2'b00, big_exp} + {{(SEXP_W - 1) {1'b0}}, 1'b1};
-        s1_big       <= big_ext[SUM_W-2:0];
-        s1_small     <= small_ext[SUM_W-2:0];
+        s1_p         <= big_ext[SUM_W-2:0] ^ small_op;
+        s1_g         <= big_ext[SUM_W-2:0] & small_op;
         s1_sub       <= eff_sub;
       end
     end
@@ -230,6 +232,8 @@ module fp24_add #(
 
   // ---- stage 2: normalise, round, pack -----------------------------------------
   logic [SUM_W-1:0]  s1_sum;
+  logic [SUM_W-2:0]  g0, g1, g2, g3, g4, g5;  // generate of the span of 1, 2, ... 32 bits ending at each bit
+  logic [SUM_W-2:0]  p0, p1, p2, p3, p4;      // propagate of that span
   logic [NORM_W-1:0] n16, n8, n4, n2, n1, n0;
   logic [4:0]        lzc;
   logic [15:0]       z1, c1;         // per group of 2, 4, 8, 16 bits: all zero,
@@ -243,7 +247,15 @@ module fp24_add #(
   logic [SEXP_W-1:0] rnd_exp;
 
   always_comb begin
-    s1_sum = s1_sub ? {1'b0, s1_big} - {1'b0, s1_small} : {1'b0, s1_big} + {1'b0, s1_small};
+    // Carries by parallel prefix (Kogge-Stone) from the carry in s1_sub.
+    g0 = {s1_g[SUM_W-2:1], s1_g[0] | (s1_p[0] & s1_sub)};
+    p0 = s1_p;
+    g1 = g0 | (p0 & (g0 << 1));   p1 = p0 & (p0 << 1);
+    g2 = g1 | (p1 & (g1 << 2));   p2 = p1 & (p1 << 2);
+    g3 = g2 | (p2 & (g2 << 4));   p3 = p2 & (p2 << 4);
+    g4 = g3 | (p3 & (g3 << 8));   p4 = p3 & (p3 << 8);
+    g5 = g4 | (p4 & (g4 << 16));  // the carry out of each bit
+    s1_sum = {s1_sub ^ g5[SUM_W-2], s1_p ^ {g5[SUM_W-3:0], s1_sub}};
     // Leading-zero count as a tree (pairs, then 4, 8, 16, 32 bits: a
     // group's count is its upper half's, or its lower half's after a zero
     // upper half), so lzc[4] comes first and the shift takes 16/8/4/2/1.
