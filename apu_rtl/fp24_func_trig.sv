@@ -182,7 +182,7 @@ module fp24_func_trig #(
   logic [43:0]  s3_phi, s4_phi, s5_phi;
   logic         s4_j0, s5_j0;  // j = 0: the table entry is TRIG_TAB0
   logic [6:0]   s4_addr;
-  logic         s3_uz;         // s >= 23: u = 0
+  logic         s4_uz;
 
   always_ff @(posedge clk) begin
     if (!rst_n) begin
@@ -198,7 +198,6 @@ module fp24_func_trig #(
       s3_sin0 <= at0 && !use_cos;
       s3_sign <= y_sign;
       s3_s    <= s;
-      s3_uz   <= s >= 6'd23;
       s3_phi  <= phi;
     end
     if (s3_valid) begin
@@ -206,6 +205,7 @@ module fp24_func_trig #(
           {s3_known, s3_result, s3_flags, s3_cos, s3_plus, s3_sin0, s3_sign, s3_s, s3_phi};
       // The ROM holds j = 1..128 at j - 1; j = 0 is a constant.
       s4_j0   <= s3_j == 8'd0;
+      s4_uz   <= s3_s >= 6'd23;   // u = 0
       s4_addr <= 7'(s3_j - 8'd1);
     end
     if (s4_valid) begin
@@ -223,23 +223,18 @@ module fp24_func_trig #(
     end
   end
 
-  // ---- stage 3 -> 4: u = phi^2 in 0.64 quarter turns squared ----------------
-  // A squarer: each cross product phi_i phi_k (i < k) once, doubled, plus the
-  // diagonal phi_i at bit 2i: half the partial products of a multiply.
+  // ---- stage 3 -> 4: phi^2 ---------------------------------------------------
+  /* verilator lint_off UNUSEDSIGNAL */
   logic [87:0] sq;
-  logic [45:0] u;
-  always_comb begin
-    sq = '0;
-    for (int i = 0; i < 44; i++) sq[2*i] = s3_phi[i];
-    for (int i = 0; i < 43; i++)
-      sq = sq + ((s3_phi[i] ? {44'd0, s3_phi} & ~((88'd1 << (i + 1)) - 88'd1) : 88'd0) << (i + 1));
-    u  = s3_uz ? 46'd0 : 46'(sq >> (7'd42 + {s3_s[4:0], 1'b0}));
-  end
+  /* verilator lint_on UNUSEDSIGNAL */
+  assign sq = {44'd0, s3_phi} * {44'd0, s3_phi};
 
-  logic [45:0] s4_u, s5_u;
-  always_ff @(posedge clk) if (s3_valid) s4_u <= u;
+  logic [87:42] s4_sq;  // the bits u takes
+  always_ff @(posedge clk) if (s3_valid) s4_sq <= sq[87:42];
 
-  // ---- stage 4 -> 5: T_s = k3 u, w = k2 - k4 u --------------------------------
+  // ---- stage 4 -> 5: u = phi^2 in 0.64 quarter turns squared; T_s = k3 u,
+  // w = k2 - k4 u ---------------------------------------------------------------
+  logic [45:0] u, s5_u;
   logic [44:0] ts;
   logic [40:0] w;
   /* verilator lint_off UNUSEDSIGNAL */
@@ -247,9 +242,10 @@ module fp24_func_trig #(
   logic [45:0] w_prod;
   /* verilator lint_on UNUSEDSIGNAL */
   always_comb begin
-    ts_full = {41'd0, s4_u} * {46'd0, fp24_func_pkg::TRIG_K3};
+    u       = s4_uz ? 46'd0 : 46'(s4_sq >> {s4_s[4:0], 1'b0});
+    ts_full = {41'd0, u} * {46'd0, fp24_func_pkg::TRIG_K3};
     ts      = ts_full[84:40];
-    w_prod  = {24'd0, s4_u[45:24]} * {22'd0, fp24_func_pkg::TRIG_K4};
+    w_prod  = {24'd0, u[45:24]} * {22'd0, fp24_func_pkg::TRIG_K4};
     w       = fp24_func_pkg::TRIG_K2 - {19'd0, w_prod[45:24]};
   end
 
@@ -258,7 +254,7 @@ module fp24_func_trig #(
   logic [195:0] s5_tab;  // {S_j, C_j, pi/2 S_j, pi/2 C_j}
   always_ff @(posedge clk) begin
     if (s4_valid) begin
-      s5_u   <= s4_u;
+      s5_u   <= u;
       s5_ts  <= ts;
       s5_w   <= w;
       s5_tab <= fp24_func_pkg::rom_trig_table(s4_addr);
