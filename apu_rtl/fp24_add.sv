@@ -80,7 +80,7 @@ module fp24_add #(
   logic [SHIFT_W-1:0]     shift;
   logic [SUM_W-2:0]       small_al;      // aligned small significand
   logic [SUM_W-2:0]       small_lost;    // bits shifted out below GRS
-  logic [SUM_W-1:0]       small_ext, big_ext;
+  logic [SUM_W-2:0]       small_ext, big_ext;  // the sum's operands (its carry bit is 0 in both)
   logic [SUM_W-2:0]       small_op;      // small_ext, inverted for a subtraction
 
   always_comb begin
@@ -100,10 +100,10 @@ module fp24_add #(
     // Jamming the lost bits into the LSB keeps the rounding exact: the true
     // and the jammed sum then lie strictly between the same two multiples of
     // 2 LSBs, and the guard bit of the result is never below bit 1.
-    small_ext  = {1'b0, small_al[SUM_W-2:1], small_al[0] | (small_lost != '0)};
-    big_ext    = {1'b0, big_sig, {GRS_W{1'b0}}};
+    small_ext  = {small_al[SUM_W-2:1], small_al[0] | (small_lost != '0)};
+    big_ext    = {big_sig, {GRS_W{1'b0}}};
     // big - small = big + ~small + 1 (mod 2^SUM_W; no borrow, big >= small)
-    small_op   = small_ext[SUM_W-2:0] ^ {(SUM_W - 1) {eff_sub}};
+    small_op   = small_ext ^ {(SUM_W - 1) {eff_sub}};
   end
 
   // FLOAT: the magnitude of the two's-complement integer in in_a[15:0].
@@ -223,8 +223,8 @@ module fp24_add #(
         // An exact zero sum is +0 but for (-0) + (-0) and (-0) - (+0).
         s1_zero_sign <= a_sign && b_sign_eff;
         s1_exp       <= {2'b00, big_exp} + {{(SEXP_W - 1) {1'b0}}, 1'b1};
-        s1_p         <= big_ext[SUM_W-2:0] ^ small_op;
-        s1_g         <= big_ext[SUM_W-2:0] & small_op;
+        s1_p         <= big_ext ^ small_op;
+        s1_g         <= big_ext & small_op;
         s1_sub       <= eff_sub;
       end
     end
@@ -241,7 +241,7 @@ module fp24_add #(
   logic [15:0]       c2;
   logic [3:0]        z3;
   logic [11:0]       c3;
-  logic [1:0]        z4;
+  logic              z4;             // the upper 16 bits all zero
   logic [7:0]        c4;
   logic              sum_zero;
   logic [SEXP_W-1:0] rnd_exp;
@@ -272,11 +272,10 @@ module fp24_add #(
       z3[j] = z2[2*j+1] & z2[2*j];
       c3[3*j +: 3] = z2[2*j+1] ? {1'b1, c2[4*j +: 2]} : {1'b0, c2[4*j+2 +: 2]};
     end
-    for (int j = 0; j < 2; j++) begin
-      z4[j] = z3[2*j+1] & z3[2*j];
+    for (int j = 0; j < 2; j++)
       c4[4*j +: 4] = z3[2*j+1] ? {1'b1, c3[6*j +: 3]} : {1'b0, c3[6*j+3 +: 3]};
-    end
-    lzc = z4[1] ? {1'b1, c4[3:0]} : {1'b0, c4[7:4]};
+    z4  = z3[3] & z3[2];
+    lzc = z4 ? {1'b1, c4[3:0]} : {1'b0, c4[7:4]};
     n8  = lzc[4] ? {n16[NORM_W-17:0], 16'b0} : n16;
     n4  = lzc[3] ? {n8[NORM_W-9:0], 8'b0} : n8;
     n2  = lzc[2] ? {n4[NORM_W-5:0], 4'b0} : n4;
