@@ -75,35 +75,58 @@ module fp24_add #(
   logic                   eff_sub;
   logic                   swap;          // |b| > |a|
   logic                   big_sign;
-  logic [EXP_W-1:0]       big_exp, small_exp, exp_diff;
-  logic [SIG_W-1:0]       big_sig, small_sig;
+  logic [EXP_W:0]         d_ab;          // a_exp - b_exp, its sign bit b_exp > a_exp
+  logic [EXP_W-1:0]       d_ba;          // b_exp - a_exp
+  logic                   exp_lt, exp_eq;  // b_exp > a_exp, b_exp == a_exp
+  logic [EXP_W-1:0]       exp_diff;      // |a_exp - b_exp|
+  logic [EXP_W-1:0]       big_exp;
+  logic [SIG_W-1:0]       big_sig, small_sig, far_sig;
   logic [SHIFT_W-1:0]     shift;
+  logic [4:0]             tz_a, tz_b, far_tz;  // trailing zeros of a_sig, b_sig
+  logic                   sticky;
+  logic [SUM_W-2:0]       small_sh;      // far_sig aligned
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [SUM_W-2:0]       small_lost;
+  /* verilator lint_on UNUSEDSIGNAL */
   logic [SUM_W-2:0]       small_al;      // aligned small significand
-  logic [SUM_W-2:0]       small_lost;    // bits shifted out below GRS
-  logic [SUM_W-2:0]       small_ext, big_ext;  // the sum's operands (its carry bit is 0 in both)
-  logic [SUM_W-2:0]       small_op;      // small_ext, inverted for a subtraction
+  logic [SUM_W-1:0]       small_ext, big_ext, sum;
 
   always_comb begin
     b_sign_eff = b_sign ^ (in_op == OP_SUB);
     eff_sub    = a_sign ^ b_sign_eff;
     swap       = b_mag > a_mag;
     big_sign   = swap ? b_sign_eff : a_sign;
-    big_exp    = swap ? b_exp : a_exp;
-    small_exp  = swap ? a_exp : b_exp;
     // A zero contributes a zero significand (its exponent field is 0).
     big_sig    = swap ? b_sig : a_sig;
     small_sig  = swap ? a_sig : b_sig;
-    exp_diff   = big_exp - small_exp;
+    // The alignment does not wait for the magnitude compare: the operand of
+    // the smaller exponent (far_sig) is shifted by the exponents' distance;
+    // with equal exponents nothing is shifted and small_sig is taken as it is.
+    d_ab       = {1'b0, a_exp} - {1'b0, b_exp};
+    d_ba       = b_exp - a_exp;
+    exp_lt     = d_ab[EXP_W];
+    exp_eq     = (a_exp == b_exp);
+    exp_diff   = exp_lt ? d_ba : d_ab[EXP_W-1:0];
+    big_exp    = exp_lt ? b_exp : a_exp;
+    far_sig    = exp_lt ? a_sig : b_sig;
     // Beyond SUM_W - 1 places every bit of small is below the sum: sticky only.
     shift      = (exp_diff > EXP_W'(SUM_W - 1)) ? SHIFT_W'(SUM_W - 1) : exp_diff[SHIFT_W-1:0];
-    {small_al, small_lost} = {small_sig, {GRS_W{1'b0}}, {(SUM_W - 1) {1'b0}}} >> shift;
+    {small_sh, small_lost} = {far_sig, {GRS_W{1'b0}}, {(SUM_W - 1) {1'b0}}} >> shift;
+    small_al   = exp_eq ? {small_sig, {GRS_W{1'b0}}} : small_sh;
+    // The lost bits (those below GRS) are nonzero iff the shift passes the
+    // trailing zeros: known from the exponents, not after the shifter.
+    tz_a = 5'(SIG_W - 1);
+    for (int i = SIG_W - 2; i >= 0; i--) if (a_sig[i]) tz_a = 5'(i);
+    tz_b = 5'(SIG_W - 1);
+    for (int i = SIG_W - 2; i >= 0; i--) if (b_sig[i]) tz_b = 5'(i);
+    far_tz = exp_lt ? tz_a : tz_b;
+    sticky = (far_sig != '0) && (exp_diff > {2'b00, far_tz} + EXP_W'(GRS_W));
     // Jamming the lost bits into the LSB keeps the rounding exact: the true
     // and the jammed sum then lie strictly between the same two multiples of
     // 2 LSBs, and the guard bit of the result is never below bit 1.
-    small_ext  = {small_al[SUM_W-2:1], small_al[0] | (small_lost != '0)};
-    big_ext    = {big_sig, {GRS_W{1'b0}}};
-    // big - small = big + ~small + 1 (mod 2^SUM_W; no borrow, big >= small)
-    small_op   = small_ext ^ {(SUM_W - 1) {eff_sub}};
+    small_ext  = {1'b0, small_al[SUM_W-2:1], small_al[0] | sticky};
+    big_ext    = {1'b0, big_sig, {GRS_W{1'b0}}};
+    sum        = big_ext + (small_ext ^ {SUM_W{eff_sub}}) + {{(SUM_W - 1) {1'b0}}, eff_sub};
   end
 
   // FLOAT: the magnitude of the two's-complement integer in in_a[15:0].
@@ -163,8 +186,7 @@ module fp24_add #(
   logic              s1_sign;       // sign of a nonzero sum
   logic              s1_zero_sign;  // sign of an exact zero sum
   logic [SEXP_W-1:0] s1_exp;        // exponent of sum bit SUM_W-2, plus 1
-  logic [SUM_W-2:0]  s1_p, s1_g;    // the sum's propagate and generate bits
-  logic              s1_sub;        // carry in (and out) of a subtraction
+  logic [SUM_W-1:0]  s1_sum;
 
   logic              d_direct;
   logic [W-1:0]      d_result;
@@ -215,25 +237,18 @@ module fp24_add #(
         s1_sign      <= int_sign;
         s1_zero_sign <= 1'b0;
         s1_exp       <= FLOAT_EXP;
-        s1_p         <= {{(SUM_W - 1 - INT_W) {1'b0}}, int_mag};
-        s1_g         <= '0;
-        s1_sub       <= 1'b0;
+        s1_sum       <= {{(SUM_W - INT_W) {1'b0}}, int_mag};
       end else begin
         s1_sign      <= big_sign;
         // An exact zero sum is +0 but for (-0) + (-0) and (-0) - (+0).
         s1_zero_sign <= a_sign && b_sign_eff;
         s1_exp       <= {2'b00, big_exp} + {{(SEXP_W - 1) {1'b0}}, 1'b1};
-        s1_p         <= big_ext ^ small_op;
-        s1_g         <= big_ext & small_op;
-        s1_sub       <= eff_sub;
+        s1_sum       <= sum;
       end
     end
   end
 
   // ---- stage 2: normalise, round, pack -----------------------------------------
-  logic [SUM_W-1:0]  s1_sum;
-  logic [SUM_W-2:0]  g0, g1, g2, g3, g4, g5;  // generate of the span of 1, 2, ... 32 bits ending at each bit
-  logic [SUM_W-2:0]  p0, p1, p2, p3, p4;      // propagate of that span
   logic [NORM_W-1:0] n16, n8, n4, n2, n1, n0;
   logic [4:0]        lzc;
   logic [15:0]       z1, c1;         // per group of 2, 4, 8, 16 bits: all zero,
@@ -247,15 +262,6 @@ module fp24_add #(
   logic [SEXP_W-1:0] rnd_exp;
 
   always_comb begin
-    // Carries by parallel prefix (Kogge-Stone) from the carry in s1_sub.
-    g0 = {s1_g[SUM_W-2:1], s1_g[0] | (s1_p[0] & s1_sub)};
-    p0 = s1_p;
-    g1 = g0 | (p0 & (g0 << 1));   p1 = p0 & (p0 << 1);
-    g2 = g1 | (p1 & (g1 << 2));   p2 = p1 & (p1 << 2);
-    g3 = g2 | (p2 & (g2 << 4));   p3 = p2 & (p2 << 4);
-    g4 = g3 | (p3 & (g3 << 8));   p4 = p3 & (p3 << 8);
-    g5 = g4 | (p4 & (g4 << 16));  // the carry out of each bit
-    s1_sum = {s1_sub ^ g5[SUM_W-2], s1_p ^ {g5[SUM_W-3:0], s1_sub}};
     // Leading-zero count as a tree (pairs, then 4, 8, 16, 32 bits: a
     // group's count is its upper half's, or its lower half's after a zero
     // upper half), so lzc[4] comes first and the shift takes 16/8/4/2/1.
