@@ -2,13 +2,16 @@
 // (docs/fp24.md, docs/fp24-rtl.md; op codes on in_op[2:0]).
 //
 // Two stages, latency 2, one issue per cycle:
-//   s1: unpack with DAZ (fp24_classify); ADD/SUB: order the operands by
-//       magnitude, align the smaller one (guard, round and a sticky bit
-//       jammed into the LSB) and add or subtract; FLOAT: take the integer's
-//       magnitude. Both leave an unnormalised sum for stage 2. CMP, FIX, NEG, ABS and the zero/inf/NaN
-//       cases of ADD/SUB finish here as a "direct" result.
-//   s2: count leading zeros and normalise the sum, round and pack; or pass
-//       the direct result (or an exact zero sum) on (fp24_result_stage).
+//   s1: unpack with DAZ (fp24_classify); ADD/SUB: align the operand of the
+//       smaller exponent by the exponents' distance while the magnitude
+//       compare orders the operands (guard, round and a sticky bit, from
+//       the trailing zeros, jammed into the LSB) and add or subtract;
+//       FLOAT: take the integer's magnitude. Both leave an unnormalised sum
+//       for stage 2. CMP, FIX, NEG, ABS and the zero/inf/NaN cases of
+//       ADD/SUB finish here as a "direct" result.
+//   s2: count the sum's leading zeros (a tree) and normalise, round and
+//       pack; or pass the direct result (or an exact zero sum) on
+//       (fp24_result_stage). docs/fp24-rtl.md "The adder's stages".
 // rst_n is synchronous and clears only the valid bits. The unused op code 7
 // gives result 0, flags 0.
 module fp24_add #(

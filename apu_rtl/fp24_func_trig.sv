@@ -8,13 +8,15 @@
 //         operands and hard cases resolved (the result is then known)
 //   s3 <- nearest 1/256 quarter turn: quadrant, table index j, remainder
 //         |delta| normalized to phi (44 bits, scale 2^(-53-s)); signs
-//   s4 <- u = phi^2
-//   s5 <- T_s = k3 u, w = k2 - k4 u
-//   s6 <- T_c = u w, X = phi (1 - T_s); the table entry of j (ROM read,
-//         entries 1..128; entry 0 is a constant)
-//   s7 <- A T_c, (pi/2) B X with (A, B) = (S_j, C_j) or (C_j, -S_j)
-//   s8 <- y = A - A T_c +- (pi/2) B X, normalized
-//   s9 <- rounded, packed
+//   s4 <- phi^2 (the bits u takes)
+//   s5 <- u = phi^2 shifted; T_s = k3 u, w = k2 - k4 u; the table entry of
+//         j (ROM read, entries 1..128; entry 0 is a constant)
+//   s6 <- T_c = u w, X = phi (1 - T_s); (A, B) = (S_j, C_j) or (C_j, -S_j)
+//   s7 <- A T_c, (pi/2) B X
+//   s8 <- y = A - A T_c +- (pi/2) B X
+//   s9 <- normalized, rounded, packed
+// The stages are balanced in gate levels (docs/fp24-func.md): every one is
+// at most one multiply deep plus a shift or a multiplexer.
 // apu_rtl/rom/fp24_trig_rtl.cpp is the same pipeline in C++, bit for bit.
 // Every stage's datapath registers load only when an op is in it.
 // rst_n is synchronous and clears only the valid bits.

@@ -69,7 +69,7 @@ Approx approximate(bool is_cos, std::uint32_t a, const Tables& t) {
   }
   require(phi < (std::uint64_t{1} << kPhiBits), "phi width");
 
-  // s4: u = phi^2 in 0.64 (quarter turns squared), < 2^46.
+  // s4: phi^2; s5: u = phi^2 shifted, in 0.64 (quarter turns squared), < 2^46.
   const u128 sq = static_cast<u128>(phi) * phi;
   const int sh = 42 + 2 * s;
   const std::uint64_t u = sh >= 88 ? 0 : static_cast<std::uint64_t>(sq >> sh);
@@ -85,7 +85,7 @@ Approx approximate(bool is_cos, std::uint32_t a, const Tables& t) {
   const std::uint64_t x = static_cast<std::uint64_t>(((static_cast<u128>(phi) << 64) - static_cast<u128>(phi) * ts) >> 64);
   require(tc < (std::uint64_t{1} << 47), "T_c width");
 
-  // s7: with (A, B) = (S_j, C_j) for a sine, (C_j, -S_j) for a cosine, the
+  // s6: (A, B) = (S_j, C_j) for a sine, (C_j, -S_j) for a cosine; s7: the
   // products A T_c and (pi/2) B X (the table holds pi/2 B).
   const unsigned k = (quad + (is_cos ? 1u : 0u)) & 3;
   const bool use_cos = (k & 1) != 0;
@@ -94,7 +94,7 @@ Approx approximate(bool is_cos, std::uint32_t a, const Tables& t) {
   const std::uint64_t at = static_cast<std::uint64_t>((static_cast<u128>(av >> kTabHiDrop) * (tc >> 12)) >> 36);
   const std::uint64_t bx = static_cast<std::uint64_t>((static_cast<u128>(bv) * x) >> 45);
 
-  // s8: y = A cos(e) +- B sin(e) in 1.52, normalized; s9: rounded.
+  // s8: y = A cos(e) +- B sin(e) in 1.52; s9: normalized, rounded.
   const bool bplus = use_cos ? eneg : !eneg;
   const std::uint64_t pos = av - at + (bplus ? bx : 0);
   require(pos > (bplus ? 0 : bx), "y > 0");
