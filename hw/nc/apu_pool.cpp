@@ -37,15 +37,13 @@ std::uint64_t ApuJob::result() {
   return cycles_;
 }
 
-bool ApuJob::over() {
-  ApuPool::Lock lock(pool_.m_);
-  return done_;
-}
+bool ApuJob::over() { return over_.load(std::memory_order_acquire); }
 
 void ApuJob::cancel() {
   ApuPool::Lock lock(pool_.m_);
   pool_.take(*this);
   done_ = true;
+  over_.store(true, std::memory_order_release);
   pool_.progress_cv_.wait(lock, [&] { return !held_; });
 }
 
@@ -141,6 +139,7 @@ void ApuPool::clock_stretch(Lock& lock, const std::shared_ptr<ApuJob>& job, bool
     job->cycles_ = cycles.value_or(0);
     job->error_ = error;
     job->done_ = true;
+    job->over_.store(true, std::memory_order_release);
   } else if (requeue && !job->done_) {  // not cancelled meanwhile: its next turn
     push_ready(job);
   }

@@ -232,11 +232,12 @@ void NodeComputer::advance(Picos ps) {
   if (!qk_.need_sync()) return;
   // At a synchronisation, what the APU owes goes to the pool and the NC
   // syncs: the kernel runs the others (their APUs on the pool too), and the
-  // firmware goes on until it next looks at the APU. A short catch-up is not
-  // worth a host thread's hand-over: it waits for the next. The job chases
-  // the NC's time as it moves on (chase_due_), and while it runs, the NC
-  // syncs and goes on.
-  if (job_ && !job_->over()) {
+  // firmware goes on until it next looks at the APU. The job chases the
+  // NC's time as it moves on (chase_due_), and while it runs, the NC syncs
+  // and goes on. A catch-up shorter than kChaseCycles waits for the next
+  // sync; with no worker (one thread) nothing is posted: the catch-up is
+  // clocked where the APU is next looked at, in one piece.
+  if (!pool_ || pool_->threads() <= 1 || (job_ && !job_->over())) {
     qk_.sync();
     return;
   }
@@ -246,8 +247,8 @@ void NodeComputer::advance(Picos ps) {
   }
   const Picos until = apu_due_;
   if (engine_->state() == apu::RunState::Running && until > apu_time_ &&
-      (until - apu_time_) / cycle_ps_ >= kPoolStepCycles) {
-    job_ = (pool_ ? *pool_ : inline_).post([this](ApuJob&) -> std::optional<std::uint64_t> {
+      (until - apu_time_) / cycle_ps_ >= kChaseCycles) {
+    job_ = pool_->post([this](ApuJob&) -> std::optional<std::uint64_t> {
       const Picos due = chase_due_.load(std::memory_order_acquire);
       catch_up_to(std::min(due, apu_time_ + kPoolStepCycles * cycle_ps_));
       if (engine_->state() != apu::RunState::Running || apu_time_ + cycle_ps_ > due) return 0;

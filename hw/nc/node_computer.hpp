@@ -109,6 +109,12 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   // NCs' runs and the number of synchronisations. Not a hardware figure, and
   // no simulated time depends on it.
   static constexpr std::uint64_t kPoolStepCycles = 256;
+  // The least catch-up (APU cycles owed) an NC hands to the pool's workers
+  // at a synchronisation while its MPU works on: small, so that the workers
+  // keep every NC's APU near its MPU's time and the simulation's thread
+  // rarely has to clock it itself (the MPU's next hand-over waits for it).
+  // No simulated time depends on it.
+  static constexpr std::uint64_t kChaseCycles = 16;
 
   // After the simulation: the last span runs to `frame_end` (>= finished_at).
   void close(Picos frame_end);  // also reads the ISS's counters
