@@ -80,7 +80,8 @@ NodeComputer::NodeComputer(sc_core::sc_module_name name, const TimingParams& t, 
       engine_(std::move(engine)),
       driver_(*engine_),
       firmware_(std::move(firmware)),
-      cycle_ps_(t.apu_cycle_ps()) {
+      cycle_ps_(t.apu_cycle_ps()),
+      bank_while_running_(engine_->mpu_bank_while_running()) {
   hdlc2nc.register_b_transport(this, &NodeComputer::b_transport);
   driver_.set_access_hook([this] { settle_apu(); });
   driver_.set_bank_hook([this] { touch_mpu_bank(); });
@@ -178,7 +179,7 @@ void NodeComputer::settle_apu() {
 // it is not clocked for it, and a job goes on clocking it meanwhile where
 // the engine allows.
 void NodeComputer::touch_mpu_bank() {
-  if (settling_ || ApuJob::in_job() || !job_ || engine_->mpu_bank_while_running()) return;
+  if (!job_ || bank_while_running_ || settling_ || ApuJob::in_job()) return;
   const std::shared_ptr<ApuJob> job = std::move(job_);
   job->result();
 }
@@ -218,15 +219,14 @@ void NodeComputer::check_alive() {
   if (now() >= kill_at_) throw Killed{};
 }
 
-void NodeComputer::advance(Picos ps) {
-  const Picos t = now();
+void NodeComputer::advance(Picos ps, Picos t) {
   if (t + ps >= kill_at_) {  // the processor stops inside this span
     qk_.inc(to_sc_time(kill_at_ > t ? kill_at_ - t : 0));
     catch_up();
     throw Killed{};
   }
   qk_.inc(to_sc_time(ps));
-  apu_due_ = now();
+  apu_due_ = detail::sc_resolution_is_ps() ? t + ps : now();  // now(), without asking the kernel again
   apu_due_set_ = true;
   chase_due_.store(apu_due_, std::memory_order_release);
   if (!qk_.need_sync()) return;
@@ -259,10 +259,11 @@ void NodeComputer::advance(Picos ps) {
 }
 
 void NodeComputer::mpu_work(std::uint64_t cycles) {
-  mark(Activity::Busy, now());
+  const Picos t = now();
+  mark(Activity::Busy, t);
   const Picos ps = t_.mpu_cycles_ps(cycles);
   stats_.mpu_busy += ps;
-  advance(ps);
+  advance(ps, t);
 }
 
 void NodeComputer::send_to_rc(const std::vector<std::uint8_t>& msg) {
