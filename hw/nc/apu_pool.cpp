@@ -23,6 +23,22 @@ void cpu_relax() {
 #endif
 }
 
+// Spins until done() or about kSpins pauses have passed; true if done().
+// Every kYieldEvery pauses it gives its core away: when the thread it waits
+// for shares this core (a loaded host puts both on one), that one runs now
+// instead of after this one's time slice.
+constexpr int kYieldEvery = 128;
+
+template <class Done>
+bool spin_until(Done done) {
+  for (int i = 1; i <= kSpins; ++i) {
+    if (done()) return true;
+    cpu_relax();
+    if (i % kYieldEvery == 0) std::this_thread::yield();
+  }
+  return done();
+}
+
 void acquire(std::unique_lock<std::mutex>& lock) {
   for (int i = 0; i < kLockSpins; ++i) {
     if (lock.try_lock()) return;
@@ -127,7 +143,7 @@ void ApuPool::help(ApuJob& job, Over over) {
     // A worker holds the job: its stretch ends soon.
     const std::uint64_t ended = ended_.load(std::memory_order_relaxed);
     lock.unlock();
-    for (int i = 0; i < kSpins && ended_.load(std::memory_order_acquire) == ended; ++i) cpu_relax();
+    spin_until([&] { return ended_.load(std::memory_order_acquire) != ended; });
     acquire(lock);
     if (ended_.load(std::memory_order_relaxed) == ended) progress_cv_.wait(lock);
   }
@@ -166,7 +182,7 @@ void ApuPool::worker() {
   for (;;) {
     if (ready_.empty() && !stopping_) {
       lock.unlock();
-      for (int i = 0; i < kSpins && ready_n_.load(std::memory_order_acquire) == 0; ++i) cpu_relax();
+      spin_until([&] { return ready_n_.load(std::memory_order_acquire) != 0; });
       acquire(lock);
       ++sleepers_;
       work_cv_.wait(lock, [&] { return stopping_ || !ready_.empty(); });
