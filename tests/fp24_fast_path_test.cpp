@@ -132,6 +132,31 @@ TEST(Fp24FastPath, SubtractionIsAdditionOfTheNegatedOperand) {
   }
 }
 
+// The zero paths inline in mul24/add24/sub24 (a zero operand, no infinity or
+// NaN) against the cold routines they stand in for, which take every operand
+// that is not normal: all fractions and both signs of a at the exponents 0,
+// 1, 126 and 127 (zeros with subnormal encodings, normals, infinities and
+// NaNs) against zeros, subnormals, infinities and NaNs of either sign, both
+// orders.
+TEST(Fp24FastPath, InlineZeroPathsEqualTheColdRoutines) {
+  const Bits others[] = {0x000000, 0x800000, 0x00ABCD, 0x80ABCD, 0x000001, 0x7F0000, 0xFF0000, 0x7F1234, 0xFF8000};
+  const auto check = [](Bits a, Bits b) {
+    if (inl::both_normal(a, b)) return;
+    const Bits fa = bits::flush(a), fb = bits::flush(b);
+    ASSERT_EQ(inl::mul24(a, b), detail::mul_special(fa, fb)) << "mul " << std::hex << a << " " << b;
+    ASSERT_EQ(inl::add24(a, b), detail::add_special(fa, fb)) << "add " << std::hex << a << " " << b;
+    ASSERT_EQ(inl::sub24(a, b), detail::add_special(fa, bits::flush(b ^ kSignBit))) << "sub " << std::hex << a << " " << b;
+  };
+  for (int e : {0, 1, 126, 127})
+    for (std::uint32_t sf = 0; sf < 0x20000; ++sf) {
+      const Bits a = encode(sf >> 16, e, sf);
+      for (Bits b : others) {
+        ASSERT_NO_FATAL_FAILURE(check(a, b));
+        ASSERT_NO_FATAL_FAILURE(check(b, a));
+      }
+    }
+}
+
 // The vectors above reach the operands whose low bits are shifted out: a
 // flaw there is caught.
 TEST(Fp24FastPath, TheComparisonCatchesAFlawedSticky) {

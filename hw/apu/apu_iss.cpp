@@ -23,7 +23,7 @@ bool two_operand(AddOp op) { return op == AddOp::Add || op == AddOp::Sub || op =
 // A word's shape: M enabled (bit 0), the A slot (bits 1-2: none, ADD, SUB,
 // another op), F enabled (bit 3), the D slot (bits 4-5: none, LD, ST).
 // Reserved ops fault and never issue: their slot counts as empty.
-int shape(const MicroWord& w) {
+int shape_of(const MicroWord& w) {
   int a = 0;
   if (w.a.en) a = w.a.op == AddOp::Add ? 1 : w.a.op == AddOp::Sub ? 2 : 3;
   const int d = w.d.op == MemOp::Ld ? 1 : w.d.op == MemOp::St ? 2 : 0;
@@ -50,12 +50,13 @@ std::uint8_t seq_kind(SeqOp op) {
 
 }  // namespace
 
-DecodedWord DecodedWord::from(const Encoded& e) {
+DecodedWord DecodedWord::from(const Encoded& e, std::uint32_t addr) {
   DecodedWord d;
   d.w = MicroWord::decode(e);
   const MicroWord& w = d.w;
-  const auto write = [&d](unsigned reg, int latency) {
-    d.dst |= bit(reg);
+  std::uint64_t dst = 0;
+  const auto write = [&d, &dst](unsigned reg, int latency) {
+    dst |= bit(reg);
     d.dsts[d.ndst++] = {static_cast<std::uint8_t>(reg & 63), static_cast<std::uint8_t>(latency)};
   };
   if (w.m.en) {
@@ -76,10 +77,9 @@ DecodedWord DecodedWord::from(const Encoded& e) {
     d.src |= bit(w.f.a);
     write(w.f.d, d.lat_f);
   }
-  d.lat_d = static_cast<std::uint8_t>(latency(w.d.op));
   switch (w.d.op) {
     case MemOp::Ld:
-      write(w.d.f, d.lat_d);
+      write(w.d.f, kLoadLatency);
       d.kind |= kMem;
       break;
     case MemOp::St:
@@ -89,11 +89,10 @@ DecodedWord DecodedWord::from(const Encoded& e) {
     case MemOp::None: break;
     case MemOp::Reserved: d.kind |= kReserved | kMem; break;
   }
-  d.lat_i = static_cast<std::uint8_t>(latency(w.i.op));
   switch (w.i.op) {
     case IntOp::Movaf:
     case IntOp::Lif:
-      write(w.i.d, d.lat_i);
+      write(w.i.d, kLoadLatency);
       d.kind |= kMovF;
       break;
     case IntOp::Movfa: d.src |= bit(w.i.imm); break;
@@ -101,11 +100,19 @@ DecodedWord DecodedWord::from(const Encoded& e) {
     default: break;
   }
   d.kind |= seq_kind(w.s.op);
-  d.hazard = d.src | d.dst;
-  static constexpr auto kRunIssue = Iss::run_issue_table(std::make_integer_sequence<int, Iss::kShapes>{});
-  d.run_issue = kRunIssue[shape(w)];
+  d.hazard = d.src | dst;
+  d.shape = static_cast<std::uint8_t>(shape_of(w));
+  const std::uint32_t next = w.s.op == SeqOp::Jmp ? w.s.target : addr + 1;
+  constexpr std::uint8_t kNotPlain = kMayStall | kReserved | kStack | kRefetch;
+  d.plain = (w.s.op == SeqOp::Next || w.s.op == SeqOp::Jmp) && !(d.kind & kNotPlain) && next < kProgramWords;
+  d.next = static_cast<std::uint16_t>(next);
   return d;
 }
+
+const std::array<Iss::RunIssue, Iss::kShapes> Iss::kRunIssue =
+    Iss::run_issue_table(std::make_integer_sequence<int, Iss::kShapes>{});
+const std::array<Iss::PlainCycle, Iss::kShapes> Iss::kPlainCycle =
+    Iss::plain_cycle_table(std::make_integer_sequence<int, Iss::kShapes>{});
 
 void Iss::reset() {
   f_.fill(0);
@@ -120,10 +127,9 @@ void Iss::reset() {
   fault_ = Fault::None;
   cycle_ = 0;
   fetching_ = 0;
-  const DecodedWord zero = DecodedWord::from(Encoded{});
   for (int b = 0; b < 2; ++b) {
     program_[b].fill(Encoded{});
-    decoded_[b].fill(zero);
+    for (int i = 0; i < kProgramWords; ++i) decoded_[b][i] = DecodedWord::from(Encoded{}, i);
     data_[b].fill(0);
   }
   ring_.fill(Bucket{});
@@ -137,7 +143,7 @@ void Iss::write_program(std::uint16_t addr, const Encoded& word) {
   const int bank = psel_ ^ 1;
   addr %= kProgramWords;
   program_[bank][addr] = word;
-  decoded_[bank][addr] = DecodedWord::from(word);
+  decoded_[bank][addr] = DecodedWord::from(word, addr);
 }
 
 void Iss::write_data(std::uint16_t addr, std::uint32_t value) {
@@ -279,7 +285,7 @@ MC1_HOT Stall Iss::stall_reason(const DecodedWord& dw) const {
   // cycle. A write of latency L collides with (or would be overtaken by) one
   // visible at cycle_ + L or later.
   if (dw.src & pending_) return Stall::Raw;
-  if (dw.dst & pending_) {
+  if (dw.hazard & pending_) {  // src & pending_ is clear: the writes
     for (int i = 0; i < dw.ndst; ++i)
       if (land_[dw.dsts[i].reg] >= cycle_ + dw.dsts[i].latency) return Stall::Waw;
   }
@@ -423,10 +429,10 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
     const FSlot slot = w.f.op == FuncOp::Sin || w.f.op == FuncOp::Cos ? kSlotTrig : kSlotRsq;
     set |= push_f<kEarly>(slot, dw.lat_f, w.f.d, rf.value, rf.flags, pending);
   }
-  if (d_op == MemOp::Ld) set |= push_f<kEarly>(kSlotLd, dw.lat_d, w.d.f, loaded, 0, pending);
+  if (d_op == MemOp::Ld) set |= push_f<kEarly>(kSlotLd, kLoadLatency, w.d.f, loaded, 0, pending);
   if (dw.kind & DecodedWord::kMovF) {
     const std::uint32_t v = w.i.op == IntOp::Movaf ? a_[w.i.s] : (std::uint32_t{w.i.imm} << 8) & kMask24;
-    set |= push_f<kEarly>(kSlotMov, dw.lat_i, w.i.d, v, 0, pending);
+    set |= push_f<kEarly>(kSlotMov, kLoadLatency, w.i.d, v, 0, pending);
   }
   pending_ = pending | set;
   if ((dw.kind & DecodedWord::kRefetch) && fetch_missed(dw, next)) fetching_ = kBranchMissCycles;
@@ -442,12 +448,23 @@ void Iss::run_issue(Iss& iss, const DecodedWord& dw, std::uint32_t next) {
   iss.issue<false, kShape>(dw, next, nullptr);
 }
 
+template <int kShape>
+bool Iss::plain_cycle(Iss& iss, const DecodedWord& dw) {
+  // A plain word's D slot is LD, ST or empty (a reserved op is not plain).
+  constexpr bool kMem = (kShape >> 4) != 0;
+  if (kMem && static_cast<std::uint16_t>(iss.a_[dw.w.d.base] + dw.w.d.disp) >= kDataWords) return false;
+  iss.issue<false, kShape>(dw, dw.next, nullptr);
+  ++iss.cycle_;
+  iss.apply_next<false, true>();
+  return true;
+}
+
 // The I slot (its reads see the state before the word's writes).
 MC1_HOT void Iss::int_op(const DecodedWord& dw) {
   const IntSlot& i = dw.w.i;
   const std::uint8_t ad = i.d & 15;
   const std::uint32_t s = a_[i.s], t = a_[i.t], imm = i.imm;
-  const int li = dw.lat_i;
+  constexpr int li = kIntLatency;  // MOVAF and LIF write F: issue()
   switch (i.op) {
     case IntOp::None: break;
     case IntOp::Li: push_a(kSlotI, li, ad, imm); break;
@@ -525,7 +542,7 @@ MC1_HOT Stall Iss::execute(CycleRecord* rec) {
       issue<true, kAnyShape>(dw, next, rec);
       rec->issued = true;
     } else {
-      dw.run_issue(*this, dw, next);
+      kRunIssue[dw.shape](*this, dw, next);
     }
   }
   return Stall::None;
@@ -565,6 +582,7 @@ bool Iss::writes_landed() const {
 // registers get back the values of the writes still in flight, last first,
 // so that between calls the state is the one step() keeps.
 void Iss::writes_early() {
+  if (pending_ == 0) return;  // no F write in flight
   for (int k = 1; k <= kMaxLatency; ++k) {
     Bucket& b = ring_[(cycle_ + k) % kRing];
     for (std::uint32_t m = b.slots & kFSlotMask; m != 0; m &= m - 1) {
@@ -576,6 +594,7 @@ void Iss::writes_early() {
 }
 
 void Iss::writes_late() {
+  if (pending_ == 0) return;
   for (int k = kMaxLatency; k >= 1; --k) {
     const Bucket& b = ring_[(cycle_ + k) % kRing];
     for (std::uint32_t m = b.slots & kFSlotMask; m != 0; m &= m - 1) {
@@ -600,6 +619,10 @@ std::uint64_t Iss::run_fast(std::uint64_t max_cycles) {
   take_due<false>(nullptr, cc, flags);  // what the last clock applied (nothing records it now)
   writes_early();
   for (std::uint64_t n = 1;; ++n) {
+    if (fetching_ == 0 && n < max_cycles) {
+      const DecodedWord& dw = decoded_[psel_][pc_];
+      if (dw.plain && !(dw.hazard & pending_) && kPlainCycle[dw.shape](*this, dw)) continue;
+    }
     const Stall s = execute<false>(nullptr);
     ++cycle_;
     if (n == max_cycles || state_ != RunState::Running || (kUntilDataTaken && !data_ready_)) {

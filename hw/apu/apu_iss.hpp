@@ -29,7 +29,7 @@ constexpr int pow2_above(int n) {
 // checks the word can need), so that a cycle decodes nothing.
 class Iss;
 
-struct DecodedWord {
+struct alignas(64) DecodedWord {  // one cache line: a shift indexes the bank
   enum : std::uint8_t {
     kSwap = 1,       // SWAPD/SWAPP: subject to `bank`
     kCcBranch = 2,   // BCC/BNCC: subject to `cc`
@@ -46,22 +46,32 @@ struct DecodedWord {
     std::uint8_t reg = 0, latency = 0;
   };
   MicroWord w;
-  std::uint64_t src = 0;  // F registers read (raw)
-  std::uint64_t dst = 0;  // F registers written, any latency
-  std::uint64_t hazard = 0;  // src | dst: a word touching none in flight cannot stall on raw/waw
+  // A plain word: no swap, BCC/BNCC, HALT, CALL/RET, conditional branch or
+  // reserved op, so that it cannot stall beyond raw/waw nor fault beyond its
+  // data address, and the sequencer goes on to `next` (the next address or
+  // a JMP's target, in the bank) with no fetch miss: run() clocks its
+  // cycles whole (Iss::plain_cycle).
+  std::uint16_t next = 0;
+  bool plain = false;
+  std::uint64_t src = 0;     // F registers read (raw)
+  std::uint64_t hazard = 0;  // src | the F registers written: a word touching none in flight cannot stall on raw/waw
   // Each F write (waw): a write with latency L must land after every write
   // already in flight to its register.
   std::array<FDst, 5> dsts{};  // M, A, F, LD, MOVAF/LIF
   std::uint8_t ndst = 0;
   std::uint8_t kind = 0;
-  // latency(op) of the A, F, D and I slots.
-  std::uint8_t lat_a = 0, lat_f = 0, lat_d = 0, lat_i = 0;
+  // latency(op) of the A and F slots (LD, MOVAF and LIF: kLoadLatency; the
+  // I slot's A writes: kIntLatency).
+  std::uint8_t lat_a = 0, lat_f = 0;
   // run()'s issue of this word: Iss::issue specialized for the word's M, A,
-  // F and D slots (its shape), so that a cycle tests none of them.
-  void (*run_issue)(Iss&, const DecodedWord&, std::uint32_t next) = nullptr;
+  // F and D slots (its shape, an index into Iss's table), so that a cycle
+  // tests none of them.
+  std::uint8_t shape = 0;
 
-  static DecodedWord from(const Encoded& e);
+  // The word at program address addr.
+  static DecodedWord from(const Encoded& e, std::uint32_t addr);
 };
+static_assert(sizeof(DecodedWord) == 64, "a decoded word is one cache line");
 
 class Iss final : public ApuEngine {
  public:
@@ -163,18 +173,30 @@ class Iss final : public ApuEngine {
   // Whether `next` is not the word the sequencer fetched behind this one.
   bool fetch_missed(const DecodedWord& dw, std::uint32_t next) const;
   Fault check_fault(const DecodedWord& dw, std::uint32_t next) const;
-  // kShape: the word's slots as DecodedWord::from's shape(), or kAnyShape
+  // kShape: the word's slots as DecodedWord::shape, or kAnyShape
   // (read from the word).
   static constexpr int kAnyShape = -1, kShapes = 48;
   template <bool kRecord, int kShape>
   void issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec);
   using RunIssue = void (*)(Iss&, const DecodedWord&, std::uint32_t);
+  using PlainCycle = bool (*)(Iss&, const DecodedWord&);
   template <int kShape>
   static void run_issue(Iss& iss, const DecodedWord& dw, std::uint32_t next);
+  // A plain word's cycle in run() that is not the call's last and has no
+  // stall: the word issues, unless it faults (then false, nothing done), and
+  // the cycle's bucket is applied.
+  template <int kShape>
+  static bool plain_cycle(Iss& iss, const DecodedWord& dw);
   template <int... kShape>
   static constexpr std::array<RunIssue, sizeof...(kShape)> run_issue_table(std::integer_sequence<int, kShape...>) {
     return {&run_issue<kShape>...};
   }
+  template <int... kShape>
+  static constexpr std::array<PlainCycle, sizeof...(kShape)> plain_cycle_table(std::integer_sequence<int, kShape...>) {
+    return {&plain_cycle<kShape>...};
+  }
+  static const std::array<RunIssue, kShapes> kRunIssue;
+  static const std::array<PlainCycle, kShapes> kPlainCycle;
   friend struct DecodedWord;
   void int_op(const DecodedWord& dw);
   void seq_op(const DecodedWord& dw);

@@ -4,8 +4,8 @@
 // call per FP op. One definition, so the model and the ISS cannot differ; the
 // fp24 exhaustive and random regressions test it through either.
 //
-// Each op checks for "both operands normal" first; anything else (a zero,
-// infinity or NaN after DAZ) goes to a cold out-of-line routine.
+// Each op checks for "both operands normal" first; then for a zero with no
+// infinity or NaN; anything else goes to a cold out-of-line routine.
 #pragma once
 
 #include <algorithm>
@@ -78,6 +78,26 @@ inline Result add_normal_generic(Bits a, Bits b) {
   return {s | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
 }
 
+// Some operand is a zero, infinity or NaN (after DAZ). Without an infinity
+// or NaN some operand is a zero, the frequent case (a product with a zero
+// coordinate, a sum with one), settled here as the cold routines settle it:
+// the product a zero of the signs' xor; the sum the other operand, exact, or
+// for two zeros -0 only when both are. Operands within 24 bits; for add, b
+// already carries the sign it is added with.
+[[gnu::always_inline]] inline Result mul_not_normal(Bits a, Bits b) {
+  if (__builtin_expect(bits::exp_of(a) != bits::kExpMax && bits::exp_of(b) != bits::kExpMax, 1))
+    return {(a ^ b) & kSignBit, 0};
+  return mul_special(bits::flush(a), bits::flush(b));
+}
+
+[[gnu::always_inline]] inline Result add_not_normal(Bits a, Bits b) {
+  if (__builtin_expect(bits::exp_of(a) != bits::kExpMax && bits::exp_of(b) != bits::kExpMax, 1)) {
+    if (!bits::is_zero(b)) return {b, 0};  // then a is the zero
+    return {bits::is_zero(a) ? a & b & kSignBit : a, 0};
+  }
+  return add_special(bits::flush(a), bits::flush(b));
+}
+
 }  // namespace detail
 
 namespace inl {
@@ -93,7 +113,7 @@ namespace inl {
 // The ops on operands already within 24 bits (the ISS's registers always
 // are): mul24, add24, sub24. mul, add, sub mask first.
 [[gnu::always_inline]] inline Result mul24(Bits a, Bits b) {
-  if (__builtin_expect(!both_normal(a, b), 0)) return detail::mul_special(bits::flush(a), bits::flush(b));
+  if (__builtin_expect(!both_normal(a, b), 0)) return detail::mul_not_normal(a, b);
   // Product of two 17-bit significands: 2^32 <= p < 2^34, exact in 64 bits.
   // round_pack's rule without its general normalization: q is p at
   // [2^33, 2^34), its 17 bits below the result's significand are dropped with
@@ -116,7 +136,7 @@ namespace inl {
 }
 
 [[gnu::always_inline]] inline Result add24(Bits a, Bits b) {
-  if (__builtin_expect(!both_normal(a, b), 0)) return detail::add_special(bits::flush(a), bits::flush(b));
+  if (__builtin_expect(!both_normal(a, b), 0)) return detail::add_not_normal(a, b);
   return detail::add_normal(a, b);
 }
 
