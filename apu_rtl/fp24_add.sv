@@ -89,7 +89,7 @@ module fp24_add #(
   logic                   sticky;
   logic [SUM_W-2:0]       small_sh;      // far_sig aligned
   /* verilator lint_off UNUSEDSIGNAL */
-  logic [SUM_W-2:0]       small_lost;
+  logic [SUM_W-2:0]       small_lost;    // bits shifted out below GRS (sticky does not read them)
   /* verilator lint_on UNUSEDSIGNAL */
   logic [SUM_W-2:0]       small_al;      // aligned small significand
   logic [SUM_W-1:0]       small_ext, big_ext, sum;
@@ -116,8 +116,8 @@ module fp24_add #(
     shift      = (exp_diff > EXP_W'(SUM_W - 1)) ? SHIFT_W'(SUM_W - 1) : exp_diff[SHIFT_W-1:0];
     {small_sh, small_lost} = {far_sig, {GRS_W{1'b0}}, {(SUM_W - 1) {1'b0}}} >> shift;
     small_al   = exp_eq ? {small_sig, {GRS_W{1'b0}}} : small_sh;
-    // The lost bits (those below GRS) are nonzero iff the shift passes the
-    // trailing zeros: known from the exponents, not after the shifter.
+    // The lost bits (those below GRS) are nonzero iff the distance passes
+    // far_sig's trailing zeros + GRS: known beside the shifter, not after it.
     tz_a = 5'(SIG_W - 1);
     for (int i = SIG_W - 2; i >= 0; i--) if (a_sig[i]) tz_a = 5'(i);
     tz_b = 5'(SIG_W - 1);
