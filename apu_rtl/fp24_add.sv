@@ -254,13 +254,13 @@ module fp24_add #(
   // ---- stage 2: normalise, round, pack -----------------------------------------
   logic [NORM_W-1:0] n16, n8, n4, n2, n1, n0;
   logic [4:0]        lzc;
-  logic [15:0]       z1, c1;         // per group of 2, 4, 8, 16 bits: all zero,
-  logic [7:0]        z2;             // leading zeros below the group's top
-  logic [15:0]       c2;
-  logic [3:0]        z3;
-  logic [11:0]       c3;
-  logic              z4;             // the upper 16 bits all zero
-  logic [7:0]        c4;
+  // The leading-zero tree, word-wide (below): per level the groups' zero
+  // flags z, upper-half-zero selects sel and count bits c_b.
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [NORM_W-1:0] z1, z2, z3, sel2, sel3, sel4;
+  logic [NORM_W-1:0] c1_0, c2_0, c2_1, c3_0, c3_1, c3_2, c4_0, c4_1, c4_2, c4_3;
+  /* verilator lint_on UNUSEDSIGNAL */
+  logic              z4;
   logic              sum_zero;
   logic [SEXP_W-1:0] rnd_exp;
 
@@ -268,23 +268,28 @@ module fp24_add #(
     // Leading-zero count as a tree (pairs, then 4, 8, 16, 32 bits: a
     // group's count is its upper half's, or its lower half's after a zero
     // upper half), so lzc[4] comes first and the shift takes 16/8/4/2/1.
-    n16 = {s1_sum, {(NORM_W - SUM_W) {1'b0}}};
-    for (int j = 0; j < 16; j++) begin
-      z1[j] = !(n16[2*j+1] | n16[2*j]);
-      c1[j] = !n16[2*j+1];
-    end
-    for (int j = 0; j < 8; j++) begin
-      z2[j] = z1[2*j+1] & z1[2*j];
-      c2[2*j +: 2] = z1[2*j+1] ? {1'b1, c1[2*j]} : {1'b0, c1[2*j+1]};
-    end
-    for (int j = 0; j < 4; j++) begin
-      z3[j] = z2[2*j+1] & z2[2*j];
-      c3[3*j +: 3] = z2[2*j+1] ? {1'b1, c2[4*j +: 2]} : {1'b0, c2[4*j+2 +: 2]};
-    end
-    for (int j = 0; j < 2; j++)
-      c4[4*j +: 4] = z3[2*j+1] ? {1'b1, c3[6*j +: 3]} : {1'b0, c3[6*j+3 +: 3]};
-    z4  = z3[3] & z3[2];
-    lzc = z4 ? {1'b1, c4[3:0]} : {1'b0, c4[7:4]};
+    // Word-wide: group j of 2^k bits keeps its all-zero flag (zk) and its
+    // count's bits (ck_b) at bit j * 2^k.
+    n16  = {s1_sum, {(NORM_W - SUM_W) {1'b0}}};
+    z1   = ~(n16 | (n16 >> 1)) & 32'h5555_5555;
+    c1_0 = ~(n16 >> 1) & 32'h5555_5555;
+    z2   = z1 & (z1 >> 2) & 32'h1111_1111;
+    sel2 = (z1 >> 2) & 32'h1111_1111;        // upper half zero
+    c2_0 = (sel2 & c1_0) | (~sel2 & (c1_0 >> 2));
+    c2_1 = sel2;
+    z3   = z2 & (z2 >> 4) & 32'h0101_0101;
+    sel3 = (z2 >> 4) & 32'h0101_0101;
+    c3_0 = (sel3 & c2_0) | (~sel3 & (c2_0 >> 4));
+    c3_1 = (sel3 & c2_1) | (~sel3 & (c2_1 >> 4));
+    c3_2 = sel3;
+    sel4 = (z3 >> 8) & 32'h0001_0001;
+    c4_0 = (sel4 & c3_0) | (~sel4 & (c3_0 >> 8));
+    c4_1 = (sel4 & c3_1) | (~sel4 & (c3_1 >> 8));
+    c4_2 = (sel4 & c3_2) | (~sel4 & (c3_2 >> 8));
+    c4_3 = sel4;
+    z4   = z3[16] & z3[24];                  // the upper 16 bits all zero
+    lzc  = z4 ? {1'b1, c4_3[0], c4_2[0], c4_1[0], c4_0[0]}
+              : {1'b0, c4_3[16], c4_2[16], c4_1[16], c4_0[16]};
     n8  = lzc[4] ? {n16[NORM_W-17:0], 16'b0} : n16;
     n4  = lzc[3] ? {n8[NORM_W-9:0], 8'b0} : n8;
     n2  = lzc[2] ? {n4[NORM_W-5:0], 4'b0} : n4;
