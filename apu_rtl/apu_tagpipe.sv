@@ -17,7 +17,6 @@ module apu_tagpipe #(
     parameter int ADDR_W = 6,
     parameter int LAT0   = 2,
     parameter int LAT1   = 2,
-    parameter int REM_W  = 4,
     parameter int DEPTH  = (LAT0 > LAT1) ? LAT0 : LAT1  // derived: leave it
 ) (
     input  logic                      clk,
@@ -26,9 +25,7 @@ module apu_tagpipe #(
     input  logic [ADDR_W-1:0]         issue_d,
     input  logic                      issue_kind,
     output logic [DEPTH-1:0]          fl,        // stage k in flight
-    output logic [DEPTH*ADDR_W-1:0]   fl_d,
     output logic [DEPTH-1:0]          fl_kind,
-    output logic [DEPTH*REM_W-1:0]    fl_rem,    // cycles until its result is visible
     output logic                      wb0_valid, // a kind-0 op completes
     output logic [ADDR_W-1:0]         wb0_d,
     output logic                      wb1_valid, // a kind-1 op completes
@@ -47,10 +44,8 @@ module apu_tagpipe #(
     for (int k = 1; k <= DEPTH; k++) begin
       last[k-1] = (k == (kind[k-1] ? LAT1 : LAT0));
       fl[k-1]   = v[k-1] && (k < (kind[k-1] ? LAT1 : LAT0));
-      fl_rem[(k-1)*REM_W +: REM_W] = REM_W'((kind[k-1] ? LAT1 : LAT0) - k);
     end
   end
-  assign fl_d    = d;
   assign fl_kind = kind;
 
   always_ff @(posedge clk) begin
