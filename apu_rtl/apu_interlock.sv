@@ -150,11 +150,11 @@ module apu_interlock #(
 
   // ---- hazards of the word at PC: per-register busy vectors ----------------
   // Beside each unit's tags, one 64-bit vector per remaining latency:
-  // bit r of <unit>_ge[λ-1] is set iff an op of that unit in flight writes
-  // F register r and its result becomes visible λ or more cycles from now
-  // (rem >= λ). At each edge every vector takes the one above it (rem falls
+  // bit r of <unit>_ge[l-1] is set iff an op of that unit in flight writes
+  // F register r and its result becomes visible l or more cycles from now
+  // (rem >= l). At each edge every vector takes the one above it (rem falls
   // by one) and an op issued now sets its register's bit in the vectors
-  // λ = 1 .. L-1 (a CMP none: it writes no F register). So
+  // l = 1 .. L-1 (a CMP none: it writes no F register). So
   //   - source i reads a register in flight iff bit src_i of ge[1] is set;
   //   - destination j, written with latency L_j, would land no later than
   //     an op in flight iff bit dst_j of ge[L_j] is set (rem >= L_j);
@@ -165,13 +165,11 @@ module apu_interlock #(
   localparam int R_ADD  = D_ADD - 1;
   localparam int R_FU   = D_FU - 1;
 
-  logic [R_MUL*N_REG-1:0] mul_ge;  // entry λ at [(λ-1)*N_REG +: N_REG]
+  logic [R_MUL*N_REG-1:0] mul_ge;  // entry l at [(l-1)*N_REG +: N_REG]
   logic [R_ADD*N_REG-1:0] add_ge;
   logic [R_FU*N_REG-1:0]  fu_ge;
   logic [N_REG-1:0]       mul_1h, add_1h, fu_1h;  // the register an op issued now writes
   logic [LAT_W-1:0]       fu_lat;
-  logic [LAT_W-1:0]       dst_l [N_DST];  // destination j's latency, at least 1
-  logic [ADDR_W-1:0]      dst_r [N_DST];
 
   assign mul_1h = mul_issue ? (N_REG'(1) << mul_d) : '0;
   assign add_1h = (add_issue && !add_cmp) ? (N_REG'(1) << add_d) : '0;
@@ -200,35 +198,33 @@ module apu_interlock #(
   // would land no later than unit u's op in flight ([j*3 + u]). A
   // destination's latency l selects the vector for rem >= l (rem >= 1 for
   // every op in flight, so l = 0 is l = 1; none beyond the unit's largest rem).
-  logic [N_SRC*3-1:0] src_unit;
-  logic [N_REG-1:0]   mul_busy, add_busy, fu_busy;  // rem >= 1: in flight
+  logic [N_REG-1:0]   mul_busy, add_busy, fu_busy, busy;  // rem >= 1: in flight
   assign mul_busy = mul_ge[0 +: N_REG];
   assign add_busy = add_ge[0 +: N_REG];
   assign fu_busy  = fu_ge[0 +: N_REG];
-  logic [N_DST*3-1:0] dst_unit;
-  always_comb begin
-    for (int i = 0; i < N_SRC; i++) begin
-      src_unit[i*3 + 0] = src_en[i] && mul_busy[src_addr[i*ADDR_W +: ADDR_W]];
-      src_unit[i*3 + 1] = src_en[i] && add_busy[src_addr[i*ADDR_W +: ADDR_W]];
-      src_unit[i*3 + 2] = src_en[i] && fu_busy[src_addr[i*ADDR_W +: ADDR_W]];
-      raw_src[i] = |src_unit[i*3 +: 3];
-    end
-    for (int j = 0; j < N_DST; j++) begin
-      dst_l[j] = (dst_lat[j*LAT_W +: LAT_W] == '0) ? LAT_W'(1) : dst_lat[j*LAT_W +: LAT_W];
-      dst_r[j] = dst_addr[j*ADDR_W +: ADDR_W];
-      dst_unit[j*3 + 0] = dst_en[j] && (int'(dst_l[j]) <= R_MUL)
-                       && mul_ge[(int'(dst_l[j]) - 1)*N_REG + int'(dst_r[j])];
-      dst_unit[j*3 + 1] = dst_en[j] && (int'(dst_l[j]) <= R_ADD)
-                       && add_ge[(int'(dst_l[j]) - 1)*N_REG + int'(dst_r[j])];
-      dst_unit[j*3 + 2] = dst_en[j] && (int'(dst_l[j]) <= R_FU)
-                       && fu_ge[(int'(dst_l[j]) - 1)*N_REG + int'(dst_r[j])];
-      waw_dst[j] = |dst_unit[j*3 +: 3];
-    end
-    raw_unit = '0;
-    waw_unit = '0;
-    for (int i = 0; i < N_SRC; i++) raw_unit = raw_unit | src_unit[i*3 +: 3];
-    for (int j = 0; j < N_DST; j++) waw_unit = waw_unit | dst_unit[j*3 +: 3];
+  assign busy     = mul_busy | add_busy | fu_busy;
+  logic [N_SRC-1:0] src_mul, src_add, src_fu;
+  logic [N_DST-1:0] dst_mul, dst_add, dst_fu;
+  for (genvar i = 0; i < N_SRC; i++) begin : g_src
+    logic [ADDR_W-1:0] r;
+    assign r          = src_addr[i*ADDR_W +: ADDR_W];
+    assign raw_src[i] = src_en[i] && busy[r];
+    assign src_mul[i] = src_en[i] && mul_busy[r];
+    assign src_add[i] = src_en[i] && add_busy[r];
+    assign src_fu[i]  = src_en[i] && fu_busy[r];
   end
+  for (genvar j = 0; j < N_DST; j++) begin : g_dst
+    logic [LAT_W-1:0]  l;
+    logic [ADDR_W-1:0] r;
+    assign l = (dst_lat[j*LAT_W +: LAT_W] == '0) ? LAT_W'(1) : dst_lat[j*LAT_W +: LAT_W];
+    assign r = dst_addr[j*ADDR_W +: ADDR_W];
+    assign dst_mul[j] = dst_en[j] && (int'(l) <= R_MUL) && mul_ge[(int'(l) - 1)*N_REG + int'(r)];
+    assign dst_add[j] = dst_en[j] && (int'(l) <= R_ADD) && add_ge[(int'(l) - 1)*N_REG + int'(r)];
+    assign dst_fu[j]  = dst_en[j] && (int'(l) <= R_FU)  && fu_ge[(int'(l) - 1)*N_REG + int'(r)];
+  end
+  assign waw_dst  = dst_mul | dst_add | dst_fu;
+  assign raw_unit = {|src_fu, |src_add, |src_mul};
+  assign waw_unit = {|dst_fu, |dst_add, |dst_mul};
   assign raw_hazard = |raw_src;
   assign waw_hazard = |waw_dst;
 
