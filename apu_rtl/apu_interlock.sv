@@ -164,6 +164,8 @@ module apu_interlock #(
   localparam int R_MUL  = D_MUL - 1;  // the largest rem of each unit
   localparam int R_ADD  = D_ADD - 1;
   localparam int R_FU   = D_FU - 1;
+  // bit index {l - 1, r} into a unit's vectors
+  localparam int IW_MUL = $clog2(R_MUL*N_REG), IW_ADD = $clog2(R_ADD*N_REG), IW_FU = $clog2(R_FU*N_REG);
 
   logic [R_MUL*N_REG-1:0] mul_ge;  // entry l at [(l-1)*N_REG +: N_REG]
   logic [R_ADD*N_REG-1:0] add_ge;
@@ -218,9 +220,9 @@ module apu_interlock #(
     logic [ADDR_W-1:0] r;
     assign l = (dst_lat[j*LAT_W +: LAT_W] == '0) ? LAT_W'(1) : dst_lat[j*LAT_W +: LAT_W];
     assign r = dst_addr[j*ADDR_W +: ADDR_W];
-    assign dst_mul[j] = dst_en[j] && (int'(l) <= R_MUL) && mul_ge[(int'(l) - 1)*N_REG + int'(r)];
-    assign dst_add[j] = dst_en[j] && (int'(l) <= R_ADD) && add_ge[(int'(l) - 1)*N_REG + int'(r)];
-    assign dst_fu[j]  = dst_en[j] && (int'(l) <= R_FU)  && fu_ge[(int'(l) - 1)*N_REG + int'(r)];
+    assign dst_mul[j] = dst_en[j] && (l <= LAT_W'(R_MUL)) && mul_ge[IW_MUL'({l - LAT_W'(1), r})];
+    assign dst_add[j] = dst_en[j] && (l <= LAT_W'(R_ADD)) && add_ge[IW_ADD'({l - LAT_W'(1), r})];
+    assign dst_fu[j]  = dst_en[j] && (l <= LAT_W'(R_FU))  && fu_ge[IW_FU'({l - LAT_W'(1), r})];
   end
   assign waw_dst  = dst_mul | dst_add | dst_fu;
   assign raw_unit = {|src_fu, |src_add, |src_mul};
