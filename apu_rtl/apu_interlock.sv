@@ -12,9 +12,14 @@
 //     (out_trig_* for SIN/COS) write, and bypass, in this cycle; one a stage
 //     before it (`*_nx_*`) the register written in the next cycle, from which
 //     the core selects the late bypass of the word it latches into I.
+// The hazards are not compared slot by tag: beside the tags, each unit keeps
+// one 64-bit busy vector per remaining latency (`mul_ge`, `add_ge`, `fu_ge`:
+// bit r of entry l set iff an op in flight writes F register r with rem >=
+// l), so `raw` is bit src of the l = 1 vectors and `waw` bit dst of the
+// l = L' vectors.
 // The cause of a hazard is visible as signals: raw_src / waw_dst (which
-// source / destination slot of the word) and raw_unit / waw_unit (whose tag:
-// bit 0 multiplier, 1 adder unit, 2 function unit).
+// source / destination slot of the word) and raw_unit / waw_unit (whose
+// busy vector: bit 0 multiplier, 1 adder unit, 2 function unit).
 //
 // Ports are flat vectors, slot i at [i*W +: W] (Yosys 0.23 takes no unpacked
 // ports).
