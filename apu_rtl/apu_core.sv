@@ -552,7 +552,7 @@ module apu_core
       // held; a unit's result of the next cycle over either.
       opnd_next[i] = advance ? f_rd[i] : fop[i];
       for (int p = 0; p < N_WB - 1; p++) begin
-        opnd_next[i] = (nx_en[p] && (nx_addr[p] == byp_addr[i])) ? nx_result[p] : opnd_next[i];
+        if (nx_en[p] && (nx_addr[p] == byp_addr[i])) opnd_next[i] = nx_result[p];  // byp_hit
       end
       byp_ld_next[i] = nx_en[4] && (nx_addr[4] == byp_addr[i]);
     end

@@ -37,6 +37,12 @@ module apu_regfile #(
   // Port w writes this cycle (register 0 of a ZERO_REG file takes no write).
   logic [N_WR-1:0] wr_take;
 
+  always_comb begin
+    for (int w = 0; w < N_WR; w++) begin
+      wr_take[w] = wr_en[w] && !(ZERO_REG && wr_addr[w*ADDR_W +: ADDR_W] == '0);
+    end
+  end
+
   // Each read port's word in a variable of its own, then packed once (a
   // simulator would otherwise rewrite a field of the flat port per match).
   logic [DATA_W-1:0] rd [N_RD];
@@ -48,14 +54,11 @@ module apu_regfile #(
       wd[w] = wr_data[w*DATA_W +: DATA_W];
     end
   end
-  for (genvar w = 0; w < N_WR; w++) begin : g_take
-    assign wr_take[w] = wr_en[w] && !(ZERO_REG && wr_addr[w*ADDR_W +: ADDR_W] == '0);
-  end
   always_comb begin
     for (int r = 0; r < N_RD; r++) begin
       rd[r] = regs[rd_addr[r*ADDR_W +: ADDR_W]];
       for (int w = 0; w < N_WR_FIRST; w++) begin
-        rd[r] = (wr_take[w] && wa[w] == rd_addr[r*ADDR_W +: ADDR_W]) ? wd[w] : rd[r];
+        if (wr_take[w] && wa[w] == rd_addr[r*ADDR_W +: ADDR_W]) rd[r] = wd[w];
       end
     end
   end
