@@ -10,12 +10,41 @@ thread_local bool t_in_job = false;
 // long before it sleeps (a sleep and a wake-up cost more than that).
 constexpr int kSpins = 4000;
 
+// The pool's lock is held for a few queue operations at a time: a thread
+// that finds it taken spins about a microsecond before it blocks (a futex
+// sleep and wake-up cost more than the wait).
+constexpr int kLockSpins = 100;
+
 void cpu_relax() {
 #if defined(__x86_64__) || defined(__i386__)
   __builtin_ia32_pause();
 #else
   std::this_thread::yield();
 #endif
+}
+
+// Spins until done() or about kSpins pauses have passed; true if done().
+// Every kYieldEvery pauses it gives its core away: when the thread it waits
+// for shares this core (a loaded host puts both on one), that one runs now
+// instead of after this one's time slice.
+constexpr int kYieldEvery = 128;
+
+template <class Done>
+bool spin_until(Done done) {
+  for (int i = 1; i <= kSpins; ++i) {
+    if (done()) return true;
+    cpu_relax();
+    if (i % kYieldEvery == 0) std::this_thread::yield();
+  }
+  return done();
+}
+
+void acquire(std::unique_lock<std::mutex>& lock) {
+  for (int i = 0; i < kLockSpins; ++i) {
+    if (lock.try_lock()) return;
+    cpu_relax();
+  }
+  lock.lock();
 }
 }  // namespace
 
@@ -37,15 +66,13 @@ std::uint64_t ApuJob::result() {
   return cycles_;
 }
 
-bool ApuJob::over() {
-  ApuPool::Lock lock(pool_.m_);
-  return done_;
-}
+bool ApuJob::over() { return over_.load(std::memory_order_acquire); }
 
 void ApuJob::cancel() {
   ApuPool::Lock lock(pool_.m_);
   pool_.take(*this);
   done_ = true;
+  over_.store(true, std::memory_order_release);
   pool_.progress_cv_.wait(lock, [&] { return !held_; });
 }
 
@@ -70,7 +97,8 @@ unsigned ApuPool::default_threads() {
 
 std::shared_ptr<ApuJob> ApuPool::post(ApuJob::Stretch stretch) {
   auto job = std::make_shared<ApuJob>(*this, std::move(stretch));
-  Lock lock(m_);
+  Lock lock(m_, std::defer_lock);
+  acquire(lock);
   if (workers_.empty()) {
     while (!job->done_) clock_stretch(lock, job, false);
     return job;
@@ -103,7 +131,8 @@ std::shared_ptr<ApuJob> ApuPool::take(ApuJob& job) {
 
 template <class Over>
 void ApuPool::help(ApuJob& job, Over over) {
-  Lock lock(m_);
+  Lock lock(m_, std::defer_lock);
+  acquire(lock);
   while (!over()) {
     std::shared_ptr<ApuJob> next = take(job);
     if (!next && !ready_.empty()) next = pop_ready();
@@ -114,8 +143,8 @@ void ApuPool::help(ApuJob& job, Over over) {
     // A worker holds the job: its stretch ends soon.
     const std::uint64_t ended = ended_.load(std::memory_order_relaxed);
     lock.unlock();
-    for (int i = 0; i < kSpins && ended_.load(std::memory_order_acquire) == ended; ++i) cpu_relax();
-    lock.lock();
+    spin_until([&] { return ended_.load(std::memory_order_acquire) != ended; });
+    acquire(lock);
     if (ended_.load(std::memory_order_relaxed) == ended) progress_cv_.wait(lock);
   }
 }
@@ -133,7 +162,7 @@ void ApuPool::clock_stretch(Lock& lock, const std::shared_ptr<ApuJob>& job, bool
     error = std::current_exception();
   }
   t_in_job = outer;
-  lock.lock();
+  acquire(lock);
   job->held_ = false;
   ended_.fetch_add(1, std::memory_order_release);
   job->reached_ = std::max(job->reached_, job->stretch_reached_);
@@ -141,6 +170,7 @@ void ApuPool::clock_stretch(Lock& lock, const std::shared_ptr<ApuJob>& job, bool
     job->cycles_ = cycles.value_or(0);
     job->error_ = error;
     job->done_ = true;
+    job->over_.store(true, std::memory_order_release);
   } else if (requeue && !job->done_) {  // not cancelled meanwhile: its next turn
     push_ready(job);
   }
@@ -152,8 +182,8 @@ void ApuPool::worker() {
   for (;;) {
     if (ready_.empty() && !stopping_) {
       lock.unlock();
-      for (int i = 0; i < kSpins && ready_n_.load(std::memory_order_acquire) == 0; ++i) cpu_relax();
-      lock.lock();
+      spin_until([&] { return ready_n_.load(std::memory_order_acquire) != 0; });
+      acquire(lock);
       ++sleepers_;
       work_cv_.wait(lock, [&] { return stopping_ || !ready_.empty(); });
       --sleepers_;

@@ -67,6 +67,7 @@ class ApuJob {
   // Guarded by pool_.m_.
   bool held_ = false;  // a thread clocks a stretch
   bool done_ = false;
+  std::atomic<bool> over_{false};  // done_, for over() without the lock
   std::uint64_t reached_ = 0;
   std::uint64_t cycles_ = 0;
   std::exception_ptr error_;

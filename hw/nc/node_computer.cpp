@@ -80,7 +80,8 @@ NodeComputer::NodeComputer(sc_core::sc_module_name name, const TimingParams& t, 
       engine_(std::move(engine)),
       driver_(*engine_),
       firmware_(std::move(firmware)),
-      cycle_ps_(t.apu_cycle_ps()) {
+      cycle_ps_(t.apu_cycle_ps()),
+      bank_while_running_(engine_->mpu_bank_while_running()) {
   hdlc2nc.register_b_transport(this, &NodeComputer::b_transport);
   driver_.set_access_hook([this] { settle_apu(); });
   driver_.set_bank_hook([this] { touch_mpu_bank(); });
@@ -178,7 +179,7 @@ void NodeComputer::settle_apu() {
 // it is not clocked for it, and a job goes on clocking it meanwhile where
 // the engine allows.
 void NodeComputer::touch_mpu_bank() {
-  if (settling_ || ApuJob::in_job() || !job_ || engine_->mpu_bank_while_running()) return;
+  if (!job_ || bank_while_running_ || settling_ || ApuJob::in_job()) return;
   const std::shared_ptr<ApuJob> job = std::move(job_);
   job->result();
 }
@@ -218,25 +219,25 @@ void NodeComputer::check_alive() {
   if (now() >= kill_at_) throw Killed{};
 }
 
-void NodeComputer::advance(Picos ps) {
-  const Picos t = now();
+void NodeComputer::advance(Picos ps, Picos t) {
   if (t + ps >= kill_at_) {  // the processor stops inside this span
     qk_.inc(to_sc_time(kill_at_ > t ? kill_at_ - t : 0));
     catch_up();
     throw Killed{};
   }
   qk_.inc(to_sc_time(ps));
-  apu_due_ = now();
+  apu_due_ = detail::sc_resolution_is_ps() ? t + ps : now();  // now(), without asking the kernel again
   apu_due_set_ = true;
   chase_due_.store(apu_due_, std::memory_order_release);
   if (!qk_.need_sync()) return;
   // At a synchronisation, what the APU owes goes to the pool and the NC
   // syncs: the kernel runs the others (their APUs on the pool too), and the
-  // firmware goes on until it next looks at the APU. A short catch-up is not
-  // worth a host thread's hand-over: it waits for the next. The job chases
-  // the NC's time as it moves on (chase_due_), and while it runs, the NC
-  // syncs and goes on.
-  if (job_ && !job_->over()) {
+  // firmware goes on until it next looks at the APU. The job chases the
+  // NC's time as it moves on (chase_due_), and while it runs, the NC syncs
+  // and goes on. A catch-up shorter than kChaseCycles waits for the next
+  // sync; with no worker (one thread) nothing is posted: the catch-up is
+  // clocked where the APU is next looked at, in one piece.
+  if (!pool_ || pool_->threads() <= 1 || (job_ && !job_->over())) {
     qk_.sync();
     return;
   }
@@ -246,8 +247,8 @@ void NodeComputer::advance(Picos ps) {
   }
   const Picos until = apu_due_;
   if (engine_->state() == apu::RunState::Running && until > apu_time_ &&
-      (until - apu_time_) / cycle_ps_ >= kPoolStepCycles) {
-    job_ = (pool_ ? *pool_ : inline_).post([this](ApuJob&) -> std::optional<std::uint64_t> {
+      (until - apu_time_) / cycle_ps_ >= kChaseCycles) {
+    job_ = pool_->post([this](ApuJob&) -> std::optional<std::uint64_t> {
       const Picos due = chase_due_.load(std::memory_order_acquire);
       catch_up_to(std::min(due, apu_time_ + kPoolStepCycles * cycle_ps_));
       if (engine_->state() != apu::RunState::Running || apu_time_ + cycle_ps_ > due) return 0;
@@ -258,10 +259,11 @@ void NodeComputer::advance(Picos ps) {
 }
 
 void NodeComputer::mpu_work(std::uint64_t cycles) {
-  mark(Activity::Busy, now());
+  const Picos t = now();
+  mark(Activity::Busy, t);
   const Picos ps = t_.mpu_cycles_ps(cycles);
   stats_.mpu_busy += ps;
-  advance(ps);
+  advance(ps, t);
 }
 
 void NodeComputer::send_to_rc(const std::vector<std::uint8_t>& msg) {

@@ -109,6 +109,12 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   // NCs' runs and the number of synchronisations. Not a hardware figure, and
   // no simulated time depends on it.
   static constexpr std::uint64_t kPoolStepCycles = 256;
+  // The least catch-up (APU cycles owed) an NC hands to the pool's workers
+  // at a synchronisation while its MPU works on: small, so that the workers
+  // keep every NC's APU near its MPU's time and the simulation's thread
+  // rarely has to clock it itself (the MPU's next hand-over waits for it).
+  // No simulated time depends on it.
+  static constexpr std::uint64_t kChaseCycles = 16;
 
   // After the simulation: the last span runs to `frame_end` (>= finished_at).
   void close(Picos frame_end);  // also reads the ISS's counters
@@ -138,7 +144,8 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   void run();
   void b_transport(tlm::tlm_generic_payload& p, sc_core::sc_time& delay);
   Picos now() const;
-  void advance(Picos ps);              // local time + APU catch-up
+  void advance(Picos ps) { advance(ps, now()); }  // local time + APU catch-up
+  void advance(Picos ps, Picos t);     // ... from t = now()
   void catch_up();                     // clock the APU up to now()
   void catch_up_to(Picos t);           // ... up to t (on any thread: no SystemC)
   void settle_apu();                   // the lazy catch-up done: the engine up to date
@@ -159,6 +166,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   HdlcMailbox inbox_;
   tlm_utils::tlm_quantumkeeper qk_;
   Picos cycle_ps_;
+  bool bank_while_running_;  // engine_->mpu_bank_while_running(), asked once
 
   Picos apu_time_ = 0;      // the APU is clocked up to here
   std::uint64_t apu_host_ticks_ = 0;  // host clock ticks spent clocking the APU (HostTimer)
