@@ -525,7 +525,8 @@ module apu_core
   logic [N_RD-1:0]    byp_ld_q;          // operand i takes this cycle's LD word
   logic [N_RD-1:0]    byp_ld_next;
   logic [FP_W-1:0]    opnd_next [N_RD];
-  logic [N_RD*N_WB-1:0] byp_hit;         // [i*N_WB + p]: operand i is port p's write of the next cycle
+  logic [FREG_AW-1:0] byp_addr  [N_RD];  // the register operand i holds in the next cycle
+  logic [FP_W-1:0]    f_rd      [N_RD];  // the register file's read ports
   logic               advance;           // the word in D moves into I at this edge
 
   always_comb begin
@@ -544,17 +545,16 @@ module apu_core
     nx_en[3] = fu_trig_nx_valid;  nx_addr[3] = fu_trig_nx_d;  nx_result[3] = fu_trig_nx_result;
     nx_en[4] = issue && is_ld;    nx_addr[4] = w.d_f;
     for (int i = 0; i < N_RD; i++) begin
-      for (int p = 0; p < N_WB; p++) begin
-        byp_hit[i*N_WB + p] = nx_en[p] && (nx_addr[p] == (advance ? d_src_addr[i] : src_addr[i]));
-      end
+      byp_addr[i] = advance ? d_src_addr[i] : src_addr[i];
+      f_rd[i]     = f_rd_data_v[i*FP_W +: FP_W];
       // The register file's word for a word moving in (the state after this
       // cycle's writes), the operand as this cycle's word has it for a word
       // held; a unit's result of the next cycle over either.
-      opnd_next[i] = advance ? f_rd_data_v[i*FP_W +: FP_W] : fop[i];
+      opnd_next[i] = advance ? f_rd[i] : fop[i];
       for (int p = 0; p < N_WB - 1; p++) begin
-        if (byp_hit[i*N_WB + p]) opnd_next[i] = nx_result[p];
+        if (nx_en[p] && (nx_addr[p] == byp_addr[i])) opnd_next[i] = nx_result[p];  // byp_hit
       end
-      byp_ld_next[i] = byp_hit[i*N_WB + 4];
+      byp_ld_next[i] = nx_en[4] && (nx_addr[4] == byp_addr[i]);
     end
   end
 

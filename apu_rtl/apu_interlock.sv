@@ -12,9 +12,14 @@
 //     (out_trig_* for SIN/COS) write, and bypass, in this cycle; one a stage
 //     before it (`*_nx_*`) the register written in the next cycle, from which
 //     the core selects the late bypass of the word it latches into I.
+// The hazards are not compared slot by tag: beside the tags, each unit keeps
+// one 64-bit busy vector per remaining latency (`mul_ge`, `add_ge`, `fu_ge`:
+// bit r of entry l set iff an op in flight writes F register r with rem >=
+// l), so `raw` is bit src of the l = 1 vectors and `waw` bit dst of the
+// l = L' vectors.
 // The cause of a hazard is visible as signals: raw_src / waw_dst (which
-// source / destination slot of the word) and raw_unit / waw_unit (whose tag:
-// bit 0 multiplier, 1 adder unit, 2 function unit).
+// source / destination slot of the word) and raw_unit / waw_unit (whose
+// busy vector: bit 0 multiplier, 1 adder unit, 2 function unit).
 //
 // Ports are flat vectors, slot i at [i*W +: W] (Yosys 0.23 takes no unpacked
 // ports).
@@ -81,26 +86,23 @@ module apu_interlock #(
   // Every stage of every unit, as one list of tags: mul, add, fu.
   localparam int O_ADD = D_MUL, O_FU = D_MUL + D_ADD, N_TAG = D_MUL + D_ADD + D_FU;
 
-  logic [N_TAG-1:0]        fl, fl_kind;
-  logic [N_TAG*ADDR_W-1:0] fl_d;
-  logic [N_TAG*LAT_W-1:0]  fl_rem;
+  logic [N_TAG-1:0]        fl;
+  logic [D_ADD-1:0]        add_kind;  // the adder's stage k holds a CMP
   logic                    add_wb_f;  // an adder op that writes F completes
 
-  apu_tagpipe #(.ADDR_W(ADDR_W), .LAT0(LAT_MUL), .LAT1(LAT_MUL), .REM_W(LAT_W)) u_mul_tags (
+  apu_tagpipe #(.ADDR_W(ADDR_W), .LAT0(LAT_MUL), .LAT1(LAT_MUL)) u_mul_tags (
       .clk       (clk),
       .rst_n     (rst_n),
       .issue     (mul_issue),
       .issue_d   (mul_d),
       .issue_kind(1'b0),
       .fl        (fl[0 +: D_MUL]),
-      .fl_d      (fl_d[0 +: D_MUL*ADDR_W]),
-      .fl_kind   (fl_kind[0 +: D_MUL]),
-      .fl_rem    (fl_rem[0 +: D_MUL*LAT_W]),
       .wb0_valid (mul_wb_valid),
       .wb0_d     (mul_wb_d),
       .nx0_valid (mul_nx_valid),
       .nx0_d     (mul_nx_d),
       /* verilator lint_off PINCONNECTEMPTY */
+      .fl_kind   (),
       .wb1_valid (),
       .wb1_d     (),
       .nx1_valid (),
@@ -109,16 +111,14 @@ module apu_interlock #(
   );
 
   // kind = CMP: in flight for `cc` and `drain`, but it writes no F register.
-  apu_tagpipe #(.ADDR_W(ADDR_W), .LAT0(LAT_ADD), .LAT1(LAT_ADD), .REM_W(LAT_W)) u_add_tags (
+  apu_tagpipe #(.ADDR_W(ADDR_W), .LAT0(LAT_ADD), .LAT1(LAT_ADD)) u_add_tags (
       .clk       (clk),
       .rst_n     (rst_n),
       .issue     (add_issue),
       .issue_d   (add_d),
       .issue_kind(add_cmp),
       .fl        (fl[O_ADD +: D_ADD]),
-      .fl_d      (fl_d[O_ADD*ADDR_W +: D_ADD*ADDR_W]),
-      .fl_kind   (fl_kind[O_ADD +: D_ADD]),
-      .fl_rem    (fl_rem[O_ADD*LAT_W +: D_ADD*LAT_W]),
+      .fl_kind   (add_kind),
       .wb0_valid (add_wb_f),
       .wb0_d     (add_wb_d),
       .wb1_valid (add_wb_cmp),
@@ -133,16 +133,16 @@ module apu_interlock #(
   assign add_wb_valid = add_wb_f || add_wb_cmp;
 
   // kind = SIN/COS (LAT_TRIG); RECIP/SQRT take LAT_FUNC.
-  apu_tagpipe #(.ADDR_W(ADDR_W), .LAT0(LAT_FUNC), .LAT1(LAT_TRIG), .REM_W(LAT_W)) u_fu_tags (
+  apu_tagpipe #(.ADDR_W(ADDR_W), .LAT0(LAT_FUNC), .LAT1(LAT_TRIG)) u_fu_tags (
       .clk       (clk),
       .rst_n     (rst_n),
       .issue     (fu_issue),
       .issue_d   (fu_d),
       .issue_kind(fu_trig),
       .fl        (fl[O_FU +: D_FU]),
-      .fl_d      (fl_d[O_FU*ADDR_W +: D_FU*ADDR_W]),
-      .fl_kind   (fl_kind[O_FU +: D_FU]),
-      .fl_rem    (fl_rem[O_FU*LAT_W +: D_FU*LAT_W]),
+      /* verilator lint_off PINCONNECTEMPTY */
+      .fl_kind   (),
+      /* verilator lint_on PINCONNECTEMPTY */
       .wb0_valid (fu_wb_valid),
       .wb0_d     (fu_wb_d),
       .wb1_valid (fu_trig_wb_valid),
@@ -153,46 +153,89 @@ module apu_interlock #(
       .nx1_d     (fu_trig_nx_d)
   );
 
-  // ---- hazards of the word at PC ---------------------------------------------
-  // Tag t writes an F register (a CMP in the adder does not); source i /
-  // destination j of the word hits it: the matrices, once by slot and once
-  // by tag, then reduced.
-  logic [N_TAG-1:0]       writes_f;
-  logic [N_SRC*N_TAG-1:0] src_hit;   // [i*N_TAG + t]
-  logic [N_DST*N_TAG-1:0] dst_hit;   // [j*N_TAG + t]
-  logic [N_TAG*N_SRC-1:0] src_hit_t; // [t*N_SRC + i]
-  logic [N_TAG*N_DST-1:0] dst_hit_t; // [t*N_DST + j]
-  logic [N_TAG-1:0]       tag_raw, tag_waw;
+  // ---- hazards of the word at PC: per-register busy vectors ----------------
+  // Beside each unit's tags, one 64-bit vector per remaining latency:
+  // bit r of <unit>_ge[l-1] is set iff an op of that unit in flight writes
+  // F register r and its result becomes visible l or more cycles from now
+  // (rem >= l). At each edge every vector takes the one above it (rem falls
+  // by one) and an op issued now sets its register's bit in the vectors
+  // l = 1 .. L-1 (a CMP none: it writes no F register). So
+  //   - source i reads a register in flight iff bit src_i of ge[1] is set;
+  //   - destination j, written with latency L_j, would land no later than
+  //     an op in flight iff bit dst_j of ge[L_j] is set (rem >= L_j);
+  // the same as comparing each slot with each tag in flight, by a bit
+  // select instead of a compare per pair.
+  localparam int N_REG  = 1 << ADDR_W;
+  localparam int R_MUL  = D_MUL - 1;  // the largest rem of each unit
+  localparam int R_ADD  = D_ADD - 1;
+  localparam int R_FU   = D_FU - 1;
+  // bit index {l - 1, r} into a unit's vectors
+  localparam int IW_MUL = $clog2(R_MUL*N_REG), IW_ADD = $clog2(R_ADD*N_REG), IW_FU = $clog2(R_FU*N_REG);
 
-  for (genvar t = 0; t < N_TAG; t++) begin : g_tag
-    assign writes_f[t] = fl[t] && !((t >= O_ADD) && (t < O_FU) && fl_kind[t]);
-    for (genvar i = 0; i < N_SRC; i++) begin : g_src
-      assign src_hit[i*N_TAG + t] = writes_f[t] && src_en[i]
-                                 && (src_addr[i*ADDR_W +: ADDR_W] == fl_d[t*ADDR_W +: ADDR_W]);
-      assign src_hit_t[t*N_SRC + i] = src_hit[i*N_TAG + t];
+  logic [R_MUL*N_REG-1:0] mul_ge;  // entry l at [(l-1)*N_REG +: N_REG]
+  logic [R_ADD*N_REG-1:0] add_ge;
+  logic [R_FU*N_REG-1:0]  fu_ge;
+  logic [N_REG-1:0]       mul_1h, add_1h, fu_1h;  // the register an op issued now writes
+  logic [LAT_W-1:0]       fu_lat;
+
+  assign mul_1h = mul_issue ? (N_REG'(1) << mul_d) : '0;
+  assign add_1h = (add_issue && !add_cmp) ? (N_REG'(1) << add_d) : '0;
+  assign fu_1h  = fu_issue ? (N_REG'(1) << fu_d) : '0;
+  assign fu_lat = fu_trig ? LAT_W'(LAT_TRIG) : LAT_W'(LAT_FUNC);
+
+  always_ff @(posedge clk) begin
+    if (!rst_n) begin
+      mul_ge <= '0;
+      add_ge <= '0;
+      fu_ge  <= '0;
+    end else begin
+      for (int l = 1; l <= R_MUL; l++)
+        mul_ge[(l-1)*N_REG +: N_REG] <= ((l < R_MUL) ? mul_ge[l*N_REG +: N_REG] : '0)
+                                      | ((l <= LAT_MUL - 1) ? mul_1h : '0);
+      for (int l = 1; l <= R_ADD; l++)
+        add_ge[(l-1)*N_REG +: N_REG] <= ((l < R_ADD) ? add_ge[l*N_REG +: N_REG] : '0)
+                                      | ((l <= LAT_ADD - 1) ? add_1h : '0);
+      for (int l = 1; l <= R_FU; l++)
+        fu_ge[(l-1)*N_REG +: N_REG] <= ((l < R_FU) ? fu_ge[l*N_REG +: N_REG] : '0)
+                                     | ((LAT_W'(l) < fu_lat) ? fu_1h : '0);
     end
-    for (genvar j = 0; j < N_DST; j++) begin : g_dst
-      assign dst_hit[j*N_TAG + t] = writes_f[t] && dst_en[j]
-                                 && (dst_addr[j*ADDR_W +: ADDR_W] == fl_d[t*ADDR_W +: ADDR_W])
-                                 && (fl_rem[t*LAT_W +: LAT_W] >= dst_lat[j*LAT_W +: LAT_W]);
-      assign dst_hit_t[t*N_DST + j] = dst_hit[j*N_TAG + t];
-    end
-    assign tag_raw[t] = |src_hit_t[t*N_SRC +: N_SRC];
-    assign tag_waw[t] = |dst_hit_t[t*N_DST +: N_DST];
-  end
-  for (genvar i = 0; i < N_SRC; i++) begin : g_raw
-    assign raw_src[i] = |src_hit[i*N_TAG +: N_TAG];
-  end
-  for (genvar j = 0; j < N_DST; j++) begin : g_waw
-    assign waw_dst[j] = |dst_hit[j*N_TAG +: N_TAG];
   end
 
-  assign raw_unit   = {|tag_raw[O_FU +: D_FU], |tag_raw[O_ADD +: D_ADD], |tag_raw[0 +: D_MUL]};
-  assign waw_unit   = {|tag_waw[O_FU +: D_FU], |tag_waw[O_ADD +: D_ADD], |tag_waw[0 +: D_MUL]};
+  // Per slot and unit: source i waits for unit u ([i*3 + u]); destination j
+  // would land no later than unit u's op in flight ([j*3 + u]). A
+  // destination's latency l selects the vector for rem >= l (rem >= 1 for
+  // every op in flight, so l = 0 is l = 1; none beyond the unit's largest rem).
+  logic [N_REG-1:0]   mul_busy, add_busy, fu_busy, busy;  // rem >= 1: in flight
+  assign mul_busy = mul_ge[0 +: N_REG];
+  assign add_busy = add_ge[0 +: N_REG];
+  assign fu_busy  = fu_ge[0 +: N_REG];
+  assign busy     = mul_busy | add_busy | fu_busy;
+  logic [N_SRC-1:0] src_mul, src_add, src_fu;
+  logic [N_DST-1:0] dst_mul, dst_add, dst_fu;
+  for (genvar i = 0; i < N_SRC; i++) begin : g_src
+    logic [ADDR_W-1:0] r;
+    assign r          = src_addr[i*ADDR_W +: ADDR_W];
+    assign raw_src[i] = src_en[i] && busy[r];
+    assign src_mul[i] = src_en[i] && mul_busy[r];
+    assign src_add[i] = src_en[i] && add_busy[r];
+    assign src_fu[i]  = src_en[i] && fu_busy[r];
+  end
+  for (genvar j = 0; j < N_DST; j++) begin : g_dst
+    logic [LAT_W-1:0]  l;
+    logic [ADDR_W-1:0] r;
+    assign l = (dst_lat[j*LAT_W +: LAT_W] == '0) ? LAT_W'(1) : dst_lat[j*LAT_W +: LAT_W];
+    assign r = dst_addr[j*ADDR_W +: ADDR_W];
+    assign dst_mul[j] = dst_en[j] && (l <= LAT_W'(R_MUL)) && mul_ge[IW_MUL'({l - LAT_W'(1), r})];
+    assign dst_add[j] = dst_en[j] && (l <= LAT_W'(R_ADD)) && add_ge[IW_ADD'({l - LAT_W'(1), r})];
+    assign dst_fu[j]  = dst_en[j] && (l <= LAT_W'(R_FU))  && fu_ge[IW_FU'({l - LAT_W'(1), r})];
+  end
+  assign waw_dst  = dst_mul | dst_add | dst_fu;
+  assign raw_unit = {|src_fu, |src_add, |src_mul};
+  assign waw_unit = {|dst_fu, |dst_add, |dst_mul};
   assign raw_hazard = |raw_src;
   assign waw_hazard = |waw_dst;
 
-  assign cmp_in_flight = |(fl[O_ADD +: D_ADD] & fl_kind[O_ADD +: D_ADD]);
+  assign cmp_in_flight = |(fl[O_ADD +: D_ADD] & add_kind);
   assign pipes_busy    = |fl;
 
 endmodule

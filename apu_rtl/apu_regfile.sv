@@ -43,15 +43,27 @@ module apu_regfile #(
     end
   end
 
+  // Each read port's word in a variable of its own, then packed once (a
+  // simulator would otherwise rewrite a field of the flat port per match).
+  logic [DATA_W-1:0] rd [N_RD];
+  logic [ADDR_W-1:0] wa [N_WR];
+  logic [DATA_W-1:0] wd [N_WR];
+  always_comb begin
+    for (int w = 0; w < N_WR; w++) begin
+      wa[w] = wr_addr[w*ADDR_W +: ADDR_W];
+      wd[w] = wr_data[w*DATA_W +: DATA_W];
+    end
+  end
   always_comb begin
     for (int r = 0; r < N_RD; r++) begin
-      rd_data[r*DATA_W +: DATA_W] = regs[rd_addr[r*ADDR_W +: ADDR_W]];
+      rd[r] = regs[rd_addr[r*ADDR_W +: ADDR_W]];
       for (int w = 0; w < N_WR_FIRST; w++) begin
-        if (wr_take[w] && wr_addr[w*ADDR_W +: ADDR_W] == rd_addr[r*ADDR_W +: ADDR_W]) begin
-          rd_data[r*DATA_W +: DATA_W] = wr_data[w*DATA_W +: DATA_W];
-        end
+        if (wr_take[w] && wa[w] == rd_addr[r*ADDR_W +: ADDR_W]) rd[r] = wd[w];
       end
     end
+  end
+  always_comb begin
+    for (int r = 0; r < N_RD; r++) rd_data[r*DATA_W +: DATA_W] = rd[r];
   end
 
   always_ff @(posedge clk) begin
@@ -59,7 +71,7 @@ module apu_regfile #(
       for (int i = 0; i < N_REGS; i++) regs[i] <= '0;
     end else begin
       for (int w = 0; w < N_WR; w++) begin
-        if (wr_take[w]) regs[wr_addr[w*ADDR_W +: ADDR_W]] <= wr_data[w*DATA_W +: DATA_W];
+        if (wr_take[w]) regs[wa[w]] <= wd[w];
       end
     end
   end

@@ -17,7 +17,6 @@ module apu_tagpipe #(
     parameter int ADDR_W = 6,
     parameter int LAT0   = 2,
     parameter int LAT1   = 2,
-    parameter int REM_W  = 4,
     parameter int DEPTH  = (LAT0 > LAT1) ? LAT0 : LAT1  // derived: leave it
 ) (
     input  logic                      clk,
@@ -26,9 +25,7 @@ module apu_tagpipe #(
     input  logic [ADDR_W-1:0]         issue_d,
     input  logic                      issue_kind,
     output logic [DEPTH-1:0]          fl,        // stage k in flight
-    output logic [DEPTH*ADDR_W-1:0]   fl_d,
     output logic [DEPTH-1:0]          fl_kind,
-    output logic [DEPTH*REM_W-1:0]    fl_rem,    // cycles until its result is visible
     output logic                      wb0_valid, // a kind-0 op completes
     output logic [ADDR_W-1:0]         wb0_d,
     output logic                      wb1_valid, // a kind-1 op completes
@@ -41,31 +38,25 @@ module apu_tagpipe #(
   logic [DEPTH-1:0]        v;     // stage k holds an op (in flight or completing)
   logic [DEPTH*ADDR_W-1:0] d;
   logic [DEPTH-1:0]        kind;
-  logic [DEPTH-1:0]        last;  // stage k is the op's completion stage
+  logic [DEPTH-2:0]        last;  // stage k (< DEPTH) is the op's completion stage
 
-  always_comb begin
-    for (int k = 1; k <= DEPTH; k++) begin
-      last[k-1] = (k == (kind[k-1] ? LAT1 : LAT0));
-      fl[k-1]   = v[k-1] && (k < (kind[k-1] ? LAT1 : LAT0));
-      fl_rem[(k-1)*REM_W +: REM_W] = REM_W'((kind[k-1] ? LAT1 : LAT0) - k);
-    end
-  end
-  assign fl_d    = d;
+  // Stage k's bit in masks of constants: the completion stage of each kind,
+  // and the stages before it (in flight). Whole-vector logic: one
+  // expression a signal, no loop of bit writes (docs/apu-rtl.md "RtlEngine").
+  localparam logic [DEPTH-1:0] LAST0   = DEPTH'(1) << (LAT0 - 1);
+  localparam logic [DEPTH-1:0] LAST1   = DEPTH'(1) << (LAT1 - 1);
+  localparam logic [DEPTH-1:0] BEFORE0 = LAST0 - DEPTH'(1);
+  localparam logic [DEPTH-1:0] BEFORE1 = LAST1 - DEPTH'(1);
+
+  assign last    = (kind[DEPTH-2:0] & LAST1[DEPTH-2:0]) | (~kind[DEPTH-2:0] & LAST0[DEPTH-2:0]);
+  assign fl      = v & ((kind & BEFORE1) | (~kind & BEFORE0));
   assign fl_kind = kind;
 
   always_ff @(posedge clk) begin
-    if (!rst_n) begin
-      v <= '0;
-    end else begin
-      v[0] <= issue;
-      for (int k = 2; k <= DEPTH; k++) v[k-1] <= v[k-2] && !last[k-2];
-    end
-    d[ADDR_W-1:0] <= issue_d;
-    kind[0]       <= issue_kind;
-    for (int k = 2; k <= DEPTH; k++) begin
-      d[(k-1)*ADDR_W +: ADDR_W] <= d[(k-2)*ADDR_W +: ADDR_W];
-      kind[k-1]                 <= kind[k-2];
-    end
+    if (!rst_n) v <= '0;
+    else        v <= {v[DEPTH-2:0] & ~last, issue};
+    d    <= {d[(DEPTH-1)*ADDR_W-1:0], issue_d};
+    kind <= {kind[DEPTH-2:0], issue_kind};
   end
 
   assign wb0_valid = v[LAT0-1] && !kind[LAT0-1];

@@ -4,7 +4,8 @@
 // tb/apu/CMakeLists.txt), beside the traced Vapu_core of every port.
 //
 // Left out, so that Verilator drops the logic that only they need (a tenth of
-// the host time per cycle):
+// the host time per cycle with the interlock's former compare matrices; less
+// with its busy vectors, whose cause bits by unit are all that goes):
 //   - the stall-cause ports dbg_raw_src/unit, dbg_waw_dst/unit (waveforms and
 //     tests/apu_rtl_test.cpp read them on Vapu_core);
 //   - the MPU's bank ports: the engine reads and writes the MPU's banks
