@@ -23,6 +23,15 @@ foreach(f ${LIBDIR}/cmake/MC1/MC1Config.cmake ${LIBDIR}/pkgconfig/mc1.pc include
   endif()
 endforeach()
 
+# The installed mc1 finds its default scene in the installed data (share/mc1),
+# not in the source tree it was built from.
+execute_process(COMMAND ${prefix}/bin/mc1 bench-render --help RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(FIND "${out}" "(default: ${prefix}/share/mc1/scenes/whitted.json)" at)
+if(rc OR at EQUAL -1)
+  message(FATAL_ERROR "install_consumer: the installed mc1 bench-render's default scene is not "
+          "${prefix}/share/mc1/scenes/whitted.json:\n${out}${err}")
+endif()
+
 set(launcher)
 if(LAUNCHER)
   set(launcher -DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER})

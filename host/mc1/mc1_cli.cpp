@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <system_error>
 
 #include "mc1_engines.hpp"
 
@@ -12,6 +14,17 @@ CLI::Option* value_option(CLI::App& cmd, const std::string& name, const std::str
   return cmd.add_option("--" + name, help)
       ->type_name(type)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+}
+
+std::string default_scene() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path installed = exe.parent_path() / MC1_DATA_FROM_BIN / "scenes" / "whitted.json";
+    if (fs::is_regular_file(installed, ec)) return installed.lexically_normal().string();
+  }
+  return MC1_SOURCE_DIR "/scenes/whitted.json";
 }
 
 CLI::Option* list_option(CLI::App& cmd, const std::string& name, const std::string& type, const std::string& help) {

@@ -27,6 +27,10 @@ CLI::Option* list_option(CLI::App& cmd, const std::string& name, const std::stri
 CLI::Option* flag_option(CLI::App& cmd, const std::string& name, const std::string& help);
 // --params FILE and --param key=value, both repeatable.
 void add_param_options(CLI::App& cmd);
+// The default scene of bench-render and sweep, scenes/whitted.json: the
+// installed copy beside this program (<prefix>/bin/mc1 reads
+// <prefix>/share/mc1/scenes) where there is one, else the source tree's.
+std::string default_scene();
 // The timing table: --params and --param applied in the order given, as one
 // sequence, then validated.
 void apply_params(const CLI::App& cmd, TimingParams& t);

@@ -81,7 +81,7 @@ void add_render_options(CLI::App& cmd) {
 }
 
 void add_bench_render_options(CLI::App& cmd) {
-  value_option(cmd, "scene", "FILE", "(default: scenes/whitted.json of the source tree)");
+  value_option(cmd, "scene", "FILE", "(default: " + default_scene() + ")");
   value_option(cmd, "size", "WxH", "(default 256x256)");
   value_option(cmd, "nodes", "LIST", "(default 1,4,16,64)");
   value_option(cmd, "static-nodes", "N", "(default 16)");
@@ -323,7 +323,7 @@ struct BenchOptions {
 
 BenchOptions bench_options(const Parsed& a, SystemConfig& base) {
   BenchOptions o;
-  o.scene = a.get("scene", MC1_SOURCE_DIR "/scenes/whitted.json");
+  o.scene = a.get("scene", default_scene());
   o.size = parse_size("--size", a.get("size", "256x256"), false);
   o.nodes = parse_list("--nodes", a.get("nodes", "1,4,16,64"), 1, 4096);
   o.static_nodes = parse_unsigned("--static-nodes", a.get("static-nodes", "16"), 1, 4096);

@@ -29,7 +29,7 @@ const char* const kSweepDescription =
     "Exit 0 when every frame is complete and equal, 1 if not, 2 on a usage error or a bad report.";
 
 void add_sweep_options(CLI::App& cmd) {
-  list_option(cmd, "scene", "FILE", "a scene of the grid; repeatable (default scenes/whitted.json)");
+  list_option(cmd, "scene", "FILE", "a scene of the grid; repeatable (default " + default_scene() + ")");
   value_option(cmd, "nodes", "LIST", "node counts (default 16)");
   value_option(cmd, "schedules", "LIST", "schedules: lpt, fifo, static (default lpt)");
   value_option(cmd, "blocks", "LIST", "block sizes B or WxH (default 16)");
@@ -130,7 +130,7 @@ std::string timing_hash(const TimingParams& t) {
 Grid read_grid(const Parsed& a, const CLI::App& cmd) {
   Grid g;
   g.scenes = a.all("scene");
-  if (g.scenes.empty()) g.scenes.push_back(MC1_SOURCE_DIR "/scenes/whitted.json");
+  if (g.scenes.empty()) g.scenes.push_back(default_scene());
   if (a.has("orbit")) g.orbit = parse_unsigned("--orbit", a.get("orbit"), 1, 100000);
   g.nodes = parse_list("--nodes", a.get("nodes", "16"), 1, 4096);
   for (const std::string& s : split(a.get("schedules", "lpt"))) {
