@@ -87,10 +87,7 @@ module fp24_add #(
   logic [SHIFT_W-1:0]     shift;
   logic [4:0]             tz_a, tz_b, far_tz;  // trailing zeros of a_sig, b_sig
   logic                   sticky;
-  logic [SUM_W-2:0]       small_sh;      // far_sig aligned
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic [SUM_W-2:0]       small_lost;    // bits shifted out below GRS (sticky does not read them)
-  /* verilator lint_on UNUSEDSIGNAL */
+  logic [SUM_W-2:0]       small_sh;      // far_sig aligned (the bits shifted out: sticky)
   logic [SUM_W-2:0]       small_al;      // aligned small significand
   logic [SUM_W-1:0]       small_ext, big_ext, sum;
 
@@ -114,7 +111,7 @@ module fp24_add #(
     far_sig    = exp_lt ? a_sig : b_sig;
     // Beyond SUM_W - 1 places every bit of small is below the sum: sticky only.
     shift      = (exp_diff > EXP_W'(SUM_W - 1)) ? SHIFT_W'(SUM_W - 1) : exp_diff[SHIFT_W-1:0];
-    {small_sh, small_lost} = {far_sig, {GRS_W{1'b0}}, {(SUM_W - 1) {1'b0}}} >> shift;
+    small_sh   = {far_sig, {GRS_W{1'b0}}} >> shift;
     small_al   = exp_eq ? {small_sig, {GRS_W{1'b0}}} : small_sh;
     // The lost bits (those below GRS) are nonzero iff the distance passes
     // far_sig's trailing zeros + GRS: known beside the shifter, not after it.
