@@ -54,131 +54,30 @@ module fp24_add #(
   localparam logic [W-1:0] CANON_NAN = {1'b0, EXP_ONES, 1'b1, {(FRAC_W - 1) {1'b0}}};
 
   // ---- stage 1 ----------------------------------------------------------------
+  // The trailing zeros of a significand below its top bit (SIG_W - 1 for
+  // none: a zero, or 1.0).
+  function automatic logic [4:0] trailing_zeros(input logic [SIG_W-1:0] x);
+    trailing_zeros = 5'(SIG_W - 1);
+    for (int i = SIG_W - 2; i >= 0; i--) if (x[i]) trailing_zeros = 5'(i);
+  endfunction
+
   logic              a_sign, b_sign;
   logic [EXP_W-1:0]  a_exp, b_exp;
   logic [FRAC_W-1:0] a_frac, b_frac;
   logic              a_zero, b_zero, a_inf, b_inf, a_nan, b_nan;
-  logic [W-2:0]      a_mag, b_mag;      // |x| after DAZ, ordered like the value
-  logic [SIG_W-1:0]  a_sig, b_sig;      // 1.f, or 0 for a zero
-
   fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class_a (
       .x(in_a), .sign(a_sign), .exp(a_exp), .frac(a_frac), .zero(a_zero), .inf(a_inf), .nan(a_nan));
   fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class_b (
       .x(in_b), .sign(b_sign), .exp(b_exp), .frac(b_frac), .zero(b_zero), .inf(b_inf), .nan(b_nan));
 
-  always_comb begin
-    a_mag  = a_zero ? '0 : {a_exp, a_frac};
-    b_mag  = b_zero ? '0 : {b_exp, b_frac};
-    a_sig  = {!a_zero, a_mag[FRAC_W-1:0]};
-    b_sig  = {!b_zero, b_mag[FRAC_W-1:0]};
-  end
-
-  // ADD/SUB datapath: big + (-1)^eff_sub * small, |big| >= |small|.
-  logic                   b_sign_eff;    // b's sign as it is added
-  logic                   eff_sub;
-  logic                   swap;          // |b| > |a|
-  logic                   big_sign;
-  logic [EXP_W:0]         d_ab;          // a_exp - b_exp, its sign bit b_exp > a_exp
-  logic [EXP_W-1:0]       d_ba;          // b_exp - a_exp
-  logic                   exp_lt, exp_eq;  // b_exp > a_exp, b_exp == a_exp
-  logic [EXP_W-1:0]       exp_diff;      // |a_exp - b_exp|
-  logic [EXP_W-1:0]       big_exp;
-  logic [SIG_W-1:0]       big_sig, small_sig, far_sig;
-  logic [SHIFT_W-1:0]     shift;
-  logic [4:0]             tz_a, tz_b, far_tz;  // trailing zeros of a_sig, b_sig
-  logic                   sticky;
-  logic [SUM_W-2:0]       small_sh;      // far_sig aligned (the bits shifted out: sticky)
-  logic [SUM_W-2:0]       small_al;      // aligned small significand
-  logic [SUM_W-1:0]       small_ext, big_ext, sum;
-
-  always_comb begin
-    b_sign_eff = b_sign ^ (in_op == OP_SUB);
-    eff_sub    = a_sign ^ b_sign_eff;
-    swap       = b_mag > a_mag;
-    big_sign   = swap ? b_sign_eff : a_sign;
-    // A zero contributes a zero significand (its exponent field is 0).
-    big_sig    = swap ? b_sig : a_sig;
-    small_sig  = swap ? a_sig : b_sig;
-    // The alignment does not wait for the magnitude compare: the operand of
-    // the smaller exponent (far_sig) is shifted by the exponents' distance;
-    // with equal exponents nothing is shifted and small_sig is taken as it is.
-    d_ab       = {1'b0, a_exp} - {1'b0, b_exp};
-    d_ba       = b_exp - a_exp;
-    exp_lt     = d_ab[EXP_W];
-    exp_eq     = (a_exp == b_exp);
-    exp_diff   = exp_lt ? d_ba : d_ab[EXP_W-1:0];
-    big_exp    = exp_lt ? b_exp : a_exp;
-    far_sig    = exp_lt ? a_sig : b_sig;
-    // Beyond SUM_W - 1 places every bit of small is below the sum: sticky only.
-    shift      = (exp_diff > EXP_W'(SUM_W - 1)) ? SHIFT_W'(SUM_W - 1) : exp_diff[SHIFT_W-1:0];
-    small_sh   = {far_sig, {GRS_W{1'b0}}} >> shift;
-    small_al   = exp_eq ? {small_sig, {GRS_W{1'b0}}} : small_sh;
-    // The lost bits (those below GRS) are nonzero iff the distance passes
-    // far_sig's trailing zeros + GRS: known beside the shifter, not after it.
-    tz_a = 5'(SIG_W - 1);
-    for (int i = SIG_W - 2; i >= 0; i--) if (a_sig[i]) tz_a = 5'(i);
-    tz_b = 5'(SIG_W - 1);
-    for (int i = SIG_W - 2; i >= 0; i--) if (b_sig[i]) tz_b = 5'(i);
-    far_tz = exp_lt ? tz_a : tz_b;
-    sticky = (far_sig != '0) && (exp_diff > {2'b00, far_tz} + EXP_W'(GRS_W));
-    // Jamming the lost bits into the LSB keeps the rounding exact: the true
-    // and the jammed sum then lie strictly between the same two multiples of
-    // 2 LSBs, and the guard bit of the result is never below bit 1.
-    small_ext  = {1'b0, small_al[SUM_W-2:1], small_al[0] | sticky};
-    big_ext    = {1'b0, big_sig, {GRS_W{1'b0}}};
-    sum        = big_ext + (small_ext ^ {SUM_W{eff_sub}}) + {{(SUM_W - 1) {1'b0}}, eff_sub};
-  end
-
-  // FLOAT: the magnitude of the two's-complement integer in in_a[15:0].
-  logic             int_sign;
-  logic [INT_W-1:0] int_mag;
-
-  always_comb begin
-    int_sign = in_a[INT_W-1];
-    int_mag  = int_sign ? -in_a[INT_W-1:0] : in_a[INT_W-1:0];
-  end
-
-  // FIX: truncate toward zero, saturate, 16-bit two's complement.
-  logic [5:0]       fix_shift;     // 1..17
-  logic [SIG_W-1:0] fix_int;       // integer part of |a|
-  logic [FRAC_W-1:0] fix_lost;     // dropped fraction bits
-  logic             fix_range;     // result representable
-  logic [INT_W-1:0] fix_result;
-  logic [4:0]       fix_flags;
-
-  always_comb begin
-    fix_shift = (a_exp < FIX_MIN) ? 6'(SIG_W) : 6'(FIX_EXP - a_exp);
-    {fix_int, fix_lost} = {a_sig, {FRAC_W{1'b0}}} >> fix_shift;
-    // -32768 (and -32768.x) is the one value of magnitude 2^15 in range.
-    fix_range = (a_exp < FIX_OVF) && !fix_int[SIG_W-1] &&
-                (!fix_int[INT_W-1] || (a_sign && fix_int[INT_W-2:0] == '0));
-    if (a_nan) begin
-      fix_result = {1'b0, {(INT_W - 1) {1'b1}}};
-      fix_flags  = 5'b10000;
-    end else if (!fix_range) begin  // includes +-inf
-      fix_result = {a_sign, {(INT_W - 1) {!a_sign}}};
-      fix_flags  = 5'b10000;
-    end else begin
-      fix_result = a_sign ? -fix_int[INT_W-1:0] : fix_int[INT_W-1:0];
-      fix_flags  = {4'b0000, fix_lost != '0};
-    end
-  end
-
-  // CMP: order of the values; -0 == +0 (both magnitudes are 0 after DAZ).
-  // Shares the adder's magnitude comparator (swap is |b| > |a|).
-  logic       mag_eq, cmp_eq, cmp_lt;
-  logic [3:0] cmp_cond;
-
-  always_comb begin
-    mag_eq = (a_mag == b_mag);
-    cmp_eq = mag_eq && ((a_sign == b_sign) || (a_mag == '0));
-    cmp_lt = !cmp_eq && (a_sign ? (!b_sign || !(swap || mag_eq)) : (!b_sign && swap));
-    if (a_nan || b_nan) cmp_cond = 4'b1000;
-    else                cmp_cond = {1'b0, !cmp_eq && !cmp_lt, cmp_eq, cmp_lt};
-  end
-
-  // Stage-1 register bank. A "direct" op has its final result in s1_result /
-  // s1_flags; otherwise stage 2 normalises and rounds s1_sum.
+  // Stage 1's logic and its register bank, in one block: the logic computes
+  // into the block's own variables (blocking), the registers take them, all
+  // under in_valid. The same hardware as combinational logic in front of
+  // load-enabled registers (a stage with no op computes nothing that is
+  // kept), but a simulator evaluates it only for an op: the verilated APU
+  // core spends its time per cycle on the logic it evaluates
+  // (docs/apu-rtl.md "RtlEngine"). A "direct" op has its final result in
+  // s1_result / s1_flags; otherwise stage 2 normalises and rounds s1_sum.
   logic              s1_valid;
   logic              s1_direct;
   logic [W-1:0]      s1_result;
@@ -188,48 +87,144 @@ module fp24_add #(
   logic [SEXP_W-1:0] s1_exp;        // exponent of sum bit SUM_W-2, plus 1
   logic [SUM_W-1:0]  s1_sum;
 
-  logic              d_direct;
-  logic [W-1:0]      d_result;
-  logic [4:0]        d_flags;
+  always_ff @(posedge clk) begin : s1_stage
+    logic [W-2:0]       a_mag, b_mag;      // |x| after DAZ, ordered like the value
+    logic [SIG_W-1:0]   a_sig, b_sig;      // 1.f, or 0 for a zero
+    // ADD/SUB datapath: big + (-1)^eff_sub * small, |big| >= |small|.
+    logic               b_sign_eff;        // b's sign as it is added
+    logic               eff_sub;
+    logic               swap;              // |b| > |a|
+    logic               big_sign;
+    logic [EXP_W:0]     d_ab;              // a_exp - b_exp, its sign bit b_exp > a_exp
+    logic [EXP_W-1:0]   d_ba;              // b_exp - a_exp
+    logic               exp_lt, exp_eq;    // b_exp > a_exp, b_exp == a_exp
+    logic [EXP_W-1:0]   exp_diff;          // |a_exp - b_exp|
+    logic [EXP_W-1:0]   big_exp;
+    logic [SIG_W-1:0]   big_sig, small_sig, far_sig;
+    logic [SHIFT_W-1:0] shift;
+    logic [4:0]         tz_a, tz_b, far_tz;  // trailing zeros of a_sig, b_sig
+    logic               sticky;
+    logic [SUM_W-2:0]   small_sh;          // far_sig aligned (the bits shifted out: sticky)
+    logic [SUM_W-2:0]   small_al;          // aligned small significand
+    logic [SUM_W-1:0]   small_ext, big_ext, sum;
+    // FLOAT: the magnitude of the two's-complement integer in in_a[15:0].
+    logic               int_sign;
+    logic [INT_W-1:0]   int_mag;
+    // FIX: truncate toward zero, saturate, 16-bit two's complement.
+    logic [5:0]         fix_shift;         // 1..17
+    logic [SIG_W-1:0]   fix_int;           // integer part of |a|
+    logic [FRAC_W-1:0]  fix_lost;          // dropped fraction bits
+    logic               fix_range;         // result representable
+    logic [INT_W-1:0]   fix_result;
+    logic [4:0]         fix_flags;
+    // CMP: order of the values.
+    logic               mag_eq, cmp_eq, cmp_lt;
+    logic [3:0]         cmp_cond;
+    logic               d_direct;
+    logic [W-1:0]       d_result;
+    logic [4:0]         d_flags;
 
-  always_comb begin
-    d_direct = 1'b1;
-    d_result = '0;
-    d_flags  = 5'b00000;
-    case (in_op)
-      OP_ADD, OP_SUB: begin
-        if (a_nan || b_nan) begin
-          d_result = CANON_NAN;
-        end else if (a_inf && b_inf && eff_sub) begin
-          d_result = CANON_NAN;
-          d_flags  = 5'b10000;
-        end else if (a_inf) begin
-          d_result = in_a;
-        end else if (b_inf) begin
-          d_result = {b_sign_eff, in_b[W-2:0]};
-        end else begin
-          d_direct = 1'b0;
-        end
-      end
-      OP_FLOAT: d_direct = 1'b0;
-      OP_CMP: begin
-        d_result = {{(W - 4) {1'b0}}, cmp_cond};
-        d_flags  = {cmp_cond[3], 4'b0000};  // NV for a NaN operand
-      end
-      OP_FIX: begin
-        d_result = {{(W - INT_W) {1'b0}}, fix_result};
-        d_flags  = fix_flags;
-      end
-      OP_NEG:   d_result = a_nan ? CANON_NAN : {!a_sign, a_mag};
-      OP_ABS:   d_result = a_nan ? CANON_NAN : {1'b0, a_mag};
-      default:  ;
-    endcase
-  end
-
-  always_ff @(posedge clk) begin
     if (!rst_n) s1_valid <= 1'b0;
     else        s1_valid <= in_valid;
     if (in_valid) begin
+      a_mag  = a_zero ? '0 : {a_exp, a_frac};
+      b_mag  = b_zero ? '0 : {b_exp, b_frac};
+      a_sig  = {!a_zero, a_mag[FRAC_W-1:0]};
+      b_sig  = {!b_zero, b_mag[FRAC_W-1:0]};
+
+      b_sign_eff = b_sign ^ (in_op == OP_SUB);
+      eff_sub    = a_sign ^ b_sign_eff;
+      swap       = b_mag > a_mag;
+      big_sign   = swap ? b_sign_eff : a_sign;
+      // A zero contributes a zero significand (its exponent field is 0).
+      big_sig    = swap ? b_sig : a_sig;
+      small_sig  = swap ? a_sig : b_sig;
+      // The alignment does not wait for the magnitude compare: the operand of
+      // the smaller exponent (far_sig) is shifted by the exponents' distance;
+      // with equal exponents nothing is shifted and small_sig is taken as it is.
+      d_ab       = {1'b0, a_exp} - {1'b0, b_exp};
+      d_ba       = b_exp - a_exp;
+      exp_lt     = d_ab[EXP_W];
+      exp_eq     = (a_exp == b_exp);
+      exp_diff   = exp_lt ? d_ba : d_ab[EXP_W-1:0];
+      big_exp    = exp_lt ? b_exp : a_exp;
+      far_sig    = exp_lt ? a_sig : b_sig;
+      // Beyond SUM_W - 1 places every bit of small is below the sum: sticky only.
+      shift      = (exp_diff > EXP_W'(SUM_W - 1)) ? SHIFT_W'(SUM_W - 1) : exp_diff[SHIFT_W-1:0];
+      small_sh   = {far_sig, {GRS_W{1'b0}}} >> shift;
+      small_al   = exp_eq ? {small_sig, {GRS_W{1'b0}}} : small_sh;
+      // The lost bits (those below GRS) are nonzero iff the distance passes
+      // far_sig's trailing zeros + GRS: known beside the shifter, not after it.
+      tz_a = trailing_zeros(a_sig);
+      tz_b = trailing_zeros(b_sig);
+      far_tz = exp_lt ? tz_a : tz_b;
+      sticky = (far_sig != '0) && (exp_diff > {2'b00, far_tz} + EXP_W'(GRS_W));
+      // Jamming the lost bits into the LSB keeps the rounding exact: the true
+      // and the jammed sum then lie strictly between the same two multiples of
+      // 2 LSBs, and the guard bit of the result is never below bit 1.
+      small_ext  = {1'b0, small_al[SUM_W-2:1], small_al[0] | sticky};
+      big_ext    = {1'b0, big_sig, {GRS_W{1'b0}}};
+      sum        = big_ext + (small_ext ^ {SUM_W{eff_sub}}) + {{(SUM_W - 1) {1'b0}}, eff_sub};
+
+      int_sign = in_a[INT_W-1];
+      int_mag  = int_sign ? -in_a[INT_W-1:0] : in_a[INT_W-1:0];
+
+      fix_shift = (a_exp < FIX_MIN) ? 6'(SIG_W) : 6'(FIX_EXP - a_exp);
+      {fix_int, fix_lost} = {a_sig, {FRAC_W{1'b0}}} >> fix_shift;
+      // -32768 (and -32768.x) is the one value of magnitude 2^15 in range.
+      fix_range = (a_exp < FIX_OVF) && !fix_int[SIG_W-1] &&
+                  (!fix_int[INT_W-1] || (a_sign && fix_int[INT_W-2:0] == '0));
+      if (a_nan) begin
+        fix_result = {1'b0, {(INT_W - 1) {1'b1}}};
+        fix_flags  = 5'b10000;
+      end else if (!fix_range) begin  // includes +-inf
+        fix_result = {a_sign, {(INT_W - 1) {!a_sign}}};
+        fix_flags  = 5'b10000;
+      end else begin
+        fix_result = a_sign ? -fix_int[INT_W-1:0] : fix_int[INT_W-1:0];
+        fix_flags  = {4'b0000, fix_lost != '0};
+      end
+
+      // -0 == +0 (both magnitudes are 0 after DAZ). Shares the adder's
+      // magnitude comparator (swap is |b| > |a|).
+      mag_eq = (a_mag == b_mag);
+      cmp_eq = mag_eq && ((a_sign == b_sign) || (a_mag == '0));
+      cmp_lt = !cmp_eq && (a_sign ? (!b_sign || !(swap || mag_eq)) : (!b_sign && swap));
+      if (a_nan || b_nan) cmp_cond = 4'b1000;
+      else                cmp_cond = {1'b0, !cmp_eq && !cmp_lt, cmp_eq, cmp_lt};
+
+      d_direct = 1'b1;
+      d_result = '0;
+      d_flags  = 5'b00000;
+      case (in_op)
+        OP_ADD, OP_SUB: begin
+          if (a_nan || b_nan) begin
+            d_result = CANON_NAN;
+          end else if (a_inf && b_inf && eff_sub) begin
+            d_result = CANON_NAN;
+            d_flags  = 5'b10000;
+          end else if (a_inf) begin
+            d_result = in_a;
+          end else if (b_inf) begin
+            d_result = {b_sign_eff, in_b[W-2:0]};
+          end else begin
+            d_direct = 1'b0;
+          end
+        end
+        OP_FLOAT: d_direct = 1'b0;
+        OP_CMP: begin
+          d_result = {{(W - 4) {1'b0}}, cmp_cond};
+          d_flags  = {cmp_cond[3], 4'b0000};  // NV for a NaN operand
+        end
+        OP_FIX: begin
+          d_result = {{(W - INT_W) {1'b0}}, fix_result};
+          d_flags  = fix_flags;
+        end
+        OP_NEG:   d_result = a_nan ? CANON_NAN : {!a_sign, a_mag};
+        OP_ABS:   d_result = a_nan ? CANON_NAN : {1'b0, a_mag};
+        default:  ;
+      endcase
+
       s1_direct <= d_direct;
       s1_result <= d_result;
       s1_flags  <= d_flags;

@@ -8,6 +8,8 @@
 #include "Vapu_core___024root.h"
 #include "Vapu_fast.h"
 #include "Vapu_fast___024root.h"
+#include "Vapu_fast_func.h"
+#include "Vapu_fast_func___024root.h"
 
 // Verilator 5.006's nba region of each model (generated, not in a header).
 void Vapu_core___024root___eval_nba(Vapu_core___024root* vlSelf);
@@ -147,5 +149,66 @@ std::uint16_t BasicRtlBackdoor<Top>::areg_array(int i) const {
 
 template class BasicRtlBackdoor<Vapu_core>;
 template class BasicRtlBackdoor<Vapu_fast>;
+
+// ---- RtlFastFunc --------------------------------------------------------------
+
+namespace {
+// The stand-in's signals, fp24_func's instance u_func in the core.
+#define MC1_FAST_FUNC(name) apu_fast__DOT__apu_core__DOT__u_func__DOT__##name
+constexpr int kFuncW = 24;
+// The edge of an op and those until its result has left the longer pipe.
+constexpr int kFuncClocks = 1 + std::max(kFuncLatency, kTrigLatency);
+}  // namespace
+
+RtlFastFunc::RtlFastFunc(Vapu_fast& top, VerilatedContext* ctx)
+    : top_(top), unit_(std::make_unique<Vapu_fast_func>(ctx)) {
+  Vapu_fast_func& u = *unit_;
+  u.rst_n = 0;
+  u.clk = 0;
+  u.eval();
+  u.clk = 1;
+  u.eval();
+  u.clk = 0;
+  u.rst_n = 1;
+  u.eval();
+  outputs_to_stand_in();
+}
+
+RtlFastFunc::~RtlFastFunc() { unit_->final(); }
+
+void RtlFastFunc::outputs_to_stand_in() {
+  const Vapu_fast_func& u = *unit_;
+  auto& r = *top_.rootp;
+  r.MC1_FAST_FUNC(next_valid) = u.out_valid;
+  r.MC1_FAST_FUNC(next_result) = u.out_result;
+  r.MC1_FAST_FUNC(next_flags) = u.out_flags;
+  r.MC1_FAST_FUNC(next_trig_valid) = u.out_trig_valid;
+  r.MC1_FAST_FUNC(next_trig_result) = u.out_trig_result;
+  r.MC1_FAST_FUNC(next_trig_flags) = u.out_trig_flags;
+  r.MC1_FAST_FUNC(next_next_result) = u.out_next_result;
+  r.MC1_FAST_FUNC(next_trig_next_result) = u.out_trig_next_result;
+}
+
+void RtlFastFunc::before_rising_edge() {
+  const std::uint32_t issue = top_.rootp->MC1_FAST_FUNC(issue);  // {in_valid, in_op, in_a}
+  const bool valid = (issue >> (kFuncW + 2)) & 1;
+  if (valid)
+    clocks_ = kFuncClocks;
+  else if (clocks_ == 0)
+    return;
+  --clocks_;
+  Vapu_fast_func& u = *unit_;
+  u.in_valid = valid;
+  u.in_op = (issue >> kFuncW) & 3;
+  u.in_a = issue & ((std::uint32_t{1} << kFuncW) - 1);
+  u.clk = 1;
+  u.eval();
+  outputs_to_stand_in();
+  // The falling edge triggers nothing: clk low without an eval(), as
+  // BasicRtlBackdoor::clock_low_unchanged (the next eval() sees the rise).
+  u.clk = 0;
+  u.rootp->__Vtrigrprev__TOP__clk = 0;
+}
+#undef MC1_FAST_FUNC
 
 }  // namespace mc1::apu

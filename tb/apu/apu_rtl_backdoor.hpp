@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -24,6 +25,8 @@
 
 class Vapu_core;
 class Vapu_fast;
+class Vapu_fast_func;
+class VerilatedContext;
 
 namespace mc1::apu {
 
@@ -75,5 +78,36 @@ class BasicRtlBackdoor {
 
 using RtlBackdoor = BasicRtlBackdoor<Vapu_core>;
 using RtlFastBackdoor = BasicRtlBackdoor<Vapu_fast>;
+
+// Vapu_fast's function unit: fp24_func verilated on its own
+// (Vapu_fast_func), clocked in the place of the stand-in that Vapu_fast has
+// for it (tb/apu/fast/fp24_func.sv) only while it has work: from a cycle
+// that issues to it until its last op has left the pipes. Idle, the unit's
+// registers hold (every stage loads only with its valid bit), and so do its
+// outputs: a clock of an idle unit changes nothing.
+class RtlFastFunc {
+ public:
+  // The unit in the model's context, reset (as the core's synchronous
+  // reset does), its outputs on the stand-in's next_* inputs.
+  RtlFastFunc(Vapu_fast& top, VerilatedContext* ctx);
+  ~RtlFastFunc();
+  RtlFastFunc(const RtlFastFunc&) = delete;
+  RtlFastFunc& operator=(const RtlFastFunc&) = delete;
+
+  // Before each rising edge of Vapu_fast, on the values the core presents
+  // (its last eval()): with work, the unit clocked with this cycle's op and
+  // its outputs after the edge on the stand-in's next_*, which the core's
+  // edge puts on its ports.
+  void before_rising_edge();
+  // No op in the unit's pipes: a clock would change nothing.
+  bool idle() const { return clocks_ == 0; }
+
+ private:
+  void outputs_to_stand_in();
+
+  Vapu_fast& top_;
+  std::unique_ptr<Vapu_fast_func> unit_;
+  int clocks_ = 0;  // clocks the unit still needs for the ops in its pipes
+};
 
 }  // namespace mc1::apu

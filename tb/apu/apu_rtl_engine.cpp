@@ -82,6 +82,7 @@ class RtlEngine::ModelOf final : public Model {
   std::unique_ptr<Top> top_;
   std::unique_ptr<VerilatedFstC> fst_;  // kTraced only
   BasicRtlBackdoor<Top> backdoor_;      // into *top_
+  std::unique_ptr<RtlFastFunc> func_;   // Vapu_fast's function unit (not kTraced)
   typename BasicRtlBackdoor<Top>::Snapshot snapshot_;  // run()'s fixed-point test
   std::uint64_t cycle_ = 0;
   bool dump_pending_ = false;  // MPU inputs changed since the last waveform dump
@@ -113,6 +114,7 @@ RtlEngine::ModelOf<Top, kTraced>::ModelOf(const ApuEngine& time, const char* fst
       top_(std::make_unique<Top>(ctx_.get())),
       backdoor_(*top_) {
   Top& t = *top_;
+  if constexpr (!kTraced) func_ = std::make_unique<RtlFastFunc>(t, ctx_.get());
   // Synchronous reset: one clock with rst_n low; it is not an APU cycle.
   t.rst_n = 0;
   t.clk = 0;
@@ -267,6 +269,7 @@ template <class Top, bool kTraced>
 void RtlEngine::ModelOf<Top, kTraced>::clock() {
   Top& t = *top_;
   const bool traced = kTraced && fst_;
+  if constexpr (!kTraced) func_->before_rising_edge();
   // Time in ps (Verilator's default precision): 250 ns cycles, 4 MHz.
   if (changed_ || traced) {
     t.clk = 1;
@@ -357,7 +360,7 @@ std::uint64_t RtlEngine::ModelOf<Top, kTraced>::clock_until(std::uint64_t max_cy
       backdoor_.snapshot(snapshot_);
       clock();
       ++n;
-      if (n < max_cycles && backdoor_.same_state(snapshot_)) {
+      if (n < max_cycles && backdoor_.same_state(snapshot_) && (kTraced || func_->idle())) {
         cycle_ += max_cycles - n;
         n = max_cycles;
       }
