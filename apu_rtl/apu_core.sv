@@ -243,17 +243,23 @@ module apu_core
     dst_lat[DS_I]      = LAT_W'(apu_pkg::LAT_LOAD);
   end
 
-  // The word in D reads the same seven ports (read whether or not the slot
-  // is enabled: the hazards are checked in I, on the word's src_en).
+  // The word in D reads the same seven ports, those its slots use (d_src_en,
+  // the src_en it has in I, where the hazards are checked): an operand
+  // register of an unused port takes 0 (no slot reads it), and a simulator
+  // evaluates no compare of the port (about three ports in four are unused).
   logic [FREG_AW-1:0] d_src_addr [N_RD];
+  logic [N_RD-1:0]    d_src_en;
+  logic               d_add_ok;
   always_comb begin
-    d_src_addr[RD_MA]    = wd.m_a;
-    d_src_addr[RD_MB]    = wd.m_b;
-    d_src_addr[RD_AA]    = wd.a_a;
-    d_src_addr[RD_AB]    = wd.a_b;
-    d_src_addr[RD_FA]    = wd.f_a;
-    d_src_addr[RD_ST]    = wd.d_f;
-    d_src_addr[RD_MOVFA] = wd.i_imm[5:0];
+    d_add_ok = wd.a_en && (wd.a_op != apu_pkg::A_RSVD);
+    d_src_addr[RD_MA]    = wd.m_a;          d_src_en[RD_MA]    = wd.m_en;
+    d_src_addr[RD_MB]    = wd.m_b;          d_src_en[RD_MB]    = wd.m_en;
+    d_src_addr[RD_AA]    = wd.a_a;          d_src_en[RD_AA]    = d_add_ok;
+    d_src_addr[RD_AB]    = wd.a_b;          d_src_en[RD_AB]    = d_add_ok && ((wd.a_op == apu_pkg::A_ADD)
+                                              || (wd.a_op == apu_pkg::A_SUB) || (wd.a_op == apu_pkg::A_CMP));
+    d_src_addr[RD_FA]    = wd.f_a;          d_src_en[RD_FA]    = wd.f_en;
+    d_src_addr[RD_ST]    = wd.d_f;          d_src_en[RD_ST]    = (wd.d_op == apu_pkg::D_ST);
+    d_src_addr[RD_MOVFA] = wd.i_imm[5:0];   d_src_en[RD_MOVFA] = (wd.i_op == apu_pkg::I_MOVFA);
   end
 
   // The same as flat vectors, entry i at [i*FREG_AW +: FREG_AW] (the port
@@ -526,6 +532,8 @@ module apu_core
   logic [N_RD-1:0]    byp_ld_next;
   logic [FP_W-1:0]    opnd_next [N_RD];
   logic [FREG_AW-1:0] byp_addr  [N_RD];  // the register operand i holds in the next cycle
+  logic [N_RD-1:0]    byp_en;            // ... if the word there uses port i
+  int                 bp;                // the bypass loop's (set on every path, as apu_regfile's)
   logic [FP_W-1:0]    f_rd      [N_RD];  // the register file's read ports
   logic               advance;           // the word in D moves into I at this edge
 
@@ -544,17 +552,22 @@ module apu_core
     nx_en[2] = fu_nx_valid;       nx_addr[2] = fu_nx_d;       nx_result[2] = fu_nx_result;
     nx_en[3] = fu_trig_nx_valid;  nx_addr[3] = fu_trig_nx_d;  nx_result[3] = fu_trig_nx_result;
     nx_en[4] = issue && is_ld;    nx_addr[4] = w.d_f;
+    bp = 0;
     for (int i = 0; i < N_RD; i++) begin
       byp_addr[i] = advance ? d_src_addr[i] : src_addr[i];
+      byp_en[i]   = advance ? d_src_en[i] : src_en[i];
       f_rd[i]     = f_rd_data_v[i*FP_W +: FP_W];
       // The register file's word for a word moving in (the state after this
       // cycle's writes), the operand as this cycle's word has it for a word
-      // held; a unit's result of the next cycle over either.
+      // held; a unit's result of the next cycle over either, for a port the
+      // word uses.
       opnd_next[i] = advance ? f_rd[i] : fop[i];
-      for (int p = 0; p < N_WB - 1; p++) begin
-        if (nx_en[p] && (nx_addr[p] == byp_addr[i])) opnd_next[i] = nx_result[p];  // byp_hit
+      if (byp_en[i]) begin
+        for (bp = 0; bp < N_WB - 1; bp++) begin
+          if (nx_en[bp] && (nx_addr[bp] == byp_addr[i])) opnd_next[i] = nx_result[bp];  // byp_hit
+        end
       end
-      byp_ld_next[i] = nx_en[4] && (nx_addr[4] == byp_addr[i]);
+      byp_ld_next[i] = byp_en[i] && nx_en[4] && (nx_addr[4] == byp_addr[i]);
     end
   end
 
@@ -580,6 +593,7 @@ module apu_core
   ) u_fregs (
       .clk    (clk),
       .rst_n  (rst_n),
+      .rd_en  (advance ? d_src_en : '0),
       .rd_addr(f_rd_addr_v),
       .rd_data(f_rd_data_v),
       .wr_en  (f_wr_en_v),
@@ -662,6 +676,7 @@ module apu_core
   ) u_aregs (
       .clk    (clk),
       .rst_n  (rst_n),
+      .rd_en  ('1),
       .rd_addr(a_rd_addr_v),
       .rd_data(a_rd_data_v),
       .wr_en  (a_wr_en_v),

@@ -3,7 +3,9 @@
 // ports, all write-first: 5 completions and MOVAF/LIF) and the A registers
 // (16 x 16, 4 read ports, read in issue; 2 issue ports, A0 hardwired to 0).
 //
-// Read ports are combinational. Write ports 0 .. N_WR_FIRST-1 are
+// Read ports are combinational; a port whose rd_en is low returns 0 (a
+// simulator then evaluates none of its address compares: the F file's D
+// word reads only the ports its slots use). Write ports 0 .. N_WR_FIRST-1 are
 // write-first: a read of the register one of them writes in this cycle
 // already returns the new value (the F file's bypass: the word in decode
 // reads the state after this cycle's writes). The others are
@@ -24,6 +26,7 @@ module apu_regfile #(
 ) (
     input  logic                     clk,
     input  logic                     rst_n,
+    input  logic [N_RD-1:0]          rd_en,
     input  logic [N_RD*ADDR_W-1:0]   rd_addr,
     output logic [N_RD*DATA_W-1:0]   rd_data,
     input  logic [N_WR-1:0]          wr_en,
@@ -54,11 +57,19 @@ module apu_regfile #(
       wd[w] = wr_data[w*DATA_W +: DATA_W];
     end
   end
+  // The write-first loop runs under rd_en: its variable is the module's and
+  // set on every path (Yosys 0.23 would name a latch on a loop variable
+  // under an if: docs/fp24-rtl.md "Portable SystemVerilog").
+  int wf;
   always_comb begin
+    wf = 0;
     for (int r = 0; r < N_RD; r++) begin
-      rd[r] = regs[rd_addr[r*ADDR_W +: ADDR_W]];
-      for (int w = 0; w < N_WR_FIRST; w++) begin
-        if (wr_take[w] && wa[w] == rd_addr[r*ADDR_W +: ADDR_W]) rd[r] = wd[w];
+      rd[r] = '0;
+      if (rd_en[r]) begin
+        rd[r] = regs[rd_addr[r*ADDR_W +: ADDR_W]];
+        for (wf = 0; wf < N_WR_FIRST; wf++) begin
+          if (wr_take[wf] && wa[wf] == rd_addr[r*ADDR_W +: ADDR_W]) rd[r] = wd[wf];
+        end
       end
     end
   end
