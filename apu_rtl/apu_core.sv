@@ -264,15 +264,16 @@ module apu_core
 
   // The same as flat vectors, entry i at [i*FREG_AW +: FREG_AW] (the port
   // convention of apu_regfile and apu_interlock): the I word's sources for
-  // the interlock, the D word's for the register file.
+  // the interlock, the D word's for the register file. Flat vectors are
+  // written as one concatenation each (N_RD = 7, N_DS = 5 entries): a
+  // simulator then computes the vector once, not one field after another
+  // (a masked rewrite of the whole vector per entry).
   logic [N_RD*FREG_AW-1:0] src_addr_v;
   logic [N_RD*FREG_AW-1:0] f_rd_addr_v;
   logic [N_DS*FREG_AW-1:0] dst_addr_v;
-  always_comb begin
-    for (int i = 0; i < N_RD; i++) src_addr_v[i*FREG_AW +: FREG_AW] = src_addr[i];
-    for (int i = 0; i < N_RD; i++) f_rd_addr_v[i*FREG_AW +: FREG_AW] = d_src_addr[i];
-    for (int i = 0; i < N_DS; i++) dst_addr_v[i*FREG_AW +: FREG_AW] = dst_addr[i];
-  end
+  assign src_addr_v  = {src_addr[6], src_addr[5], src_addr[4], src_addr[3], src_addr[2], src_addr[1], src_addr[0]};
+  assign f_rd_addr_v = {d_src_addr[6], d_src_addr[5], d_src_addr[4], d_src_addr[3], d_src_addr[2], d_src_addr[1], d_src_addr[0]};
+  assign dst_addr_v  = {dst_addr[4], dst_addr[3], dst_addr[2], dst_addr[1], dst_addr[0]};
 
   // A operands: I s, I t, D base, S r.
   localparam int AR_S = 0, AR_T = 1, AR_BASE = 2, AR_R = 3, N_AR = 4;
@@ -355,9 +356,7 @@ module apu_core
   logic [FREG_AW-1:0] mul_nx_d, add_nx_d, fu_nx_d, fu_trig_nx_d;
   // The destinations' latencies as a flat vector for the interlock.
   logic [N_DS*LAT_W-1:0]   dst_lat_v;
-  always_comb begin
-    for (int j = 0; j < N_DS; j++) dst_lat_v[j*LAT_W +: LAT_W] = dst_lat[j];
-  end
+  assign dst_lat_v = {dst_lat[4], dst_lat[3], dst_lat[2], dst_lat[1], dst_lat[0]};
 
   apu_interlock #(
       .ADDR_W  (FREG_AW),
@@ -576,13 +575,10 @@ module apu_core
     else        byp_ld_q <= byp_ld_next;
     for (int i = 0; i < N_RD; i++) opnd_q[i] <= opnd_next[i];
   end
-  always_comb begin
-    for (int i = 0; i < N_WB + N_WI; i++) begin
-      f_wr_en_v[i]                      = (i < N_WB) ? wb_en[i]   : wi_en[i-N_WB];
-      f_wr_addr_v[i*FREG_AW +: FREG_AW] = (i < N_WB) ? wb_addr[i] : wi_addr[i-N_WB];
-      f_wr_data_v[i*FP_W +: FP_W]       = (i < N_WB) ? wb_data[i] : wi_data[i-N_WB];
-    end
-  end
+  // (N_WB = 5, N_WI = 1: six write ports, concatenated as above)
+  assign f_wr_en_v   = {wi_en[0], wb_en[4], wb_en[3], wb_en[2], wb_en[1], wb_en[0]};
+  assign f_wr_addr_v = {wi_addr[0], wb_addr[4], wb_addr[3], wb_addr[2], wb_addr[1], wb_addr[0]};
+  assign f_wr_data_v = {wi_data[0], wb_data[4], wb_data[3], wb_data[2], wb_data[1], wb_data[0]};
 
   apu_regfile #(
       .DATA_W    (FP_W),
@@ -652,19 +648,13 @@ module apu_core
   logic [2*AREG_AW-1:0]    a_wr_addr_v;
   logic [2*INT_W-1:0]      a_wr_data_v;
 
-  always_comb begin
-    for (int i = 0; i < N_AR; i++) a_rd_addr_v[i*AREG_AW +: AREG_AW] = a_rd_addr[i];
-  end
+  assign a_rd_addr_v = {a_rd_addr[3], a_rd_addr[2], a_rd_addr[1], a_rd_addr[0]};  // N_AR = 4
   always_comb begin
     for (int i = 0; i < N_AR; i++) aop[i] = a_rd_data_v[i*INT_W +: INT_W];
   end
-  always_comb begin
-    for (int i = 0; i < 2; i++) begin
-      a_wr_en_v[i]                      = awr_en[i];
-      a_wr_addr_v[i*AREG_AW +: AREG_AW] = awr_addr[i];
-      a_wr_data_v[i*INT_W +: INT_W]     = awr_data[i];
-    end
-  end
+  assign a_wr_en_v   = {awr_en[1], awr_en[0]};
+  assign a_wr_addr_v = {awr_addr[1], awr_addr[0]};
+  assign a_wr_data_v = {awr_data[1], awr_data[0]};
 
   apu_regfile #(
       .DATA_W    (INT_W),
@@ -889,23 +879,13 @@ module apu_core
   assign dbg_waw_dst      = waw_dst;
   assign dbg_waw_unit     = waw_unit;
 
-  always_comb begin
-    for (int i = 0; i < N_WB; i++) begin
-      dbg_fc_en[i]  = wb_en[i];
-      dbg_fc_idx[i*FREG_AW +: FREG_AW] = wb_addr[i];
-      dbg_fc_val[i*FP_W +: FP_W]       = wb_data[i];
-    end
-    for (int i = 0; i < N_WI; i++) begin
-      dbg_fc_en[N_WB + i]  = rt_fi_en[i];
-      dbg_fc_idx[(N_WB + i)*FREG_AW +: FREG_AW] = rt_fi_idx[i];
-      dbg_fc_val[(N_WB + i)*FP_W +: FP_W]       = rt_fi_val[i];
-    end
-    for (int i = 0; i < 2; i++) begin
-      dbg_ac_en[i]                        = rt_a_en[i];
-      dbg_ac_idx[i*AREG_AW +: AREG_AW]    = rt_a_idx[i];
-      dbg_ac_val[i*INT_W +: INT_W]        = rt_a_val[i];
-    end
-  end
+  // The completions, then the retired issue writes (N_WB = 5, N_WI = 1).
+  assign dbg_fc_en  = {rt_fi_en[0], wb_en[4], wb_en[3], wb_en[2], wb_en[1], wb_en[0]};
+  assign dbg_fc_idx = {rt_fi_idx[0], wb_addr[4], wb_addr[3], wb_addr[2], wb_addr[1], wb_addr[0]};
+  assign dbg_fc_val = {rt_fi_val[0], wb_data[4], wb_data[3], wb_data[2], wb_data[1], wb_data[0]};
+  assign dbg_ac_en  = {rt_a_en[1], rt_a_en[0]};
+  assign dbg_ac_idx = {rt_a_idx[1], rt_a_idx[0]};
+  assign dbg_ac_val = {rt_a_val[1], rt_a_val[0]};
 
   assign dbg_mc_en         = issue && is_st;
   assign dbg_mc_addr       = mem_addr[DADDR_W-1:0];

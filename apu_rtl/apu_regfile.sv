@@ -73,8 +73,8 @@ module apu_regfile #(
       end
     end
   end
-  always_comb begin
-    for (int r = 0; r < N_RD; r++) rd_data[r*DATA_W +: DATA_W] = rd[r];
+  for (genvar r = 0; r < N_RD; r++) begin : g_rd
+    assign rd_data[r*DATA_W +: DATA_W] = rd[r];
   end
 
   always_ff @(posedge clk) begin
