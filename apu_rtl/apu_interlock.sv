@@ -183,21 +183,32 @@ module apu_interlock #(
   assign fu_1h  = fu_issue ? (N_REG'(1) << fu_d) : '0;
   assign fu_lat = fu_trig ? LAT_W'(LAT_TRIG) : LAT_W'(LAT_FUNC);
 
+  // What an op issued now adds to each busy vector: its register, in the
+  // entries below its latency. Each vector moves down one entry a cycle
+  // (whole-vector logic: one shift and one OR, no entry rewritten after
+  // another; docs/apu-rtl.md "RtlEngine").
+  logic [R_MUL*N_REG-1:0] mul_new;
+  logic [R_ADD*N_REG-1:0] add_new;
+  logic [R_FU*N_REG-1:0]  fu_new;
+  for (genvar l = 1; l <= R_MUL; l++) begin : g_mul_new
+    assign mul_new[(l-1)*N_REG +: N_REG] = (l <= LAT_MUL - 1) ? mul_1h : '0;
+  end
+  for (genvar l = 1; l <= R_ADD; l++) begin : g_add_new
+    assign add_new[(l-1)*N_REG +: N_REG] = (l <= LAT_ADD - 1) ? add_1h : '0;
+  end
+  for (genvar l = 1; l <= R_FU; l++) begin : g_fu_new
+    assign fu_new[(l-1)*N_REG +: N_REG] = (LAT_W'(l) < fu_lat) ? fu_1h : '0;
+  end
+
   always_ff @(posedge clk) begin
     if (!rst_n) begin
       mul_ge <= '0;
       add_ge <= '0;
       fu_ge  <= '0;
     end else begin
-      for (int l = 1; l <= R_MUL; l++)
-        mul_ge[(l-1)*N_REG +: N_REG] <= ((l < R_MUL) ? mul_ge[l*N_REG +: N_REG] : '0)
-                                      | ((l <= LAT_MUL - 1) ? mul_1h : '0);
-      for (int l = 1; l <= R_ADD; l++)
-        add_ge[(l-1)*N_REG +: N_REG] <= ((l < R_ADD) ? add_ge[l*N_REG +: N_REG] : '0)
-                                      | ((l <= LAT_ADD - 1) ? add_1h : '0);
-      for (int l = 1; l <= R_FU; l++)
-        fu_ge[(l-1)*N_REG +: N_REG] <= ((l < R_FU) ? fu_ge[l*N_REG +: N_REG] : '0)
-                                     | ((LAT_W'(l) < fu_lat) ? fu_1h : '0);
+      mul_ge <= (mul_ge >> N_REG) | mul_new;
+      add_ge <= (add_ge >> N_REG) | add_new;
+      fu_ge  <= (fu_ge >> N_REG) | fu_new;
     end
   end
 
