@@ -554,7 +554,6 @@ module apu_core
     bp = 0;
     for (int i = 0; i < N_RD; i++) begin
       byp_addr[i] = advance ? d_src_addr[i] : src_addr[i];
-      byp_en[i]   = advance ? d_src_en[i] : src_en[i];
       f_rd[i]     = f_rd_data_v[i*FP_W +: FP_W];
       // The register file's word for a word moving in (the state after this
       // cycle's writes), the operand as this cycle's word has it for a word
@@ -566,8 +565,11 @@ module apu_core
           if (nx_en[bp] && (nx_addr[bp] == byp_addr[i])) opnd_next[i] = nx_result[bp];  // byp_hit
         end
       end
-      byp_ld_next[i] = byp_en[i] && nx_en[4] && (nx_addr[4] == byp_addr[i]);
     end
+  end
+  assign byp_en = advance ? d_src_en : src_en;
+  for (genvar i = 0; i < N_RD; i++) begin : g_byp_ld
+    assign byp_ld_next[i] = byp_en[i] && nx_en[4] && (nx_addr[4] == byp_addr[i]);
   end
 
   always_ff @(posedge clk) begin

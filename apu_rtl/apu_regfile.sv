@@ -40,10 +40,8 @@ module apu_regfile #(
   // Port w writes this cycle (register 0 of a ZERO_REG file takes no write).
   logic [N_WR-1:0] wr_take;
 
-  always_comb begin
-    for (int w = 0; w < N_WR; w++) begin
-      wr_take[w] = wr_en[w] && !(ZERO_REG && wr_addr[w*ADDR_W +: ADDR_W] == '0);
-    end
+  for (genvar w = 0; w < N_WR; w++) begin : g_take
+    assign wr_take[w] = wr_en[w] && !(ZERO_REG && wr_addr[w*ADDR_W +: ADDR_W] == '0);
   end
 
   // Each read port's word in a variable of its own, then packed once (a
