@@ -224,24 +224,27 @@ module apu_core
   assign fu_trig = (w.f_op == apu_pkg::F_SIN) || (w.f_op == apu_pkg::F_COS);
 
   always_comb begin
-    src_addr[RD_MA]    = w.m_a;          src_en[RD_MA]    = w.m_en;
-    src_addr[RD_MB]    = w.m_b;          src_en[RD_MB]    = w.m_en;
-    src_addr[RD_AA]    = w.a_a;          src_en[RD_AA]    = add_ok;
-    src_addr[RD_AB]    = w.a_b;          src_en[RD_AB]    = add_ok && add_reads_b;
-    src_addr[RD_FA]    = w.f_a;          src_en[RD_FA]    = w.f_en;
-    src_addr[RD_ST]    = w.d_f;          src_en[RD_ST]    = is_st;
-    src_addr[RD_MOVFA] = w.i_imm[5:0];   src_en[RD_MOVFA] = (w.i_op == apu_pkg::I_MOVFA);
-    dst_addr[DS_M]     = w.m_d;          dst_en[DS_M]     = w.m_en;
-    dst_addr[DS_A]     = w.a_d;          dst_en[DS_A]     = add_ok && !add_is_cmp;
-    dst_addr[DS_F]     = w.f_d;          dst_en[DS_F]     = w.f_en;
-    dst_addr[DS_LD]    = w.d_f;          dst_en[DS_LD]    = is_ld;
-    dst_addr[DS_I]     = w.i_d;          dst_en[DS_I]     = i_writes_f;
+    src_addr[RD_MA]    = w.m_a;
+    src_addr[RD_MB]    = w.m_b;
+    src_addr[RD_AA]    = w.a_a;
+    src_addr[RD_AB]    = w.a_b;
+    src_addr[RD_FA]    = w.f_a;
+    src_addr[RD_ST]    = w.d_f;
+    src_addr[RD_MOVFA] = w.i_imm[5:0];
+    dst_addr[DS_M]     = w.m_d;
+    dst_addr[DS_A]     = w.a_d;
+    dst_addr[DS_F]     = w.f_d;
+    dst_addr[DS_LD]    = w.d_f;
+    dst_addr[DS_I]     = w.i_d;
     dst_lat[DS_M]      = LAT_W'(apu_pkg::LAT_MUL);
     dst_lat[DS_A]      = LAT_W'(apu_pkg::LAT_ADD);
     dst_lat[DS_F]      = fu_trig ? LAT_W'(apu_pkg::LAT_TRIG) : LAT_W'(apu_pkg::LAT_FUNC);
     dst_lat[DS_LD]     = LAT_W'(apu_pkg::LAT_LOAD);
     dst_lat[DS_I]      = LAT_W'(apu_pkg::LAT_LOAD);
   end
+  // The enables by RD_* / DS_* index, each vector one concatenation.
+  assign src_en = {w.i_op == apu_pkg::I_MOVFA, is_st, w.f_en, add_ok && add_reads_b, add_ok, w.m_en, w.m_en};
+  assign dst_en = {i_writes_f, is_ld, w.f_en, add_ok && !add_is_cmp, w.m_en};
 
   // The word in D reads the same seven ports, those its slots use (d_src_en,
   // the src_en it has in I, where the hazards are checked): an operand
@@ -250,16 +253,18 @@ module apu_core
   logic [FREG_AW-1:0] d_src_addr [N_RD];
   logic [N_RD-1:0]    d_src_en;
   logic               d_add_ok;
+  assign d_add_ok = wd.a_en && (wd.a_op != apu_pkg::A_RSVD);
+  assign d_src_en = {wd.i_op == apu_pkg::I_MOVFA, wd.d_op == apu_pkg::D_ST, wd.f_en,
+                     d_add_ok && ((wd.a_op == apu_pkg::A_ADD) || (wd.a_op == apu_pkg::A_SUB) || (wd.a_op == apu_pkg::A_CMP)),
+                     d_add_ok, wd.m_en, wd.m_en};
   always_comb begin
-    d_add_ok = wd.a_en && (wd.a_op != apu_pkg::A_RSVD);
-    d_src_addr[RD_MA]    = wd.m_a;          d_src_en[RD_MA]    = wd.m_en;
-    d_src_addr[RD_MB]    = wd.m_b;          d_src_en[RD_MB]    = wd.m_en;
-    d_src_addr[RD_AA]    = wd.a_a;          d_src_en[RD_AA]    = d_add_ok;
-    d_src_addr[RD_AB]    = wd.a_b;          d_src_en[RD_AB]    = d_add_ok && ((wd.a_op == apu_pkg::A_ADD)
-                                              || (wd.a_op == apu_pkg::A_SUB) || (wd.a_op == apu_pkg::A_CMP));
-    d_src_addr[RD_FA]    = wd.f_a;          d_src_en[RD_FA]    = wd.f_en;
-    d_src_addr[RD_ST]    = wd.d_f;          d_src_en[RD_ST]    = (wd.d_op == apu_pkg::D_ST);
-    d_src_addr[RD_MOVFA] = wd.i_imm[5:0];   d_src_en[RD_MOVFA] = (wd.i_op == apu_pkg::I_MOVFA);
+    d_src_addr[RD_MA]    = wd.m_a;
+    d_src_addr[RD_MB]    = wd.m_b;
+    d_src_addr[RD_AA]    = wd.a_a;
+    d_src_addr[RD_AB]    = wd.a_b;
+    d_src_addr[RD_FA]    = wd.f_a;
+    d_src_addr[RD_ST]    = wd.d_f;
+    d_src_addr[RD_MOVFA] = wd.i_imm[5:0];
   end
 
   // The same as flat vectors, entry i at [i*FREG_AW +: FREG_AW] (the port
