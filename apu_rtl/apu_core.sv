@@ -596,7 +596,7 @@ module apu_core
   ) u_fregs (
       .clk    (clk),
       .rst_n  (rst_n),
-      .rd_en  (advance ? d_src_en : '0),
+      .rd_en  (advance ? d_src_en : {N_RD{1'b0}}),
       .rd_addr(f_rd_addr_v),
       .rd_data(f_rd_data_v),
       .wr_en  (f_wr_en_v),
@@ -673,7 +673,7 @@ module apu_core
   ) u_aregs (
       .clk    (clk),
       .rst_n  (rst_n),
-      .rd_en  ('1),
+      .rd_en  ({N_AR{1'b1}}),
       .rd_addr(a_rd_addr_v),
       .rd_data(a_rd_data_v),
       .wr_en  (a_wr_en_v),

@@ -71,8 +71,10 @@ module apu_regfile #(
       end
     end
   end
-  for (genvar r = 0; r < N_RD; r++) begin : g_rd
-    assign rd_data[r*DATA_W +: DATA_W] = rd[r];
+  // (packed in a block: Icarus 11 never settles with one continuous assign
+  // a port here)
+  always_comb begin
+    for (int r = 0; r < N_RD; r++) rd_data[r*DATA_W +: DATA_W] = rd[r];
   end
 
   always_ff @(posedge clk) begin
