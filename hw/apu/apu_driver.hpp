@@ -92,6 +92,8 @@ class ApuDriver {
   std::uint64_t run_until_data_taken(std::uint64_t cycles);
 
   std::vector<std::uint32_t> read_results(std::uint16_t addr, std::size_t n) const;
+  // The same n words into out (no allocation).
+  void read_results(std::uint16_t addr, std::uint32_t* out, std::size_t n) const;
 
   // Called with every cycle's record. Having an observer takes the ISS off
   // its fast path (records are built every cycle).
