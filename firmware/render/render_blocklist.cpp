@@ -54,7 +54,7 @@ void RenderFirmware::project_boxes() {
   s.put = [&](int i, std::uint16_t addr) { write(addr, items[i].w.data(), B_IN, step); };
   s.get = [&](int i, std::uint16_t addr) {
     const Item& it = items[i];
-    const auto v = read(addr, it.triangle >= 0 ? B_OUT_TRI : B_OUT, step);
+    const auto& v = read(addr, it.triangle >= 0 ? B_OUT_TRI : B_OUT, step);
     if (it.triangle >= 0)
       for (int c = 0; c < 6; ++c) prim_box_[it.triangle][c] = order_key(v[B_BOX + c]);
     ScreenRect& r = *it.out;

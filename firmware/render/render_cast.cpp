@@ -59,10 +59,12 @@ int RenderFirmware::BatchPlan::key_index(int key) const {
 std::uint16_t RenderFirmware::list_addr(int k) { return static_cast<std::uint16_t>(LISTS + LIST_WORDS * k); }
 
 std::vector<int> RenderFirmware::write_lists(
-    std::size_t keys, const std::function<std::vector<std::uint32_t>(std::size_t)>& slots_of, Step step) {
+    std::size_t keys, const std::function<void(std::size_t, std::vector<std::uint32_t>&)>& slots_of, Step step) {
   std::vector<int> n(keys);
+  std::vector<std::uint32_t>& slots = list_buf_;
   for (std::size_t k = 0; k < keys; ++k) {
-    const std::vector<std::uint32_t> slots = slots_of(k);
+    slots.clear();
+    slots_of(k, slots);
     if (slots.size() > static_cast<std::size_t>(LIST_WORDS)) throw std::logic_error("write_lists: too long");
     n[k] = static_cast<int>(slots.size());
     if (!slots.empty()) write(list_addr(static_cast<int>(k)), slots.data(), slots.size(), step);
@@ -77,15 +79,13 @@ void RenderFirmware::fill_cast(const std::vector<Ray>& rays, const std::vector<s
   const auto& chunk = p.chunks[c];  // ascending (plan_batches), chunk[k] in slots[k]
   const std::vector<int> list_n = write_lists(
       p.keys.size(),
-      [&](std::size_t k) {
-        std::vector<std::uint32_t> out;
+      [&](std::size_t k, std::vector<std::uint32_t>& out) {
         for (int prim : lists[p.keys[k]]) {
           const auto it = std::lower_bound(chunk.begin(), chunk.end(), prim);
           if (it != chunk.end() && *it == prim)
             out.push_back(static_cast<std::uint32_t>(slots[static_cast<std::size_t>(it - chunk.begin())]));
         }
         cost(step).list_elements += lists[p.keys[k]].size();
-        return out;
       },
       step);
   for (int j = 0; j < p.n; ++j) {
@@ -137,7 +137,7 @@ void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<
   };
   auto drain = [&](const BatchPlan& p) {
     for (int j = 0; j < p.n; ++j) {
-      auto back = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j), R_SLOT + 1, step);
+      const auto& back = read(static_cast<std::uint16_t>(RAYS + R_SIZE * j), R_SLOT + 1, step);
       auto& rec = rays[p.first + j].rec;
       for (int w = R_O; w <= R_T; ++w) rec[w] = back[w];
       rec[R_ID] = back[R_ID];

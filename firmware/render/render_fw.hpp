@@ -251,7 +251,8 @@ class RenderFirmware {
   void forget_bank_data();  // neither bank holds the scene or a primitive
   void write(std::uint16_t addr, const std::uint32_t* w, std::size_t n, Step step);
   void write_count(int n, Step step);  // the batch's COUNT word
-  std::vector<std::uint32_t> read(std::uint16_t addr, std::size_t n, Step step);
+  // The n words, valid until the next read().
+  const std::vector<std::uint32_t>& read(std::uint16_t addr, std::size_t n, Step step);
   void ensure_scene(Step step);
   std::vector<int> place_prims(const std::vector<int>& prims, Step step);  // slots
 
@@ -283,10 +284,10 @@ class RenderFirmware {
   void stream_chunks(const std::string& kernel, const std::vector<BatchPlan>& plans, Step step, const ChunkFill& fill,
                      const std::function<void(const BatchPlan&)>& drain);
   static std::uint16_t list_addr(int k);  // candidate list k of a batch
-  // Writes a batch's candidate lists (slots_of(k): list k's PRIMS slots);
-  // returns their lengths.
-  std::vector<int> write_lists(std::size_t keys, const std::function<std::vector<std::uint32_t>(std::size_t)>& slots_of,
-                               Step step);
+  // Writes a batch's candidate lists (slots_of(k, out): list k's PRIMS
+  // slots appended to out, which comes empty); returns their lengths.
+  std::vector<int> write_lists(std::size_t keys,
+                               const std::function<void(std::size_t, std::vector<std::uint32_t>&)>& slots_of, Step step);
   void write_plane_left(const Ray& ray, bool first_pass, std::uint16_t at, Step step);
   void fill_cast(const std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, const BatchPlan& p,
                  std::size_t c, const std::vector<int>& slots, Step step);
@@ -350,6 +351,8 @@ class RenderFirmware {
   std::vector<std::uint32_t> scene_words_;  // words C_D0 .. PRIMS - 1 of every bank
   std::array<Bank, 2> banks_;
   int mpu_bank_ = 0;  // which of banks_ the MPU owns (relative naming)
+  std::vector<std::uint32_t> read_buf_;   // read()'s words
+  std::vector<std::uint32_t> list_buf_;   // write_lists()' list
   int step_ = -1;     // the step last told to the link (enter_step)
   std::string apu_prog_, mpu_prog_;
   std::unique_ptr<const KernelTable> kernels_;  // null: the library's copy

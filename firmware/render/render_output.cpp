@@ -56,7 +56,7 @@ std::vector<Rgb8> RenderFirmware::sum(const std::vector<std::vector<std::array<s
   };
   auto drain = [&](int item) {
     const SumBatch& b = batches[item];
-    const auto v = read(OUT, OUT_SIZE * b.n, step);
+    const auto& v = read(OUT, OUT_SIZE * b.n, step);
     for (int k = 0; k < b.n; ++k) {
       const auto* rgb = &v[OUT_SIZE * k];
       out[b.first + k] = Rgb8{static_cast<std::uint8_t>(rgb[0]), static_cast<std::uint8_t>(rgb[1]),

@@ -168,7 +168,7 @@ void RenderFirmware::surface(std::vector<Ray>& rays, Step step) {
   };
   s.get = [&](int i, std::uint16_t addr) {
     auto& rec = rays[hits[i]].rec;
-    const auto back = read(static_cast<std::uint16_t>(addr + R_P), R_INSIDE - R_P + 1, step);
+    const auto& back = read(static_cast<std::uint16_t>(addr + R_P), R_INSIDE - R_P + 1, step);
     std::copy(back.begin(), back.end(), rec.begin() + R_P);
     rec[R_SOLID] = read(static_cast<std::uint16_t>(addr + R_SOLID), 1, step)[0];
   };

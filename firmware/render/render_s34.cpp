@@ -28,7 +28,7 @@ void RenderFirmware::shade(std::vector<Ray>& rays, Step step) {
   s.get = [&](int i, std::uint16_t addr) {
     auto& rec = rays[i].rec;
     auto get = [&](int first, int words) {
-      const auto back = read(static_cast<std::uint16_t>(addr + first), static_cast<std::size_t>(words), step);
+      const auto& back = read(static_cast<std::uint16_t>(addr + first), static_cast<std::size_t>(words), step);
       std::copy(back.begin(), back.end(), rec.begin() + first);
     };
     get(R_OUT, R_CHILD + 1 - R_OUT);

@@ -55,12 +55,10 @@ std::vector<int> RenderFirmware::hidden_hits(std::vector<Ray>& rays, const std::
     const auto& chunk = p.chunks[c];
     const std::vector<int> list_n = write_lists(
         p.keys.size(),
-        [&](std::size_t k) {
-          std::vector<std::uint32_t> out;
+        [&](std::size_t k, std::vector<std::uint32_t>& out) {
           for (std::size_t s = 0; s < chunk.size(); ++s)
             if (view_.prim_object[chunk[s]] == p.keys[k]) out.push_back(static_cast<std::uint32_t>(slots[s]));
           cost(step).list_elements += chunk.size();
-          return out;
         },
         step);
     for (int j = 0; j < p.n; ++j) {

@@ -209,7 +209,7 @@ void RenderFirmware::load_scene(const SceneImage& img) {
     write(H_MODE, &mode, 1, step);
   };
   s.get = [&](int i, std::uint16_t addr) {
-    const auto back = read(addr, X_BACK, step);
+    const auto& back = read(addr, X_BACK, step);
     std::copy(back.begin(), back.end(), x.items[i].begin());
   };
   stream_items("r_xform", step, s);

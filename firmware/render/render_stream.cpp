@@ -82,10 +82,12 @@ void RenderFirmware::write(std::uint16_t addr, const std::uint32_t* w, std::size
   cost(step).word_copies += n;
 }
 
-std::vector<std::uint32_t> RenderFirmware::read(std::uint16_t addr, std::size_t n, Step step) {
+const std::vector<std::uint32_t>& RenderFirmware::read(std::uint16_t addr, std::size_t n, Step step) {
   link_.copy_words(n);
   cost(step).word_copies += n;
-  return link_.apu().read_results(addr, n);
+  read_buf_.resize(n);
+  link_.apu().read_results(addr, read_buf_.data(), n);
+  return read_buf_;
 }
 
 void RenderFirmware::write_count(int n, Step step) {

@@ -32,6 +32,8 @@ endfunction()
 # name,command line (comma-separated)
 set(cases
     "iss,render,${SCENE},--size,64x48,--nodes,16,--engine,iss"
+    # 8x8 blocks: more data hand-overs, which a catch-up job may make (hw/nc)
+    "iss-b8,render,${SCENE},--size,64x48,--nodes,8,--block,8,--engine,iss"
     "rtl,render,${SCENE},--size,48x32,--nodes,8,--engine,rtl"
     "diag,diag,--size,64x64,--nodes,16,--block,8")
 foreach(c ${cases})

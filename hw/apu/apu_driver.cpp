@@ -63,15 +63,19 @@ void ApuDriver::load_data(std::uint16_t addr, const std::uint32_t* values, std::
 }
 
 std::vector<std::uint32_t> ApuDriver::read_results(std::uint16_t addr, std::size_t n) const {
+  std::vector<std::uint32_t> out(n);
+  read_results(addr, out.data(), n);
+  return out;
+}
+
+void ApuDriver::read_results(std::uint16_t addr, std::uint32_t* out, std::size_t n) const {
   if (addr + n > static_cast<std::size_t>(kDataWords)) {
     access();
     fail(ApuError::Kind::Usage, "read_results: " + std::to_string(n) + " words at " + std::to_string(addr) +
                                     " do not fit the 4096-word bank");
   }
   access_bank();
-  std::vector<std::uint32_t> out(n);
-  engine_.read_data_block(addr, out.data(), n);
-  return out;
+  engine_.read_data_block(addr, out, n);
 }
 
 void ApuDriver::start(std::uint16_t pc) {

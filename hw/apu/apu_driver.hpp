@@ -52,8 +52,9 @@ class ApuDriver {
   }
   void hand_over_program();
   void hand_over_data() {
-    access();
     data_pending_ = true;
+    if (hand_over_hook_ && hand_over_hook_()) return;  // the caller hands over at the APU's time
+    access();
     engine_.hand_over_data();
   }
   bool program_ready() const {
@@ -92,6 +93,8 @@ class ApuDriver {
   std::uint64_t run_until_data_taken(std::uint64_t cycles);
 
   std::vector<std::uint32_t> read_results(std::uint16_t addr, std::size_t n) const;
+  // The same n words into out (no allocation).
+  void read_results(std::uint16_t addr, std::uint32_t* out, std::size_t n) const;
 
   // Called with every cycle's record. Having an observer takes the ISS off
   // its fast path (records are built every cycle).
@@ -132,6 +135,13 @@ class ApuDriver {
   // the NC owes it, so the MPU's bank is the same whenever they are clocked.
   // Without it, those calls call the access hook.
   void set_bank_hook(std::function<void()> hook) { bank_hook_ = std::move(hook); }
+  // Called first by hand_over_data(): true when the caller takes the
+  // hand-over on itself (the NC, whose APU is being clocked on another
+  // thread, has that thread hand the bank over once the APU is up to the
+  // time of the call; any later call through the access hook waits for it).
+  // Without it, or when it returns false, hand_over_data() calls the access
+  // hook and hands over at once.
+  void set_hand_over_hook(std::function<bool()> hook) { hand_over_hook_ = std::move(hook); }
 
  private:
   void access() const {
@@ -146,6 +156,7 @@ class ApuDriver {
   Iss* iss_;  // the ISS when engine_ is one: its bank and pc without records
   std::function<void(const CycleRecord&)> observer_;
   std::function<void()> hook_, bank_hook_;
+  std::function<bool()> hand_over_hook_;
   // A data hand-over the APU may not have taken yet (false only once the
   // driver has seen data_ready() clear, the APU up to date; written by the
   // MPU's calls alone, never by a clocking thread).

@@ -152,13 +152,24 @@ void Iss::write_data(std::uint16_t addr, std::uint32_t value) {
 
 std::uint32_t Iss::read_data(std::uint16_t addr) const { return data_[dsel_ ^ 1][addr % kDataWords]; }
 
+// A block within the bank (the driver's calls always are) is a plain loop
+// the compiler vectorizes; one that wraps goes word by word.
 void Iss::write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
   auto& bank = data_[dsel_ ^ 1];
+  if (addr + n <= static_cast<std::size_t>(kDataWords)) {
+    std::uint32_t* out = bank.data() + addr;
+    for (std::size_t i = 0; i < n; ++i) out[i] = values[i] & kMask24;
+    return;
+  }
   for (std::size_t i = 0; i < n; ++i) bank[(addr + i) % kDataWords] = values[i] & kMask24;
 }
 
 void Iss::read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const {
   const auto& bank = data_[dsel_ ^ 1];
+  if (addr + n <= static_cast<std::size_t>(kDataWords)) {
+    std::copy_n(bank.data() + addr, n, out);
+    return;
+  }
   for (std::size_t i = 0; i < n; ++i) out[i] = bank[(addr + i) % kDataWords];
 }
 
@@ -377,7 +388,7 @@ MC1_HOT fp24::Result func_unit(FuncOp op, std::uint32_t x) {
 // read, and the store done, before the first F write (which run() makes at
 // once, push_f); A registers, CC and FLAGS change only when their bucket is
 // applied.
-template <bool kRecord, int kShape>
+template <bool kRecord, int kShape, bool kPlain>
 MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec) {
   constexpr bool kEarly = !kRecord;
   constexpr bool kAny = kShape == kAnyShape;
@@ -409,7 +420,7 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
     }
   }
   if (w.i.op != IntOp::None) int_op(dw);  // MOVFA reads F
-  if (w.s.op != SeqOp::Next) seq_op(dw);
+  if (!kPlain && w.s.op != SeqOp::Next) seq_op(dw);  // a plain word's S slot is NEXT or JMP
 
   const std::uint64_t pending = pending_;
   std::uint64_t set = 0;
@@ -435,7 +446,7 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
     set |= push_f<kEarly>(kSlotMov, kLoadLatency, w.i.d, v, 0, pending);
   }
   pending_ = pending | set;
-  if ((dw.kind & DecodedWord::kRefetch) && fetch_missed(dw, next)) fetching_ = kBranchMissCycles;
+  if (!kPlain && (dw.kind & DecodedWord::kRefetch) && fetch_missed(dw, next)) fetching_ = kBranchMissCycles;
   pc_ = static_cast<std::uint16_t>(next);
   counters_.unit_ops[0] += m_en;
   counters_.unit_ops[1] += a_en;
@@ -453,7 +464,7 @@ bool Iss::plain_cycle(Iss& iss, const DecodedWord& dw) {
   // A plain word's D slot is LD, ST or empty (a reserved op is not plain).
   constexpr bool kMem = (kShape >> 4) != 0;
   if (kMem && static_cast<std::uint16_t>(iss.a_[dw.w.d.base] + dw.w.d.disp) >= kDataWords) return false;
-  iss.issue<false, kShape>(dw, dw.next, nullptr);
+  iss.issue<false, kShape, true>(dw, dw.next, nullptr);
   ++iss.cycle_;
   iss.apply_next<false, true>();
   return true;

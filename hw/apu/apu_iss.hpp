@@ -174,9 +174,10 @@ class Iss final : public ApuEngine {
   bool fetch_missed(const DecodedWord& dw, std::uint32_t next) const;
   Fault check_fault(const DecodedWord& dw, std::uint32_t next) const;
   // kShape: the word's slots as DecodedWord::shape, or kAnyShape
-  // (read from the word).
+  // (read from the word). kPlain: the word is plain (DecodedWord::plain):
+  // its S slot does nothing but choose `next`, and it refetches nothing.
   static constexpr int kAnyShape = -1, kShapes = 48;
-  template <bool kRecord, int kShape>
+  template <bool kRecord, int kShape, bool kPlain = false>
   void issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* rec);
   using RunIssue = void (*)(Iss&, const DecodedWord&, std::uint32_t);
   using PlainCycle = bool (*)(Iss&, const DecodedWord&);

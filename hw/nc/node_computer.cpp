@@ -56,6 +56,14 @@ class HostTimer {
 // Unwinds the firmware when the NC's processor stops (kill_at).
 struct Killed {};
 
+// Sets a flag for a scope.
+struct FlagGuard {
+  bool& flag;
+  const bool was;
+  explicit FlagGuard(bool& f) : flag(f), was(f) { flag = true; }
+  ~FlagGuard() { flag = was; }
+};
+
 }  // namespace
 
 const char* activity_name(Activity a) {
@@ -85,6 +93,7 @@ NodeComputer::NodeComputer(sc_core::sc_module_name name, const TimingParams& t, 
   hdlc2nc.register_b_transport(this, &NodeComputer::b_transport);
   driver_.set_access_hook([this] { settle_apu(); });
   driver_.set_bank_hook([this] { touch_mpu_bank(); });
+  driver_.set_hand_over_hook([this] { return defer_hand_over(); });
   SC_HAS_PROCESS(NodeComputer);
   SC_THREAD(run);
 }
@@ -159,15 +168,8 @@ void NodeComputer::catch_up() {
 // One catch-up to t2 clocks what catch-ups to t1 <= t2 and then t2 do.
 void NodeComputer::settle_apu() {
   if (settling_ || ApuJob::in_job()) return;
-  struct Guard {
-    bool& flag;
-    explicit Guard(bool& f) : flag(f) { flag = true; }
-    ~Guard() { flag = false; }
-  } guard(settling_);
-  if (job_) {
-    const std::shared_ptr<ApuJob> job = std::move(job_);
-    job->result();  // an APU fault: the error, as from catch_up()
-  }
+  const FlagGuard guard(settling_);
+  if (job_) join_job();  // an APU fault: the error, as from catch_up()
   if (apu_due_set_) {
     apu_due_set_ = false;
     catch_up_to(apu_due_);
@@ -180,8 +182,37 @@ void NodeComputer::settle_apu() {
 // the engine allows.
 void NodeComputer::touch_mpu_bank() {
   if (!job_ || bank_while_running_ || settling_ || ApuJob::in_job()) return;
+  join_job();
+}
+
+// The catch-up job's end, and a data hand-over it was to make and did not
+// (it ended, its due reached, before the hand-over was asked of it): made
+// now, where the job would have made it (settling_: the driver's access
+// hook, which run() calls, must not clock the APU past it first).
+void NodeComputer::join_job() {
   const std::shared_ptr<ApuJob> job = std::move(job_);
   job->result();
+  if (hand_over_due_.load(std::memory_order_acquire)) {
+    const FlagGuard guard(settling_);
+    catch_up_to(hand_over_at_);
+    engine_->hand_over_data();
+    hand_over_due_.store(false, std::memory_order_relaxed);
+  }
+}
+
+// The MPU hands the APU a data bank while a catch-up job clocks the APU
+// (a swap's wait, the next call through the access hook, waits for it
+// anyway): instead of waiting for the job here, the job hands the bank over
+// once the APU is where the MPU's time was at the call (apu_due_), before
+// any later cycle, as the catch-up and hand-over here would; or, if the job
+// ends first (it may have read its due just before), join_job() does.
+bool NodeComputer::defer_hand_over() {
+  if (!job_ || !bank_while_running_ || settling_ || ApuJob::in_job() || job_->over() ||
+      hand_over_due_.load(std::memory_order_acquire))
+    return false;
+  hand_over_at_ = apu_due_;  // chase_due_ too: the job's catch-ups so far end there or before
+  hand_over_due_.store(true, std::memory_order_release);
+  return true;
 }
 
 void NodeComputer::catch_up_to(Picos t) {
@@ -241,16 +272,22 @@ void NodeComputer::advance(Picos ps, Picos t) {
     qk_.sync();
     return;
   }
-  if (job_) {
-    const std::shared_ptr<ApuJob> job = std::move(job_);
-    job->result();
-  }
+  if (job_) join_job();
   const Picos until = apu_due_;
   if (engine_->state() == apu::RunState::Running && until > apu_time_ &&
       (until - apu_time_) / cycle_ps_ >= kChaseCycles) {
     job_ = pool_->post([this](ApuJob&) -> std::optional<std::uint64_t> {
+      // chase_due_ first: a due past hand_over_at_ comes with hand_over_due_ set.
       const Picos due = chase_due_.load(std::memory_order_acquire);
-      catch_up_to(std::min(due, apu_time_ + kPoolStepCycles * cycle_ps_));
+      const bool hand_over = hand_over_due_.load(std::memory_order_acquire);
+      const Picos until = hand_over ? std::min(due, hand_over_at_) : due;
+      catch_up_to(std::min(until, apu_time_ + kPoolStepCycles * cycle_ps_));
+      if (hand_over && apu_time_ + cycle_ps_ > hand_over_at_) {  // clocked up to the hand-over's time
+        engine_->hand_over_data();
+        hand_over_due_.store(false, std::memory_order_relaxed);
+      } else if (hand_over) {
+        return std::nullopt;
+      }
       if (engine_->state() != apu::RunState::Running || apu_time_ + cycle_ps_ > due) return 0;
       return std::nullopt;
     });

@@ -150,6 +150,8 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   void catch_up_to(Picos t);           // ... up to t (on any thread: no SystemC)
   void settle_apu();                   // the lazy catch-up done: the engine up to date
   void touch_mpu_bank();               // driver_'s bank hook
+  bool defer_hand_over();              // driver_'s hand-over hook
+  void join_job();                     // the catch-up job's end (and its hand-over)
   void apu_stopped(Picos at);
   void check_fault() const;
   void mark(Activity a, Picos at);     // from `at` on, the NC does `a`
@@ -189,6 +191,10 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   Picos apu_due_ = 0;            // the APU is to be clocked up to here (advance(): lazily)
   bool apu_due_set_ = false;
   std::atomic<Picos> chase_due_{0};  // apu_due_, for a catch-up job on the pool
+  // A data hand-over the catch-up job makes once the APU is clocked up to
+  // hand_over_at_ (defer_hand_over): set by the NC, cleared by the job.
+  std::atomic<bool> hand_over_due_{false};
+  Picos hand_over_at_ = 0;  // written before hand_over_due_ is set
   bool settling_ = false;
 
   tlm::tlm_generic_payload pixels_;
