@@ -1,22 +1,26 @@
 // SIN and COS of the FP24 function unit (docs/fp24-func.md "SIN and COS
-// (RTL)"): table of sin, cos at 1/256 quarter turns plus a short polynomial
-// in the remainder, correctly rounded on every input (the generator proves it
-// and puts the inputs it cannot round in the hard-case ROM). Nine stages,
-// one op per cycle, each one multiply deep at most:
+// (RTL)"): table of sin, pi/2 cos at 1/256 quarter turns plus a short
+// polynomial in the remainder, correctly rounded on every input (the
+// generator proves it and puts the inputs it cannot round in the hard-case
+// ROM). Nine stages, one op per cycle; the multiplies are sized for the
+// 17-bit result (at most 38 x 37 bits, or 45 x 22), one deep per stage, so
+// that no stage is deeper than the adder's (gate levels, tools/synth.sh):
 //   s1 <- the op and its window of 2/pi (synchronous ROM read)
 //   s2 <- v = m * window (x * 2/pi mod 4, 88 fraction bits); special
 //         operands and hard cases resolved (the result is then known)
 //   s3 <- nearest 1/256 quarter turn: quadrant, table index j, remainder
-//         |delta| normalized to phi (44 bits, scale 2^(-53-s)); signs
-//   s4 <- phi^2 (the bits u takes)
-//   s5 <- u = phi^2 shifted; T_s = k3 u, w = k2 - k4 u; the table entry of
-//         j (ROM read, entries 1..128; entry 0 is a constant)
-//   s6 <- T_c = u w, X = phi (1 - T_s); (A, B) = (S_j, C_j) or (C_j, -S_j)
-//   s7 <- A T_c, (pi/2) B X
-//   s8 <- y = A - A T_c +- (pi/2) B X
+//         |delta| normalized to phi (44 bits, scale 2^(-53-s)), and
+//         unnormalized (phi_u, for u); signs
+//   s4 <- U = phi_u^2 (36 x 36); the table address i - 1 (i = j for a
+//         sine, 256 - j for a cosine)
+//   s5 <- T_s = k3 u, w = k2 - k4 u (constant multiplies); the table entry
+//         {A, B} = {S_i, pi/2 C_i} (ROM read; entry 0 is a constant)
+//   s6 <- T_c = u w (38 x 37), q = phi T_s (26 x 29), B phi as two halves
+//         (45 x 22 each)
+//   s7 <- A T_c (38 x 37), B q (26 x 28), Z = A +- B phi (one sum)
+//   s8 <- y = Z - A T_c -+ B q
 //   s9 <- normalized, rounded, packed
-// The stages are balanced in gate levels (docs/fp24-func.md): every one is
-// at most one multiply deep plus a shift or a multiplexer.
+// Per-stage depths and the error bound: docs/fp24-func.md.
 // apu_rtl/rom/fp24_trig_rtl.cpp is the same pipeline in C++, bit for bit.
 // Every stage's datapath registers load only when an op is in it.
 // rst_n is synchronous and clears only the valid bits.
@@ -180,7 +184,7 @@ module fp24_func_trig #(
   logic [7:0]   s3_j;
   logic         s3_cos;                                     // use_cos
   logic         s3_plus, s4_plus, s5_plus, s6_plus, s7_plus;  // the B term adds
-  logic         s3_sin0, s4_sin0, s5_sin0, s6_sin0, s7_sin0;  // j = 0 sine: y = B X, scaled by 2^-s
+  logic         s3_sin0, s4_sin0, s5_sin0, s6_sin0, s7_sin0;  // j = 0 sine: A = 0, y scaled by 2^-s
   logic         s3_sign, s4_sign, s5_sign, s6_sign, s7_sign;
   logic [5:0]   s3_s, s4_s, s5_s, s6_s, s7_s;
   logic [43:0]  s3_phi, s4_phi, s5_phi;

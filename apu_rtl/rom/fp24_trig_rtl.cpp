@@ -69,21 +69,21 @@ Approx approximate(bool is_cos, std::uint32_t a, const Tables& t) {
   }
   require(phi < (std::uint64_t{1} << kPhiBits), "phi width");
 
-  // s3 also: phi_u = |delta| (or x * 2/pi) in scale 2^-53 unnormalized,
-  // floor(phi / 2^s), for u; 0 for s >= 23 (u below the last bit kept).
+  // s3 also: phi_u = |delta| (or x * 2/pi) unnormalized, scale 2^-53,
+  // floor(phi / 2^s), for u; 0 for s >= 23 (u then below 2^-56).
   const std::uint64_t phiu = s >= 23 ? 0 : phi >> s;
-  // s4: U = u = phi^2 in quarter turns squared, 2^-56: the top 36 bits of
-  // phi_u squared.
+  // s4: u = phi^2 in quarter turns squared, 2^-56, from the top 36 bits of
+  // phi_u (36 x 36).
   const std::uint64_t pu = phiu >> kUsqDrop;
   const std::uint64_t u = static_cast<std::uint64_t>((static_cast<u128>(pu) * pu) >> kUDrop);
   require(u < (std::uint64_t{1} << 38), "u width");
 
   // s5: T_s = k3 u (sin e = (pi/2) phi (1 - T_s)), 2^-48; w = k2 - k4 u,
-  // 2^-36.
+  // 2^-36 (constant multiplies by u's top 26 and 18 bits).
   const std::uint64_t ts = ((u >> kUtDrop) * t.k3) >> kTsDrop;
   const std::uint64_t w = t.k2 - (((u >> kUwDrop) * t.k4) >> kK4uDrop);
-  // s5 also: (A, B) = (S_i, pi/2 C_i), i = j for a sine, 256 - j for a
-  // cosine (the table entry read in s5, registered).
+  // s5 also: the table entry (A, B) = (S_i, pi/2 C_i), i = j for a sine,
+  // 256 - j for a cosine (the address registered in s4).
   const unsigned k = (quad + (is_cos ? 1u : 0u)) & 3;
   const bool use_cos = (k & 1) != 0;
   const unsigned i = use_cos ? 256 - j : j;
@@ -91,14 +91,15 @@ Approx approximate(bool is_cos, std::uint32_t a, const Tables& t) {
   const std::uint64_t bv = t.hcos_tab[i];
 
   // s6: T_c = u w (cos e = 1 - T_c), 2^-54; q = phi T_s, 2^-56; the two
-  // halves of P1 = B phi, exact.
+  // halves of P1 = B phi (B phi_hi, B phi_lo), exact.
   const std::uint64_t tc = static_cast<std::uint64_t>((static_cast<u128>(u) * w) >> kTcDrop);
   require(tc < (std::uint64_t{1} << 37), "T_c width");
   const std::uint64_t q = ((phi >> kPhiQDrop) * ts) >> kQDrop;
   const u128 p1 = (static_cast<u128>(bv) * (phi >> kPhiSplit) << kPhiSplit) +
                   static_cast<u128>(bv) * (phi & mask(kPhiSplit));
 
-  // s7: A T_c and B q (2^-52), Z = A +- B phi (1.52, floored once).
+  // s7: A T_c and B q (2^-52, A's top 1.37 and B's top 1.25), Z = A +- B
+  // phi (1.52, one three-operand sum floored once).
   const std::uint64_t at = static_cast<std::uint64_t>((static_cast<u128>(av >> kATabDrop) * tc) >> kAtDrop);
   const std::uint64_t bq = ((bv >> kBqTabDrop) * q) >> kBqDrop;
   const bool bplus = use_cos ? eneg : !eneg;
@@ -112,8 +113,9 @@ Approx approximate(bool is_cos, std::uint32_t a, const Tables& t) {
   const std::uint64_t y = bplus ? z - at - bq : z - at + bq;
   require(y <= (std::uint64_t{1} << kTabFrac), "y <= 1");
   const int p = msb(y);
-  // y >= 2^-11 (tables: sin(pi/2 2^-9) > 2^-8.4; a sine at j = 0: B X >= 2^42
-  // units; a cosine: > 0.7): the normalizer shifts by at most 15.
+  // y >= 2^-11 (tables: sin(pi/2 2^-9) > 2^-8.4; a sine at j = 0:
+  // B phi (1 - T_s) >= 2^42 units; a cosine: > 0.7): the normalizer shifts
+  // by at most 15.
   require(kTabFrac - p <= 15, "y beyond the normalizer");
   Approx r{};
   r.sig = (y << (kSigBits - 1 - p)) & mask(kSigBits);
