@@ -130,7 +130,10 @@ module fp24_func_trig #(
   logic [7:0]  j;
   logic [78:0] mag, nrm;  // |delta| in units 2^-88 qt, and normalized
   logic [4:0]  lz;
-  logic [43:0] phi, phiu;
+  logic [43:0] phi;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [43:0] phiu;  // its top 36 bits make u
+  /* verilator lint_on UNUSEDSIGNAL */
   logic [5:0]  s;
   logic        use_cos, y_sign;
 
