@@ -7,7 +7,7 @@
 //     hw/apu/fp24_func.cpp, so the two agree on every input).
 //   SIN, COS: fp24_func_trig, result on out_trig_*: a table of sin/cos at
 //     1/256 quarter turns and a short polynomial, every stage at most one
-//     multiply deep; correctly rounded (hard cases from a ROM), so it agrees
+//     narrow multiply deep; correctly rounded (hard cases from a ROM), so it agrees
 //     with the model's 64-bit algorithm (hw/apu/fp24_trig.cpp) on every input.
 // The latencies come from apu_rtl/isa/apu_isa.tbl (LAT_FUNC, LAT_TRIG); the
 // two pipes can finish in one cycle: hence two ports.

@@ -1,22 +1,26 @@
 // SIN and COS of the FP24 function unit (docs/fp24-func.md "SIN and COS
-// (RTL)"): table of sin, cos at 1/256 quarter turns plus a short polynomial
-// in the remainder, correctly rounded on every input (the generator proves it
-// and puts the inputs it cannot round in the hard-case ROM). Nine stages,
-// one op per cycle, each one multiply deep at most:
+// (RTL)"): table of sin, pi/2 cos at 1/256 quarter turns plus a short
+// polynomial in the remainder, correctly rounded on every input (the
+// generator proves it and puts the inputs it cannot round in the hard-case
+// ROM). Nine stages, one op per cycle; the multiplies are sized for the
+// 17-bit result (at most 38 x 37 bits, or 45 x 22), one deep per stage, so
+// that no stage is deeper than the adder's (gate levels, tools/synth.sh):
 //   s1 <- the op and its window of 2/pi (synchronous ROM read)
 //   s2 <- v = m * window (x * 2/pi mod 4, 88 fraction bits); special
 //         operands and hard cases resolved (the result is then known)
 //   s3 <- nearest 1/256 quarter turn: quadrant, table index j, remainder
-//         |delta| normalized to phi (44 bits, scale 2^(-53-s)); signs
-//   s4 <- phi^2 (the bits u takes)
-//   s5 <- u = phi^2 shifted; T_s = k3 u, w = k2 - k4 u; the table entry of
-//         j (ROM read, entries 1..128; entry 0 is a constant)
-//   s6 <- T_c = u w, X = phi (1 - T_s); (A, B) = (S_j, C_j) or (C_j, -S_j)
-//   s7 <- A T_c, (pi/2) B X
-//   s8 <- y = A - A T_c +- (pi/2) B X
+//         |delta| normalized to phi (44 bits, scale 2^(-53-s)), and
+//         unnormalized (phi_u, for u); signs
+//   s4 <- U = phi_u^2 (36 x 36); the table address i - 1 (i = j for a
+//         sine, 256 - j for a cosine)
+//   s5 <- T_s = k3 u, w = k2 - k4 u (constant multiplies); the table entry
+//         {A, B} = {S_i, pi/2 C_i} (ROM read; entry 0 is a constant)
+//   s6 <- T_c = u w (38 x 37), q = phi T_s (26 x 29), B phi as two halves
+//         (45 x 22 each)
+//   s7 <- A T_c (38 x 37), B q (26 x 28), Z = A +- B phi (one sum)
+//   s8 <- y = Z - A T_c -+ B q
 //   s9 <- normalized, rounded, packed
-// The stages are balanced in gate levels (docs/fp24-func.md): every one is
-// at most one multiply deep plus a shift or a multiplexer.
+// Per-stage depths and the error bound: docs/fp24-func.md.
 // apu_rtl/rom/fp24_trig_rtl.cpp is the same pipeline in C++, bit for bit.
 // Every stage's datapath registers load only when an op is in it.
 // rst_n is synchronous and clears only the valid bits.
@@ -127,6 +131,9 @@ module fp24_func_trig #(
   logic [78:0] mag, nrm;  // |delta| in units 2^-88 qt, and normalized
   logic [4:0]  lz;
   logic [43:0] phi;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [43:0] phiu;  // its top 36 bits make u
+  /* verilator lint_on UNUSEDSIGNAL */
   logic [5:0]  s;
   logic        use_cos, y_sign;
 
@@ -161,6 +168,8 @@ module fp24_func_trig #(
       phi   = at0 ? nrm[78:35] : mag[78:35];
       s     = at0 ? {1'b0, lz} : 6'd0;
     end
+    // phi unnormalized (floor(phi / 2^s)) for u = phi^2; 0 when u is (s >= 23).
+    phiu = (s >= 6'd23) ? 44'd0 : phi >> s;
     // cos(x) = sin(x + pi/2): one more quarter turn; then quarter k gives
     // +sin, +cos, -sin, -cos of the reduced angle, sin odd in it and in x.
     quarter = quad + {1'b0, s2_cos};
@@ -176,15 +185,14 @@ module fp24_func_trig #(
   logic [4:0]   s3_flags, s4_flags, s5_flags, s6_flags, s7_flags;
   // The datapath's control, carried to the end.
   logic [7:0]   s3_j;
-  logic         s3_cos, s4_cos, s5_cos;                     // use_cos
+  logic         s3_cos;                                     // use_cos
   logic         s3_plus, s4_plus, s5_plus, s6_plus, s7_plus;  // the B term adds
-  logic         s3_sin0, s4_sin0, s5_sin0, s6_sin0, s7_sin0;  // j = 0 sine: y = B X, scaled by 2^-s
+  logic         s3_sin0, s4_sin0, s5_sin0, s6_sin0, s7_sin0;  // j = 0 sine: A = 0, y scaled by 2^-s
   logic         s3_sign, s4_sign, s5_sign, s6_sign, s7_sign;
   logic [5:0]   s3_s, s4_s, s5_s, s6_s, s7_s;
   logic [43:0]  s3_phi, s4_phi, s5_phi;
-  logic         s4_j0, s5_j0;  // j = 0: the table entry is TRIG_TAB0
-  logic [6:0]   s4_addr;
-  logic         s4_uz;
+  logic [35:0]  s3_pu;    // phi_u >> 8, squared in s4
+  logic [7:0]   s4_addr;  // the table entry i at address i - 1
 
   always_ff @(posedge clk) begin
     if (!rst_n) begin
@@ -201,19 +209,18 @@ module fp24_func_trig #(
       s3_sign <= y_sign;
       s3_s    <= s;
       s3_phi  <= phi;
+      s3_pu   <= phiu[43:8];
     end
     if (s3_valid) begin
-      {s4_known, s4_result, s4_flags, s4_cos, s4_plus, s4_sin0, s4_sign, s4_s, s4_phi} <=
-          {s3_known, s3_result, s3_flags, s3_cos, s3_plus, s3_sin0, s3_sign, s3_s, s3_phi};
-      // The ROM holds j = 1..128 at j - 1; j = 0 is a constant.
-      s4_j0   <= s3_j == 8'd0;
-      s4_uz   <= s3_s >= 6'd23;   // u = 0
-      s4_addr <= 7'(s3_j - 8'd1);
+      {s4_known, s4_result, s4_flags, s4_plus, s4_sin0, s4_sign, s4_s, s4_phi} <=
+          {s3_known, s3_result, s3_flags, s3_plus, s3_sin0, s3_sign, s3_s, s3_phi};
+      // Entry i = j (sine) or 256 - j (cosine) at i - 1; i = 0 (a sine at
+      // j = 0) is the constant TRIG_TAB0.
+      s4_addr <= s3_cos ? ~s3_j : s3_j - 8'd1;
     end
     if (s4_valid) begin
-      {s5_known, s5_result, s5_flags, s5_cos, s5_plus, s5_sin0, s5_sign, s5_s, s5_phi} <=
-          {s4_known, s4_result, s4_flags, s4_cos, s4_plus, s4_sin0, s4_sign, s4_s, s4_phi};
-      s5_j0 <= s4_j0;
+      {s5_known, s5_result, s5_flags, s5_plus, s5_sin0, s5_sign, s5_s, s5_phi} <=
+          {s4_known, s4_result, s4_flags, s4_plus, s4_sin0, s4_sign, s4_s, s4_phi};
     end
     if (s5_valid) begin
       {s6_known, s6_result, s6_flags, s6_plus, s6_sin0, s6_sign, s6_s} <=
@@ -225,108 +232,119 @@ module fp24_func_trig #(
     end
   end
 
-  // ---- stage 3 -> 4: phi^2 ---------------------------------------------------
+  // ---- stage 3 -> 4: U = phi^2 (2^-56 quarter turns squared) ----------------
   /* verilator lint_off UNUSEDSIGNAL */
-  logic [87:0] sq;
+  logic [71:0] sq;
   /* verilator lint_on UNUSEDSIGNAL */
-  assign sq = {44'd0, s3_phi} * {44'd0, s3_phi};
+  assign sq = {36'd0, s3_pu} * {36'd0, s3_pu};
 
-  logic [87:42] s4_sq;  // the bits u takes
-  always_ff @(posedge clk) if (s3_valid) s4_sq <= sq[87:42];
+  logic [37:0] s4_u;
+  always_ff @(posedge clk) if (s3_valid) s4_u <= sq[71:34];
 
-  // ---- stage 4 -> 5: u = phi^2 in 0.64 quarter turns squared; T_s = k3 u,
-  // w = k2 - k4 u ---------------------------------------------------------------
-  logic [45:0] u, s5_u;
-  logic [44:0] ts;
-  logic [40:0] w;
+  // ---- stage 4 -> 5: T_s = k3 u (2^-48), w = k2 - k4 u (2^-36); the table
+  // entry (ROM read) ---------------------------------------------------------
+  logic [28:0] ts;
+  logic [36:0] w;
   /* verilator lint_off UNUSEDSIGNAL */
-  logic [86:0] ts_full;
-  logic [45:0] w_prod;
+  logic [50:0] ts_full;
+  logic [36:0] w_prod;
   /* verilator lint_on UNUSEDSIGNAL */
   always_comb begin
-    u       = s4_uz ? 46'd0 : 46'(s4_sq >> {s4_s[4:0], 1'b0});
-    ts_full = {41'd0, u} * {46'd0, fp24_func_pkg::TRIG_K3};
-    ts      = ts_full[84:40];
-    w_prod  = {24'd0, u[45:24]} * {22'd0, fp24_func_pkg::TRIG_K4};
-    w       = fp24_func_pkg::TRIG_K2 - {19'd0, w_prod[45:24]};
+    ts_full = {25'd0, s4_u[37:12]} * {26'd0, fp24_func_pkg::TRIG_K3};
+    ts      = ts_full[50:22];
+    w_prod  = {19'd0, s4_u[37:20]} * {18'd0, fp24_func_pkg::TRIG_K4};
+    w       = fp24_func_pkg::TRIG_K2 - {20'd0, w_prod[36:20]};
   end
 
-  logic [44:0]  s5_ts;
-  logic [40:0]  s5_w;
-  logic [195:0] s5_tab;  // {S_j, C_j, pi/2 S_j, pi/2 C_j}
+  logic [37:0] s5_u;
+  logic [28:0] s5_ts;
+  logic [36:0] s5_w;
+  logic [97:0] s5_tab;  // {S_i 1.52, pi/2 C_i 1.44}
   always_ff @(posedge clk) begin
     if (s4_valid) begin
-      s5_u   <= u;
+      s5_u   <= s4_u;
       s5_ts  <= ts;
       s5_w   <= w;
       s5_tab <= fp24_func_pkg::rom_trig_table(s4_addr);
     end
   end
 
-  // ---- stage 5 -> 6: T_c = u w, X = phi (1 - T_s); A and B from the table
-  // entry ----------------------------------------------------------------------
-  logic [46:12] tc;  // T_c in 0.64, but for the 12 bits A T_c does not need
-  logic [43:0] x;
-  logic [195:0] tab;
-  logic [52:0] av;
-  logic [44:0] bv;
+  // ---- stage 5 -> 6: T_c = u w (2^-54), q = phi T_s (2^-56), B phi in two
+  // halves; A and B from the table entry ----------------------------------------
+  logic [97:0] tab;
+  logic [36:0] tc;
+  logic [27:0] q;
+  logic [66:0] ph, pl;  // B phi[43:22], B phi[21:0]
   /* verilator lint_off UNUSEDSIGNAL */
-  logic [86:0]  tc_full;
-  logic [107:0] x_full;
+  logic [74:0] tc_full;
+  logic [54:0] q_full;
   /* verilator lint_on UNUSEDSIGNAL */
   always_comb begin
-    tc_full = {41'd0, s5_u} * {46'd0, s5_w};
-    tc      = tc_full[86:52];
-    // One multiply-subtract, floored once (as the C++ twin).
-    x_full  = {s5_phi, 64'd0} - {64'd0, s5_phi} * {63'd0, s5_ts};
-    x       = x_full[107:64];
-    tab     = s5_j0 ? fp24_func_pkg::TRIG_TAB0 : s5_tab;
-    av      = s5_cos ? tab[142:90] : tab[195:143];
-    bv      = s5_cos ? tab[89:45] : tab[44:0];
+    tab     = s5_sin0 ? fp24_func_pkg::TRIG_TAB0 : s5_tab;
+    tc_full = {37'd0, s5_u} * {38'd0, s5_w};
+    tc      = tc_full[74:38];
+    q_full  = {29'd0, s5_phi[43:18]} * {26'd0, s5_ts};
+    q       = q_full[54:27];
+    ph      = {22'd0, tab[44:0]} * {45'd0, s5_phi[43:22]};
+    pl      = {22'd0, tab[44:0]} * {45'd0, s5_phi[21:0]};
   end
 
-  logic [46:12] s6_tc;
-  logic [43:0]  s6_x;
-  logic [52:0]  s6_av;
-  logic [44:0]  s6_bv;
+  logic [36:0] s6_tc;
+  logic [27:0] s6_q;
+  logic [66:0] s6_ph, s6_pl;
+  logic [52:0] s6_av;
+  logic [25:0] s6_bq;  // B's top bits, times q
   always_ff @(posedge clk) begin
     if (s5_valid) begin
       s6_tc <= tc;
-      s6_x  <= x;
-      s6_av <= av;
-      s6_bv <= bv;
+      s6_q  <= q;
+      s6_ph <= ph;
+      s6_pl <= pl;
+      s6_av <= tab[97:45];
+      s6_bq <= tab[44:19];
     end
   end
 
-  // ---- stage 6 -> 7: A T_c and (pi/2) B X ------------------------------------
+  // ---- stage 6 -> 7: A T_c, B q (2^-52); Z = A +- B phi (1.52) -------------
   logic [35:0] at;
-  logic [43:0] bx;
+  logic [24:0] bq;
+  logic [53:0] z;
   /* verilator lint_off UNUSEDSIGNAL */
-  logic [71:0] at_full;
-  logic [88:0] bx_full;
+  logic [74:0] at_full;
+  logic [53:0] bq_full;
+  logic [98:0] z_full;
   /* verilator lint_on UNUSEDSIGNAL */
   always_comb begin
-    at_full = {35'd0, s6_av[52:16]} * {37'd0, s6_tc[46:12]};
-    at      = at_full[71:36];
-    bx_full = {44'd0, s6_bv} * {45'd0, s6_x};
-    bx      = bx_full[88:45];
+    at_full = {37'd0, s6_av[52:15]} * {38'd0, s6_tc};
+    at      = at_full[74:39];
+    bq_full = {28'd0, s6_bq} * {26'd0, s6_q};
+    bq      = bq_full[53:29];
+    // One three-operand sum, floored once (as the C++ twin).
+    z_full  = s6_plus ? {1'b0, s6_av, 45'd0} + {10'd0, s6_ph, 22'd0} + {32'd0, s6_pl}
+                      : {1'b0, s6_av, 45'd0} - {10'd0, s6_ph, 22'd0} - {32'd0, s6_pl};
+    z       = z_full[98:45];
   end
 
-  logic [52:0] s7_av;
+  logic [53:0] s7_z;
   logic [35:0] s7_at;
-  logic [43:0] s7_bx;
+  logic [24:0] s7_bq;
   always_ff @(posedge clk) begin
     if (s6_valid) begin
-      s7_av <= s6_av;
+      s7_z  <= z;
       s7_at <= at;
-      s7_bx <= bx;
+      s7_bq <= bq;
     end
   end
 
-  // ---- stage 7 -> 8: y = A - A T_c +- (pi/2) B X ----------------------------
+  // ---- stage 7 -> 8: y = Z - A T_c -+ B q -------------------------------------
   logic [52:0] y;   // 1.52, 0 < y <= 1
-  always_comb
-    y = s7_plus ? s7_av - {17'd0, s7_at} + {9'd0, s7_bx} : s7_av - {17'd0, s7_at} - {9'd0, s7_bx};
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [53:0] y_full;
+  /* verilator lint_on UNUSEDSIGNAL */
+  always_comb begin
+    y_full = s7_plus ? s7_z - {18'd0, s7_at} - {29'd0, s7_bq} : s7_z - {18'd0, s7_at} + {29'd0, s7_bq};
+    y      = y_full[52:0];
+  end
 
   logic              s8_valid, s8_known, s8_sign, s8_sin0;
   logic [W-1:0]      s8_result;

@@ -129,23 +129,20 @@ rtl::Tables make_rtl_tables() {
   Mpfr pi(256), ang(256), v(256), half(256);
   mpfr_const_pi(pi.get(), MPFR_RNDN);
   mpfr_div_2ui(half.get(), pi.get(), 1, MPFR_RNDN);  // pi/2
-  for (int j = 0; j < rtl::kTableEntries; ++j) {
-    mpfr_mul_ui(ang.get(), pi.get(), j, MPFR_RNDN);
-    mpfr_div_2ui(ang.get(), ang.get(), 9, MPFR_RNDN);  // j/256 quarter turns
+  for (int i = 0; i < rtl::kTableEntries; ++i) {
+    mpfr_mul_ui(ang.get(), pi.get(), i, MPFR_RNDN);
+    mpfr_div_2ui(ang.get(), ang.get(), 9, MPFR_RNDN);  // i/256 quarter turns
     mpfr_sin(v.get(), ang.get(), MPFR_RNDN);
-    t.sin_tab[j] = fixed_round(v.get(), rtl::kTabFrac);
-    mpfr_mul(v.get(), v.get(), half.get(), MPFR_RNDN);
-    t.hsin_tab[j] = fixed_round(v.get(), rtl::kHalfFrac);
+    t.sin_tab[i] = fixed_round(v.get(), rtl::kTabFrac);
     mpfr_cos(v.get(), ang.get(), MPFR_RNDN);
-    t.cos_tab[j] = fixed_round(v.get(), rtl::kTabFrac);
     mpfr_mul(v.get(), v.get(), half.get(), MPFR_RNDN);
-    t.hcos_tab[j] = fixed_round(v.get(), rtl::kHalfFrac);
+    t.hcos_tab[i] = fixed_round(v.get(), rtl::kHalfFrac);
   }
   mpfr_sqr(v.get(), half.get(), MPFR_RNDN);  // (pi/2)^2
   mpfr_div_ui(ang.get(), v.get(), 2, MPFR_RNDN);
-  t.k2 = fixed_round(ang.get(), rtl::kKFrac);
+  t.k2 = fixed_round(ang.get(), rtl::kK2Frac);
   mpfr_div_ui(ang.get(), v.get(), 6, MPFR_RNDN);
-  t.k3 = fixed_round(ang.get(), rtl::kKFrac);
+  t.k3 = fixed_round(ang.get(), rtl::kK3Frac);
   mpfr_sqr(v.get(), v.get(), MPFR_RNDN);
   mpfr_div_ui(ang.get(), v.get(), 24, MPFR_RNDN);
   t.k4 = fixed_round(ang.get(), rtl::kK4Frac);
@@ -396,23 +393,29 @@ std::string sv_rom(const Roms& r) {
   for (int i = 0; i < rtl::kWindows; ++i)
     o << "    7'd" << i << ": rom_trig_window = " << hex128(rt.window[i], rtl::kWinBits) << ";\n";
   o << "    default: rom_trig_window = '0;\n  endcase\nendfunction\n\n";
-  // Entries 1..128 at address j - 1 (128 words); entry 0 is a constant.
-  auto entry = [&rt](int j) {
-    return "{53'h" + hex(rt.sin_tab[j], 14) + ", 53'h" + hex(rt.cos_tab[j], 14) + ", 45'h" + hex(rt.hsin_tab[j], 12) +
-           ", 45'h" + hex(rt.hcos_tab[j], 12) + "}";
+  // Entries 1..256 at address i - 1 (256 words); entry 0 is a constant.
+  auto entry = [&rt](int i) {
+    return "{53'h" + hex(rt.sin_tab[i], 14) + ", 45'h" + hex(rt.hcos_tab[i], 12) + "}";
   };
-  o << "// sin, cos at j/256 quarter turns: {S_j 1.52, C_j 1.52, pi/2 S_j 1.44, pi/2 C_j 1.44};\n"
-    << "// j = 1.." << rtl::kTableEntries - 1 << " at address j - 1, j = 0 in TRIG_TAB0.\n"
-    << "localparam logic [195:0] TRIG_TAB0 = " << entry(0) << ";\n"
-    << "function automatic logic [195:0] rom_trig_table(input logic [6:0] addr);\n"
+  o << "// sin, pi/2 cos at i/256 quarter turns: {S_i 1.52, pi/2 C_i 1.44};\n"
+    << "// i = 1.." << rtl::kTableEntries - 1 << " at address i - 1, i = 0 in TRIG_TAB0.\n"
+    << "localparam logic [97:0] TRIG_TAB0 = " << entry(0) << ";\n"
+    << "function automatic logic [97:0] rom_trig_table(input logic [7:0] addr);\n"
     << "  case (addr)\n";
-  for (int j = 1; j < rtl::kTableEntries; ++j)
-    o << "    7'd" << j - 1 << ": rom_trig_table = " << entry(j) << ";\n";
+  for (int i = 1; i < rtl::kTableEntries; ++i)
+    o << "    8'd" << i - 1 << ": rom_trig_table = " << entry(i) << ";\n";
   o << "    default: rom_trig_table = '0;\n  endcase\nendfunction\n\n";
-  o << "// (pi/2)^2/2 and (pi/2)^2/6 in 1.40, (pi/2)^4/24 in 0.24.\n"
-    << "localparam logic [40:0] TRIG_K2 = 41'h" << hex(rt.k2, 11) << ";\n"
-    << "localparam logic [40:0] TRIG_K3 = 41'h" << hex(rt.k3, 11) << ";\n"
-    << "localparam logic [23:0] TRIG_K4 = 24'h" << hex(rt.k4, 6) << ";\n\n";
+  auto width = [](std::uint64_t v) { return 64 - __builtin_clzll(v); };
+  auto konst = [&o, &width](const char* name, std::uint64_t v) {
+    o << "localparam logic [" << width(v) - 1 << ":0] " << name << " = " << width(v) << "'h" << hex(v, (width(v) + 3) / 4)
+      << ";\n";
+  };
+  o << "// (pi/2)^2/2 in 1." << rtl::kK2Frac << ", (pi/2)^2/6 in 0." << rtl::kK3Frac << ", (pi/2)^4/24 in 0."
+    << rtl::kK4Frac << ".\n";
+  konst("TRIG_K2", rt.k2);
+  konst("TRIG_K3", rt.k3);
+  konst("TRIG_K4", rt.k4);
+  o << "\n";
   o << "// RECIP/SQRT seeds {A, B} (" << kSeedAWidth << " + " << kSeedBWidth
     << " bits): address f[15:7] (RECIP) or 512 + {odd, f[15:9]} (SQRT).\n"
     << "// Sum fraction bits F = " << kSeedF << ", A fraction bits FA = " << kSeedFA << ".\n"

@@ -69,40 +69,53 @@ Approx approximate(bool is_cos, std::uint32_t a, const Tables& t) {
   }
   require(phi < (std::uint64_t{1} << kPhiBits), "phi width");
 
-  // s4: phi^2; s5: u = phi^2 shifted, in 0.64 (quarter turns squared), < 2^46.
-  const u128 sq = static_cast<u128>(phi) * phi;
-  const int sh = 42 + 2 * s;
-  const std::uint64_t u = sh >= 88 ? 0 : static_cast<std::uint64_t>(sq >> sh);
-  require(u < (std::uint64_t{1} << 46), "u width");
+  // s3 also: phi_u = |delta| (or x * 2/pi) unnormalized, scale 2^-53,
+  // floor(phi / 2^s), for u; 0 for s >= 23 (u then below 2^-56).
+  const std::uint64_t phiu = s >= 23 ? 0 : phi >> s;
+  // s4: u = phi^2 in quarter turns squared, 2^-56, from the top 36 bits of
+  // phi_u (36 x 36).
+  const std::uint64_t pu = phiu >> kUsqDrop;
+  const std::uint64_t u = static_cast<std::uint64_t>((static_cast<u128>(pu) * pu) >> kUDrop);
+  require(u < (std::uint64_t{1} << 38), "u width");
 
-  // s5: T_s = k3 u (sin e = (pi/2) phi (1 - T_s)); w = k2 - k4 u.
-  const std::uint64_t ts = static_cast<std::uint64_t>((static_cast<u128>(u) * t.k3) >> kKFrac);
-  const std::uint64_t w = t.k2 - (((u >> 24) * t.k4) >> kK4Frac);
-
-  // s6: T_c = u w (cos e = 1 - T_c); X = phi (1 - T_s).
-  const std::uint64_t tc = static_cast<std::uint64_t>((static_cast<u128>(u) * w) >> kKFrac);
-  // One multiply-subtract, floored once: floor((phi 2^64 - phi T_s) / 2^64).
-  const std::uint64_t x = static_cast<std::uint64_t>(((static_cast<u128>(phi) << 64) - static_cast<u128>(phi) * ts) >> 64);
-  require(tc < (std::uint64_t{1} << 47), "T_c width");
-
-  // s6: (A, B) = (S_j, C_j) for a sine, (C_j, -S_j) for a cosine; s7: the
-  // products A T_c and (pi/2) B X (the table holds pi/2 B).
+  // s5: T_s = k3 u (sin e = (pi/2) phi (1 - T_s)), 2^-48; w = k2 - k4 u,
+  // 2^-36 (constant multiplies by u's top 26 and 18 bits).
+  const std::uint64_t ts = ((u >> kUtDrop) * t.k3) >> kTsDrop;
+  const std::uint64_t w = t.k2 - (((u >> kUwDrop) * t.k4) >> kK4uDrop);
+  // s5 also: the table entry (A, B) = (S_i, pi/2 C_i), i = j for a sine,
+  // 256 - j for a cosine (the address registered in s4).
   const unsigned k = (quad + (is_cos ? 1u : 0u)) & 3;
   const bool use_cos = (k & 1) != 0;
-  const std::uint64_t av = use_cos ? t.cos_tab[j] : t.sin_tab[j];
-  const std::uint64_t bv = use_cos ? t.hsin_tab[j] : t.hcos_tab[j];
-  const std::uint64_t at = static_cast<std::uint64_t>((static_cast<u128>(av >> kTabHiDrop) * (tc >> 12)) >> 36);
-  const std::uint64_t bx = static_cast<std::uint64_t>((static_cast<u128>(bv) * x) >> 45);
+  const unsigned i = use_cos ? 256 - j : j;
+  const std::uint64_t av = t.sin_tab[i];
+  const std::uint64_t bv = t.hcos_tab[i];
 
-  // s8: y = A cos(e) +- B sin(e) in 1.52; s9: normalized, rounded.
+  // s6: T_c = u w (cos e = 1 - T_c), 2^-54; q = phi T_s, 2^-56; the two
+  // halves of P1 = B phi (B phi_hi, B phi_lo), exact.
+  const std::uint64_t tc = static_cast<std::uint64_t>((static_cast<u128>(u) * w) >> kTcDrop);
+  require(tc < (std::uint64_t{1} << 37), "T_c width");
+  const std::uint64_t q = ((phi >> kPhiQDrop) * ts) >> kQDrop;
+  const u128 p1 = (static_cast<u128>(bv) * (phi >> kPhiSplit) << kPhiSplit) +
+                  static_cast<u128>(bv) * (phi & mask(kPhiSplit));
+
+  // s7: A T_c and B q (2^-52, A's top 1.37 and B's top 1.25), Z = A +- B
+  // phi (1.52, one three-operand sum floored once).
+  const std::uint64_t at = static_cast<std::uint64_t>((static_cast<u128>(av >> kATabDrop) * tc) >> kAtDrop);
+  const std::uint64_t bq = ((bv >> kBqTabDrop) * q) >> kBqDrop;
   const bool bplus = use_cos ? eneg : !eneg;
-  const std::uint64_t pos = av - at + (bplus ? bx : 0);
-  require(pos > (bplus ? 0 : bx), "y > 0");
-  const std::uint64_t y = pos - (bplus ? 0 : bx);
+  const u128 a_sh = static_cast<u128>(av) << kP1Drop;
+  require(bplus || a_sh >= p1, "A - B phi >= 0");
+  const std::uint64_t z = static_cast<std::uint64_t>((bplus ? a_sh + p1 : a_sh - p1) >> kP1Drop);
+
+  // s8: y = A cos(e) +- B sin(e) = Z - A T_c -+ B q in 1.52; s9:
+  // normalized, rounded.
+  require(z > at + (bplus ? bq : 0), "y > 0");
+  const std::uint64_t y = bplus ? z - at - bq : z - at + bq;
   require(y <= (std::uint64_t{1} << kTabFrac), "y <= 1");
   const int p = msb(y);
-  // y >= 2^-11 (tables: sin(pi/2 2^-9) > 2^-8.4; a sine at j = 0: B X >= 2^42
-  // units; a cosine: > 0.7): the normalizer shifts by at most 15.
+  // y >= 2^-11 (tables: sin(pi/2 2^-9) > 2^-8.4; a sine at j = 0:
+  // B phi (1 - T_s) >= 2^42 units; a cosine: > 0.7): the normalizer shifts
+  // by at most 15.
   require(kTabFrac - p <= 15, "y beyond the normalizer");
   Approx r{};
   r.sig = (y << (kSigBits - 1 - p)) & mask(kSigBits);
