@@ -126,15 +126,16 @@ void HdlcChannel::from_nc(int index, tlm::tlm_generic_payload& p, sc_core::sc_ti
 }
 
 // Nothing open: sleep until the next send or, while the links are
-// supervised, the networks' next timer (a poll, T1 of a poll).
+// supervised, the grid point after the networks' next timer (a poll, T1 of
+// a poll).
 void HdlcChannel::idle_wait() {
   std::optional<Picos> next;
   if (supervising_)
     for (const auto& net : nets_)
       if (const std::optional<Picos> t = net->next_event(); t && (!next || *t < *next)) next = t;
   const Picos now = to_picos(sc_core::sc_time_stamp());
-  if (next && *next > now)
-    sc_core::wait(to_sc_time(*next - now), sent_);
+  if (next)
+    sc_core::wait(to_sc_time(grid_after(*next) - now), sent_);
   else
     sc_core::wait(sent_);
 }
@@ -157,13 +158,14 @@ bool HdlcChannel::drop_settled() {
   return idle;
 }
 
-// Every port's deliveries and link-downs up to now, in the one order that
-// does not depend on the ports: time, receiver, sender, then message id.
-void HdlcChannel::take_due(std::vector<Due>& due) {
-  const Picos now = to_picos(sc_core::sc_time_stamp());
+// Every port's deliveries and link-downs before grid point `g` (the
+// networks run up to g - 1: a send at g, handed in after this, is still
+// ahead of them), in the one order that does not depend on the ports:
+// time, receiver, sender, then message id.
+void HdlcChannel::take_due(Picos g, std::vector<Due>& due) {
   due.clear();
   for (unsigned port = 0; port < ports(); ++port) {
-    nets_[port]->run_until(now);
+    nets_[port]->run_until(g - 1);
     for (hdlc::Delivery& d : nets_[port]->take_deliveries()) {
       const unsigned to = d.to_station == 0 ? 0 : first_nc(port) + d.to_station - 1;
       const unsigned from = d.from_station == 0 ? 0 : first_nc(port) + d.from_station - 1;
@@ -210,15 +212,26 @@ void HdlcChannel::deliver(Due& x) {
     SC_REPORT_ERROR(name(), ("a station refused a message: " + q.get_response_string()).c_str());
 }
 
+// The first grid point (a multiple of the step) after t.
+Picos HdlcChannel::grid_after(Picos t) const { return (t / step_ + 1) * step_; }
+
+// The networks advance, and deliver, at the multiples of the step alone:
+// a delivery at the first one after its closing flag, whenever the senders
+// synchronised (a send reaches the networks at the grid point after the
+// sender's kernel time, before they run past its own time).
 void HdlcChannel::pump() {
   std::vector<Due> due;
   for (;;) {
-    if (drop_settled())
+    Picos now = to_picos(sc_core::sc_time_stamp());
+    Picos g = grid_after(now);
+    if (drop_settled()) {
       idle_wait();
-    else
-      sc_core::wait(to_sc_time(step_));
+      now = to_picos(sc_core::sc_time_stamp());
+      g = now % step_ == 0 && now > 0 ? now : grid_after(now);  // woken at a grid point (a timer): now
+    }
+    if (g > now) sc_core::wait(to_sc_time(g - now));
     submit();
-    take_due(due);
+    take_due(g, due);
     for (Due& x : due) deliver(x);
   }
 }

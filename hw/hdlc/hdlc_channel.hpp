@@ -108,7 +108,8 @@ class HdlcChannel : public sc_core::sc_module {
   void submit();  // pending sends into the networks, in canonical order
   struct Due;     // a delivery or link-down the networks produced
   bool drop_settled();  // forgets the acknowledged messages; true: nothing open or pending
-  void take_due(std::vector<Due>& due);
+  void take_due(Picos g, std::vector<Due>& due);
+  Picos grid_after(Picos t) const;
   void deliver(Due& x);
   void pump();
   void tracer();

@@ -113,10 +113,12 @@ NodeComputer::~NodeComputer() {
 std::uint64_t NodeComputer::run_on_pool(ApuJob::Stretch stretch) {
   job_ = (pool_ ? *pool_ : inline_).post(std::move(stretch));
   const Picos start = apu_time_;
-  for (std::uint64_t step = kPoolStepCycles;; step += kPoolStepCycles) {
+  // One thread: the run is over already (post() clocked it), nothing to overlap.
+  for (std::uint64_t step = kPoolStepCycles; parallel();) {
     const Picos target = start + step * cycle_ps_;
     if (target >= kill_at_ || !job_->lasts(step)) break;
     const Picos t = now();
+    step += kPoolStepCycles;
     if (target <= t) continue;
     qk_.inc(to_sc_time(target - t));
     qk_.sync();
@@ -260,38 +262,36 @@ void NodeComputer::advance(Picos ps, Picos t) {
   apu_due_ = detail::sc_resolution_is_ps() ? t + ps : now();  // now(), without asking the kernel again
   apu_due_set_ = true;
   chase_due_.store(apu_due_, std::memory_order_release);
-  if (!qk_.need_sync()) return;
-  // At a synchronisation, what the APU owes goes to the pool and the NC
-  // syncs: the kernel runs the others (their APUs on the pool too), and the
-  // firmware goes on until it next looks at the APU. The job chases the
-  // NC's time as it moves on (chase_due_), and while it runs, the NC syncs
-  // and goes on. A catch-up shorter than kChaseCycles waits for the next
-  // sync; with no worker (one thread) nothing is posted: the catch-up is
-  // clocked where the APU is next looked at, in one piece.
-  if (!pool_ || pool_->threads() <= 1 || (job_ && !job_->over())) {
-    qk_.sync();
+  // No simulated time depends on where the NC synchronises (the HDLC
+  // channel delivers on its own time grid, the NC syncs before it looks at
+  // its mailbox, the image bus waits out the request's time): it syncs
+  // only so that, while its APU runs, the kernel runs the other NCs as a
+  // worker clocks this one's catch-up. What the APU owes goes to the pool,
+  // and the NC syncs, once it owes kChaseCycles; the job chases the NC's
+  // time as it moves on (chase_due_), and while it runs the NC goes on.
+  // With no worker (one thread) nothing is posted and the NC does not
+  // sync: the catch-up is clocked where the APU is next looked at, in one
+  // piece.
+  if (!parallel() || (job_ && !job_->over())) return;
+  if (engine_->state() != apu::RunState::Running || apu_due_ <= apu_time_ ||
+      (apu_due_ - apu_time_) / cycle_ps_ < kChaseCycles)
     return;
-  }
   if (job_) join_job();
-  const Picos until = apu_due_;
-  if (engine_->state() == apu::RunState::Running && until > apu_time_ &&
-      (until - apu_time_) / cycle_ps_ >= kChaseCycles) {
-    job_ = pool_->post([this](ApuJob&) -> std::optional<std::uint64_t> {
-      // chase_due_ first: a due past hand_over_at_ comes with hand_over_due_ set.
-      const Picos due = chase_due_.load(std::memory_order_acquire);
-      const bool hand_over = hand_over_due_.load(std::memory_order_acquire);
-      const Picos until = hand_over ? std::min(due, hand_over_at_) : due;
-      catch_up_to(std::min(until, apu_time_ + kPoolStepCycles * cycle_ps_));
-      if (hand_over && apu_time_ + cycle_ps_ > hand_over_at_) {  // clocked up to the hand-over's time
-        engine_->hand_over_data();
-        hand_over_due_.store(false, std::memory_order_relaxed);
-      } else if (hand_over) {
-        return std::nullopt;
-      }
-      if (engine_->state() != apu::RunState::Running || apu_time_ + cycle_ps_ > due) return 0;
+  job_ = pool_->post([this](ApuJob&) -> std::optional<std::uint64_t> {
+    // chase_due_ first: a due past hand_over_at_ comes with hand_over_due_ set.
+    const Picos due = chase_due_.load(std::memory_order_acquire);
+    const bool hand_over = hand_over_due_.load(std::memory_order_acquire);
+    const Picos until = hand_over ? std::min(due, hand_over_at_) : due;
+    catch_up_to(std::min(until, apu_time_ + kPoolStepCycles * cycle_ps_));
+    if (hand_over && apu_time_ + cycle_ps_ > hand_over_at_) {  // clocked up to the hand-over's time
+      engine_->hand_over_data();
+      hand_over_due_.store(false, std::memory_order_relaxed);
+    } else if (hand_over) {
       return std::nullopt;
-    });
-  }
+    }
+    if (engine_->state() != apu::RunState::Running || apu_time_ + cycle_ps_ > due) return 0;
+    return std::nullopt;
+  });
   qk_.sync();
 }
 

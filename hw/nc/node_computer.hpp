@@ -159,6 +159,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   void die();
   [[noreturn]] void watchdog_expired(const std::string& what);
   std::uint64_t run_on_pool(ApuJob::Stretch stretch);
+  bool parallel() const { return pool_ && pool_->threads() > 1; }  // a worker clocks APUs
 
   TimingParams t_;
   unsigned id_;
