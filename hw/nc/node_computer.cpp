@@ -103,22 +103,25 @@ NodeComputer::~NodeComputer() {
 }
 
 // The APU run the MPU waits for, from apu_time_ on, clocked by the pool's
-// threads. Meanwhile the NC waits in simulated time, kPoolStepCycles at a
-// step, each step only once the run is known to last past it (a step stays
-// inside the run, the NC does nothing visible in it) and never up to the
-// kill time: the other NCs run their firmware and hand their APU runs to
-// the pool. The steps depend on the run's length alone, so the simulation
-// is the same for any number of threads; the caller then advances to the
-// run's end as without a pool.
+// threads. Meanwhile the NC waits in simulated time, each step only as far
+// as the run is known to last (a step stays inside the run, the NC does
+// nothing visible in it) and never up to the kill time: the other NCs run
+// their firmware and hand their APU runs to the pool. Nothing simulated
+// depends on the steps (nor on any synchronisation of the NC: see
+// advance()), so the simulation is the same for any number of threads; the
+// caller then advances to the run's end as without a pool.
 std::uint64_t NodeComputer::run_on_pool(ApuJob::Stretch stretch) {
   job_ = (pool_ ? *pool_ : inline_).post(std::move(stretch));
   const Picos start = apu_time_;
-  // One thread: the run is over already (post() clocked it), nothing to overlap.
+  // One thread: the run is over already (post() clocked it), nothing to
+  // overlap. Else the NC steps as far as the run is known to last, at least
+  // kPoolStepCycles at a time.
   for (std::uint64_t step = kPoolStepCycles; parallel();) {
-    const Picos target = start + step * cycle_ps_;
-    if (target >= kill_at_ || !job_->lasts(step)) break;
+    const std::uint64_t known = job_->known(step);
+    const Picos target = start + known * cycle_ps_;
+    if (known == 0 || target >= kill_at_) break;
+    step = known + kPoolStepCycles;
     const Picos t = now();
-    step += kPoolStepCycles;
     if (target <= t) continue;
     qk_.inc(to_sc_time(target - t));
     qk_.sync();
