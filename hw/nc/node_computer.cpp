@@ -112,6 +112,7 @@ NodeComputer::~NodeComputer() {
 // caller then advances to the run's end as without a pool.
 std::uint64_t NodeComputer::run_on_pool(ApuJob::Stretch stretch) {
   job_ = (pool_ ? *pool_ : inline_).post(std::move(stretch));
+  if (parallel()) qk_.sync();  // the other NCs first, while a worker takes the run
   const Picos start = apu_time_;
   // One thread: the run is over already (post() clocked it), nothing to
   // overlap. Else the NC steps as far as the run is known to last, at least
@@ -195,6 +196,10 @@ void NodeComputer::touch_mpu_bank() {
 // now, where the job would have made it (settling_: the driver's access
 // hook, which run() calls, must not clock the APU past it first).
 void NodeComputer::join_job() {
+  // A catch-up job still running on a worker: the kernel runs the other NCs
+  // first (they hand their APUs to the pool meanwhile), so that the job is
+  // likely over when this NC goes on, instead of its waiting here.
+  if (in_thread_ && !job_->over()) qk_.sync();
   const std::shared_ptr<ApuJob> job = std::move(job_);
   job->result();
   if (hand_over_due_.load(std::memory_order_acquire)) {
@@ -271,7 +276,8 @@ void NodeComputer::advance(Picos ps, Picos t) {
   // only so that, while its APU runs, the kernel runs the other NCs as a
   // worker clocks this one's catch-up. What the APU owes goes to the pool,
   // and the NC syncs, once it owes kChaseCycles; the job chases the NC's
-  // time as it moves on (chase_due_), and while it runs the NC goes on.
+  // time as it moves on (chase_due_), and while it runs the NC goes on
+  // (and syncs again before it waits for the job: join_job).
   // With no worker (one thread) nothing is posted and the NC does not
   // sync: the catch-up is clocked where the APU is next looked at, in one
   // piece.
@@ -525,6 +531,7 @@ void NodeComputer::close(Picos frame_end) {
 }
 
 void NodeComputer::run() {
+  const FlagGuard in_thread(in_thread_);
   try {
     firmware_(*this);
     finished();

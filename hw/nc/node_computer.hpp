@@ -203,6 +203,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   std::atomic<bool> hand_over_due_{false};
   Picos hand_over_at_ = 0;  // written before hand_over_due_ is set
   bool settling_ = false;
+  bool in_thread_ = false;  // in run(): the NC's thread may wait
 
   tlm::tlm_generic_payload pixels_;
   std::vector<std::uint8_t> pixel_bytes_;
