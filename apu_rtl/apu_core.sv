@@ -206,32 +206,30 @@ module apu_core
   // F operands of the word, one register-file read port each.
   localparam int RD_MA = 0, RD_MB = 1, RD_AA = 2, RD_AB = 3, RD_FA = 4, RD_ST = 5,
                  RD_MOVFA = 6, N_RD = 7;
-  // F destinations of the word (for `waw`).
-  localparam int DS_M = 0, DS_A = 1, DS_F = 2, DS_LD = 3, DS_I = 4, N_DS = 5;
+  // F destinations of the word (for `waw`), by index: 0 M d, 1 A d, 2 F d,
+  // 3 LD f, 4 MOVAF/LIF d.
+  localparam int N_DS = 5;
 
   localparam int LAT_W = 4;  // apu_interlock's latency fields
 
-  logic [FREG_AW-1:0] dst_addr [N_DS];
   logic [N_DS-1:0]    dst_en;
-  logic [LAT_W-1:0]   dst_lat  [N_DS];  // the latency of each destination's write
   logic [FP_W-1:0]    fop      [N_RD];
   logic               fu_trig;
 
   assign fu_trig = (w.f_op == apu_pkg::F_SIN) || (w.f_op == apu_pkg::F_COS);
 
-  always_comb begin
-    dst_addr[DS_M]     = w.m_d;
-    dst_addr[DS_A]     = w.a_d;
-    dst_addr[DS_F]     = w.f_d;
-    dst_addr[DS_LD]    = w.d_f;
-    dst_addr[DS_I]     = w.i_d;
-    dst_lat[DS_M]      = LAT_W'(apu_pkg::LAT_MUL);
-    dst_lat[DS_A]      = LAT_W'(apu_pkg::LAT_ADD);
-    dst_lat[DS_F]      = fu_trig ? LAT_W'(apu_pkg::LAT_TRIG) : LAT_W'(apu_pkg::LAT_FUNC);
-    dst_lat[DS_LD]     = LAT_W'(apu_pkg::LAT_LOAD);
-    dst_lat[DS_I]      = LAT_W'(apu_pkg::LAT_LOAD);
-  end
-  // The enables by DS_* index, one concatenation.
+  // The destinations by index as flat vectors, entry i at
+  // [i*FREG_AW +: FREG_AW] / [i*LAT_W +: LAT_W]: their registers and the
+  // latency of each one's write (constants but the function unit's), each
+  // vector one concatenation (a simulator folds the constant entries, and
+  // the interlock's compares on them, into the code).
+  logic [N_DS*FREG_AW-1:0] dst_addr_v;
+  logic [N_DS*LAT_W-1:0]   dst_lat_v;
+  assign dst_addr_v = {w.i_d, w.d_f, w.f_d, w.a_d, w.m_d};
+  assign dst_lat_v  = {LAT_W'(apu_pkg::LAT_LOAD), LAT_W'(apu_pkg::LAT_LOAD),
+                       fu_trig ? LAT_W'(apu_pkg::LAT_TRIG) : LAT_W'(apu_pkg::LAT_FUNC),
+                       LAT_W'(apu_pkg::LAT_ADD), LAT_W'(apu_pkg::LAT_MUL)};
+  // The enables by index, one concatenation.
   assign dst_en = {i_writes_f, is_ld, w.f_en, add_ok && !add_is_cmp, w.m_en};
 
   // The F read ports the word's slots use (src_en, src_addr_v: the
@@ -247,10 +245,6 @@ module apu_core
   logic [RD_V-1:0] src_addr_v, f_rd_addr_v;
   apu_freads u_i_reads (.word(i_word_q),   .en(src_en),   .addr(src_addr_v));
   apu_freads u_d_reads (.word(fetch_word), .en(d_src_en), .addr(f_rd_addr_v));
-
-  // The destinations as a flat vector, entry i at [i*FREG_AW +: FREG_AW].
-  logic [N_DS*FREG_AW-1:0] dst_addr_v;
-  assign dst_addr_v  = {dst_addr[4], dst_addr[3], dst_addr[2], dst_addr[1], dst_addr[0]};
 
   // A operands: I s, I t, D base, S r.
   localparam int AR_S = 0, AR_T = 1, AR_BASE = 2, AR_R = 3, N_AR = 4;
@@ -331,9 +325,6 @@ module apu_core
   logic [FREG_AW-1:0] mul_wb_d, add_wb_d, fu_wb_d, fu_trig_wb_d;
   logic               mul_nx_valid, add_nx_valid, fu_nx_valid, fu_trig_nx_valid;
   logic [FREG_AW-1:0] mul_nx_d, add_nx_d, fu_nx_d, fu_trig_nx_d;
-  // The destinations' latencies as a flat vector for the interlock.
-  logic [N_DS*LAT_W-1:0]   dst_lat_v;
-  assign dst_lat_v = {dst_lat[4], dst_lat[3], dst_lat[2], dst_lat[1], dst_lat[0]};
 
   apu_interlock #(
       .ADDR_W  (FREG_AW),
