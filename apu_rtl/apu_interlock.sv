@@ -202,11 +202,13 @@ module apu_interlock #(
 
   // A unit's vectors are all 0 while it has no op in flight (an op sets
   // bits only in the entries below its latency, and leaves one a cycle).
-  // The function unit's eight entries (SIN/COS: LAT_TRIG) therefore change
-  // only with an op in flight or issued now: a clock enable, and its
-  // destinations' test below only looks with an op in flight. The same
-  // values; a simulator skips both in the cycles without (most of a
-  // frame's: docs/apu-rtl.md "RtlEngine").
+  // So the function unit's eight entries (SIN/COS: LAT_TRIG) may as well be
+  // cleared in a cycle with no op of its in flight and none issued (a
+  // synchronous reset on that condition: the same values, and no more
+  // cells than the reset alone), and its destinations' test below only
+  // looks with an op in flight. A simulator then skips the 512-bit shift
+  // and the test in the cycles without (most of a frame's: docs/apu-rtl.md
+  // "RtlEngine").
   logic fu_in_flight;
   assign fu_in_flight = |fl[O_FU +: D_FU];
 
@@ -214,12 +216,12 @@ module apu_interlock #(
     if (!rst_n) begin
       mul_ge <= '0;
       add_ge <= '0;
-      fu_ge  <= '0;
     end else begin
       mul_ge <= (mul_ge >> N_REG) | mul_new;
       add_ge <= (add_ge >> N_REG) | add_new;
-      if (fu_issue || fu_in_flight) fu_ge <= (fu_ge >> N_REG) | fu_new;
     end
+    if (!rst_n || !(fu_issue || fu_in_flight)) fu_ge <= '0;
+    else                                       fu_ge <= (fu_ge >> N_REG) | fu_new;
   end
 
   // Per slot and unit: source i waits for unit u ([i*3 + u]); destination j
