@@ -133,9 +133,11 @@ void Iss::reset() {
     data_[b].fill(0);
   }
   ring_.fill(Bucket{});
+  for (BodyBank& bb : body_) bb.stale = true;
   pending_ = 0;
   land_.fill(0);
   cmp_done_ = 0;
+  ring_last_ = 0;
   counters_ = Counters{};
 }
 
@@ -144,6 +146,7 @@ void Iss::write_program(std::uint16_t addr, const Encoded& word) {
   addr %= kProgramWords;
   program_[bank][addr] = word;
   decoded_[bank][addr] = DecodedWord::from(word, addr);
+  body_[bank].stale = true;
 }
 
 void Iss::write_data(std::uint16_t addr, std::uint32_t value) {
@@ -202,6 +205,7 @@ MC1_HOT std::uint64_t Iss::push_f(FSlot slot, int latency, std::uint32_t index, 
   }
   b.slots |= 1u << slot;
   b.flags |= flags;
+  ring_last_ = std::max(ring_last_, at);
   // This write lands after any other to its register (waw): the bucket of
   // one still in flight no longer clears the register from the scoreboard.
   const std::uint64_t m = bit(index);
@@ -216,6 +220,7 @@ MC1_HOT void Iss::push_a(ASlot slot, int latency, std::uint32_t index, std::uint
   Bucket& b = ring_[(cycle_ + latency) % kRing];
   b.a[slot] = {index, value};
   b.slots |= 1u << (kASlotShift + slot);
+  ring_last_ = std::max<std::uint64_t>(ring_last_, cycle_ + latency);
 }
 
 // End of a cycle: the writes that become visible in the next cycle enter the
@@ -432,6 +437,7 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
       b.cc = ra.value;
       b.flags |= ra.flags;
       cmp_done_ = cycle_ + dw.lat_a;
+      ring_last_ = std::max(ring_last_, cmp_done_);
     } else {
       set |= push_f<kEarly>(kSlotA, dw.lat_a, w.a.d, ra.value, ra.flags, pending);
     }
@@ -470,32 +476,30 @@ bool Iss::plain_cycle(Iss& iss, const DecodedWord& dw) {
   return true;
 }
 
+MC1_HOT bool Iss::int_value(const DecodedWord& dw, std::uint16_t& v) const {
+  const IntSlot& i = dw.w.i;
+  const std::uint32_t s = a_[i.s], t = a_[i.t], imm = i.imm;
+  switch (i.op) {
+    case IntOp::Li: v = static_cast<std::uint16_t>(imm); return true;
+    case IntOp::Addi: v = static_cast<std::uint16_t>(s + imm); return true;
+    case IntOp::Add: v = static_cast<std::uint16_t>(s + t); return true;
+    case IntOp::Sub: v = static_cast<std::uint16_t>(s - t); return true;
+    case IntOp::Muli: v = static_cast<std::uint16_t>(std::uint32_t{s} * imm); return true;
+    case IntOp::Shl: v = static_cast<std::uint16_t>(s << (imm & 15)); return true;
+    case IntOp::Shr: v = static_cast<std::uint16_t>(s >> (imm & 15)); return true;
+    case IntOp::Sra: v = static_cast<std::uint16_t>(static_cast<std::int16_t>(s) >> (imm & 15)); return true;
+    case IntOp::Andi: v = static_cast<std::uint16_t>(s & imm); return true;
+    case IntOp::Ori: v = static_cast<std::uint16_t>(s | imm); return true;
+    case IntOp::Xor: v = static_cast<std::uint16_t>(s ^ t); return true;
+    case IntOp::Movfa: v = static_cast<std::uint16_t>(f_[i.imm & 63]); return true;
+    default: return false;  // none, MOVAF and LIF (F writes: issue()), reserved
+  }
+}
+
 // The I slot (its reads see the state before the word's writes).
 MC1_HOT void Iss::int_op(const DecodedWord& dw) {
-  const IntSlot& i = dw.w.i;
-  const std::uint8_t ad = i.d & 15;
-  const std::uint32_t s = a_[i.s], t = a_[i.t], imm = i.imm;
-  constexpr int li = kIntLatency;  // MOVAF and LIF write F: issue()
-  switch (i.op) {
-    case IntOp::None: break;
-    case IntOp::Li: push_a(kSlotI, li, ad, imm); break;
-    case IntOp::Addi: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(s + imm)); break;
-    case IntOp::Add: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(s + t)); break;
-    case IntOp::Sub: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(s - t)); break;
-    case IntOp::Muli: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(std::uint32_t{s} * imm)); break;
-    case IntOp::Shl: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(s << (imm & 15))); break;
-    case IntOp::Shr: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(s >> (imm & 15))); break;
-    case IntOp::Sra:
-      push_a(kSlotI, li, ad, static_cast<std::uint16_t>(static_cast<std::int16_t>(s) >> (imm & 15)));
-      break;
-    case IntOp::Andi: push_a(kSlotI, li, ad, s & imm); break;
-    case IntOp::Ori: push_a(kSlotI, li, ad, s | imm); break;
-    case IntOp::Xor: push_a(kSlotI, li, ad, s ^ t); break;
-    case IntOp::Movaf: break;  // F writes: issue()
-    case IntOp::Movfa: push_a(kSlotI, li, ad, static_cast<std::uint16_t>(f_[i.imm & 63])); break;
-    case IntOp::Lif: break;
-    case IntOp::Reserved: break;
-  }
+  std::uint16_t v;
+  if (int_value(dw, v)) push_a(kSlotI, kIntLatency, dw.w.i.d & 15, v);
 }
 
 // The sequencer's effects beyond the next pc.
@@ -623,14 +627,302 @@ bool Iss::fp_in_flight() const {
   return false;
 }
 
+// ---- Bodies (run_body): straight runs of plain words clocked as a unit.
+
+const std::array<Iss::BodyIssue, Iss::kShapes> Iss::kBodyDirect =
+    Iss::body_table(std::make_integer_sequence<int, Iss::kShapes>{}, std::false_type{});
+const std::array<Iss::BodyIssue, Iss::kShapes> Iss::kBodyTail =
+    Iss::body_table(std::make_integer_sequence<int, Iss::kShapes>{}, std::true_type{});
+
+// The body from pc: its words, their schedule with the body's own stalls
+// (docs/apu-isa.md "Timing": raw first, then waw) and the bounds on the
+// writes in flight at its start that keep that schedule. It ends before a
+// word that is not plain, after kMaxBodyWords words, or before a LD/ST whose
+// base register an earlier word of it writes (so that its data addresses are
+// known, and checked, when it starts).
+std::int32_t Iss::build_body(int bank, std::uint32_t pc) {
+  BodyBank& bb = body_[bank];
+  Body body;
+  body.first = static_cast<std::uint32_t>(bb.words.size());
+  body.mem_first = static_cast<std::uint32_t>(bb.mem.size());
+  body.bound.fill(255);
+  std::array<int, kNumFRegs> land{};  // the body's own writes: the cycle each register's last one lands
+  land.fill(-1);
+  int cc_land = -1;                   // the body's CMPs: the cycle the last one lands
+  std::uint32_t a_written = 0;
+  int t = -1;
+  std::uint32_t raw = 0, waw = 0, ccs = 0, ops[3] = {0, 0, 0};
+  std::uint32_t p = pc;
+  while (body.n < static_cast<std::uint32_t>(kMaxBodyWords)) {
+    const DecodedWord& dw = decoded_[bank][p];
+    // A conditional branch on an A register or CC may end a body: it can
+    // stall only on raw, waw or cc, and fault only past the bank's end.
+    const SeqOp op = dw.w.s.op;
+    const bool branch = !dw.plain && (op == SeqOp::Dbnz || op == SeqOp::Bz || op == SeqOp::Bnz ||
+                                      op == SeqOp::Bltz || op == SeqOp::Bcc || op == SeqOp::Bncc) &&
+                        !(dw.kind & DecodedWord::kReserved) && p + 1 < static_cast<std::uint32_t>(kProgramWords);
+    if (!dw.plain && !branch) break;
+    const bool mem = dw.w.d.op != MemOp::None;
+    if (mem && ((a_written >> dw.w.d.base) & 1)) break;
+    const bool cc_branch = (dw.kind & DecodedWord::kCcBranch) != 0;
+    int ti = t + 1;
+    for (;;) {
+      bool r = false, ww = false;
+      for (std::uint64_t m = dw.src; m != 0; m &= m - 1) r |= land[__builtin_ctzll(m)] > ti;
+      for (int k = 0; k < dw.ndst; ++k) ww |= land[dw.dsts[k].reg] >= ti + dw.dsts[k].latency;
+      const bool c = cc_branch && cc_land > ti;
+      if (!r && !ww && !c) break;
+      ++(r ? raw : ww ? waw : ccs);
+      ++ti;
+    }
+    int longest = 1;
+    for (std::uint64_t m = dw.src; m != 0; m &= m - 1) {
+      std::uint8_t& b = body.bound[__builtin_ctzll(m)];
+      b = static_cast<std::uint8_t>(std::min<int>(b, ti));
+    }
+    for (int k = 0; k < dw.ndst; ++k) {
+      const DecodedWord::FDst& d = dw.dsts[k];
+      std::uint8_t& b = body.bound[d.reg];
+      b = static_cast<std::uint8_t>(std::min<int>(b, ti + d.latency - 1));
+      land[d.reg] = ti + d.latency;
+      longest = std::max<int>(longest, d.latency);
+    }
+    if (dw.w.a.en) {
+      longest = std::max<int>(longest, dw.lat_a);  // CMP's CC
+      if (dw.w.a.op == AddOp::Cmp) cc_land = ti + dw.lat_a;
+    }
+    if (cc_branch) body.cc_at = static_cast<std::uint64_t>(ti);
+    ops[0] += dw.w.m.en;
+    ops[1] += dw.w.a.en;
+    ops[2] += dw.w.f.en;
+    BodyWord w{};
+    w.pc = static_cast<std::uint16_t>(p);
+    w.t = static_cast<std::uint16_t>(ti);
+    w.land = static_cast<std::uint16_t>(ti + longest);
+    w.shape = dw.shape;
+    w.branch = branch;
+    w.raw = raw;
+    w.waw = waw;
+    w.cc = ccs;
+    for (int u = 0; u < 3; ++u) w.ops[u] = ops[u];
+    bb.words.push_back(w);
+    if (mem) {
+      const std::int8_t d = dw.w.d.disp;
+      auto it = std::find_if(bb.mem.begin() + body.mem_first, bb.mem.end(),
+                             [&dw](const MemCheck& c) { return c.base == dw.w.d.base; });
+      if (it == bb.mem.end()) {
+        bb.mem.push_back({static_cast<std::uint8_t>(dw.w.d.base), d, d});
+      } else {
+        it->lo = std::min(it->lo, d);
+        it->hi = std::max(it->hi, d);
+      }
+    }
+    std::uint16_t v;
+    if (int_value(dw, v)) a_written |= 1u << (dw.w.i.d & 15);
+    if (op == SeqOp::Dbnz) a_written |= 1u << (dw.w.s.r & 15);
+    t = ti;
+    p = dw.next;
+    ++body.n;
+    if (branch) break;
+  }
+  if (body.n == 0) {
+    bb.at[pc] = kNoBody;
+    return kNoBody;
+  }
+  body.nmem = static_cast<std::uint32_t>(bb.mem.size()) - body.mem_first;
+  for (int r = 0; r < kNumFRegs; ++r)
+    if (body.bound[r] < kMaxLatency - 1) body.early |= bit(static_cast<unsigned>(r));
+  bb.bodies.push_back(body);
+  const auto index = static_cast<std::int32_t>(bb.bodies.size() - 1);
+  bb.at[pc] = index;
+  return index;
+}
+
+// A bucket's writes enter the state (their F values are there already:
+// run's writes are early) and it is retired.
+MC1_HOT void Iss::apply_bucket(Bucket& b) {
+  pending_ &= ~b.last;
+  b.last = 0;
+  for (std::uint32_t m = b.slots >> kASlotShift & 3; m != 0; m &= m - 1) {
+    const AWrite& w = b.a[__builtin_ctz(m)];
+    a_[w.index] = static_cast<std::uint16_t>(w.value);
+  }
+  if (b.slots & kCcSlot) cc_ = b.cc;
+  flags_ |= b.flags;
+  b.slots = 0;
+  b.flags = 0;
+}
+
+// kTail: the write may land after the body's end (then into the ring).
+template <bool kTail>
+MC1_HOT void Iss::body_write(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags,
+                             std::uint64_t end) {
+  if (kTail && cycle_ + latency > end) {
+    pending_ |= push_f<true>(slot, latency, index, value, flags, pending_);
+    return;
+  }
+  f_[index] = value;
+  flags_ |= flags;
+}
+
+// A word of a body issues: as issue(), with writes that land within the
+// body (all of them unless kTail) made at once. The I slot's A write lands
+// in the next cycle, always within the body. kTail: cycle_ is the word's
+// issue cycle.
+template <int kShape, bool kTail>
+void Iss::body_issue(Iss& iss, const DecodedWord& dw, std::uint64_t end) {
+  constexpr bool m_en = (kShape & 1) != 0, a_en = (kShape & 6) != 0, f_en = (kShape & 8) != 0;
+  constexpr auto d_op = static_cast<MemOp>(kShape >> 4);
+  const MicroWord& w = dw.w;
+  const auto& f = iss.f_;
+  fp24::Result rm{}, ra{}, rf{};
+  if constexpr (m_en) rm = fp24::inl::mul24(f[w.m.a], f[w.m.b]);
+  if constexpr ((kShape & 6) == 2) {
+    ra = fp24::inl::add24(f[w.a.a], f[w.a.b]);
+  } else if constexpr ((kShape & 6) == 4) {
+    ra = fp24::inl::sub24(f[w.a.a], f[w.a.b]);
+  } else if constexpr (a_en) {
+    ra = add_unit(w.a.op, f[w.a.a], f[w.a.b]);
+  }
+  if constexpr (f_en) rf = func_unit(w.f.op, f[w.f.a]);
+  std::uint32_t loaded = 0;
+  if constexpr (d_op != MemOp::None) {
+    const std::uint16_t addr = static_cast<std::uint16_t>(iss.a_[w.d.base] + w.d.disp);
+    if constexpr (d_op == MemOp::Ld) {
+      loaded = iss.data_[iss.dsel_][addr];
+    } else {
+      iss.data_[iss.dsel_][addr] = f[w.d.f];
+    }
+  }
+  std::uint16_t av = 0;
+  const bool a_write = w.i.op != IntOp::None && iss.int_value(dw, av);  // MOVFA reads F
+  std::uint32_t mov = 0;
+  if (dw.kind & DecodedWord::kMovF) mov = w.i.op == IntOp::Movaf ? iss.a_[w.i.s] : (std::uint32_t{w.i.imm} << 8) & kMask24;
+
+  if constexpr (m_en) iss.body_write<kTail>(kSlotM, kMulLatency, w.m.d, rm.value, rm.flags, end);
+  if constexpr (a_en) {
+    if ((kShape & 6) == 6 && w.a.op == AddOp::Cmp) {
+      if (kTail && iss.cycle_ + dw.lat_a > end) {
+        Bucket& b = iss.ring_[(iss.cycle_ + dw.lat_a) % kRing];
+        b.slots |= kCcSlot;
+        b.cc = ra.value;
+        b.flags |= ra.flags;
+        iss.cmp_done_ = iss.cycle_ + dw.lat_a;
+        iss.ring_last_ = std::max(iss.ring_last_, iss.cmp_done_);
+      } else {
+        iss.cc_ = ra.value;  // lands within the body: no CMP in flight after it
+        iss.flags_ |= ra.flags;
+      }
+    } else {
+      iss.body_write<kTail>(kSlotA, dw.lat_a, w.a.d, ra.value, ra.flags, end);
+    }
+  }
+  if constexpr (f_en) {
+    const FSlot slot = w.f.op == FuncOp::Sin || w.f.op == FuncOp::Cos ? kSlotTrig : kSlotRsq;
+    iss.body_write<kTail>(slot, dw.lat_f, w.f.d, rf.value, rf.flags, end);
+  }
+  if constexpr (d_op == MemOp::Ld) iss.f_[w.d.f] = loaded;
+  if (dw.kind & DecodedWord::kMovF) iss.f_[w.i.d] = mov;
+  if (a_write && (w.i.d & 15) != 0) iss.a_[w.i.d & 15] = av;
+}
+
+// The body at pc, or its longest prefix that fits in avail cycles, when the
+// state allows it (the bounds, the data addresses): returns the cycles
+// clocked, 0 if none. As many cycles of run() (none of them its last) would
+// leave the state, the ring and the counters.
+MC1_HOT std::uint64_t Iss::run_body(std::uint64_t avail) {
+  const int bank = psel_;
+  BodyBank& bb = body_[bank];
+  std::int32_t index = bb.at[pc_];
+  if (index < 0) {
+    if (index == kNoBody) return 0;
+    index = build_body(bank, pc_);
+    if (index < 0) return 0;
+  }
+  const Body& body = bb.bodies[static_cast<std::size_t>(index)];
+  const std::uint64_t e = cycle_;
+  for (std::uint64_t m = pending_ & body.early; m != 0; m &= m - 1) {
+    const int r = __builtin_ctzll(m);
+    if (land_[r] - e > body.bound[r]) return 0;
+  }
+  if (cmp_done_ > e + body.cc_at) return 0;
+  // Every address in range without a wrap (else cycle by cycle: a fault, or a wrap that lands in range).
+  const MemCheck* mc = bb.mem.data() + body.mem_first;
+  for (std::uint32_t i = 0; i < body.nmem; ++i) {
+    const int a = a_[mc[i].base];
+    if (a + mc[i].lo < 0 || a + mc[i].hi >= kDataWords) return 0;
+  }
+  const BodyWord* words = bb.words.data() + body.first;
+  std::uint32_t n = body.n;
+  while (n > 0 && words[n - 1].t + 1u > avail) --n;
+  if (n == 0) return 0;
+  const std::uint64_t cycles = words[n - 1].t + 1u;
+  const std::uint64_t end = e + cycles;
+  // The writes in flight that land within the body enter the state first
+  // (no word of it reads or overwrites them earlier: the bounds).
+  if (ring_last_ > e) {
+    const std::uint64_t ahead = std::min(ring_last_, end);
+    for (std::uint64_t c = e + 1; c <= ahead; ++c) {
+      Bucket& b = ring_[c % kRing];
+      if (b.slots) apply_bucket(b);
+    }
+  }
+  const auto& dec = decoded_[bank];
+  const BodyWord& last = words[n - 1];
+  const std::uint32_t m = n - last.branch;
+  for (std::uint32_t i = 0; i < m; ++i) {
+    const BodyWord& w = words[i];
+    if (__builtin_expect(e + w.land <= end, 1)) {
+      kBodyDirect[w.shape](*this, dec[w.pc], end);
+    } else {
+      cycle_ = e + w.t;
+      kBodyTail[w.shape](*this, dec[w.pc], end);
+    }
+  }
+  if (last.branch) {
+    // Its reads (A[r], CC) see the state before its own writes.
+    const DecodedWord& dw = dec[last.pc];
+    pc_ = last.pc;
+    const std::uint32_t next = next_pc(dw);
+    if (fetch_missed(dw, next)) fetching_ = kBranchMissCycles;
+    const std::uint32_t r = dw.w.s.r & 15;
+    const auto dec_r = static_cast<std::uint16_t>(a_[r] - 1);
+    cycle_ = e + last.t;
+    (e + last.land <= end ? kBodyDirect : kBodyTail)[last.shape](*this, dw, end);
+    if (dw.w.s.op == SeqOp::Dbnz && r != 0) a_[r] = dec_r;
+    pc_ = next;
+  } else {
+    pc_ = dec[last.pc].next;
+  }
+  cycle_ = end;
+  counters_.issued += n;
+  for (int u = 0; u < 3; ++u) counters_.unit_ops[u] += last.ops[u];
+  counters_.stalls[static_cast<int>(Stall::Raw)] += last.raw;
+  counters_.stalls[static_cast<int>(Stall::Waw)] += last.waw;
+  counters_.stalls[static_cast<int>(Stall::Cc)] += last.cc;
+  return cycles;
+}
+
 template <bool kUntilDataTaken>
 std::uint64_t Iss::run_fast(std::uint64_t max_cycles) {
   if (max_cycles == 0 || state_ != RunState::Running) return 0;
   int cc = kNoCommit, flags = kNoCommit;
   take_due<false>(nullptr, cc, flags);  // what the last clock applied (nothing records it now)
   writes_early();
+  for (BodyBank& bb : body_) {
+    if (!bb.stale) continue;
+    bb.at.assign(kProgramWords, kBodyUnknown);
+    bb.bodies.clear();
+    bb.words.clear();
+    bb.mem.clear();
+    bb.stale = false;
+  }
   for (std::uint64_t n = 1;; ++n) {
     if (fetching_ == 0 && n < max_cycles) {
+      if (const std::uint64_t k = run_body(max_cycles - n)) {
+        n += k - 1;
+        continue;
+      }
       const DecodedWord& dw = decoded_[psel_][pc_];
       if (dw.plain && !(dw.hazard & pending_) && kPlainCycle[dw.shape](*this, dw)) continue;
     }
