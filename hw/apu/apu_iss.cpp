@@ -730,6 +730,9 @@ std::int32_t Iss::build_body(int bank, std::uint32_t pc) {
     return kNoBody;
   }
   body.nmem = static_cast<std::uint32_t>(bb.mem.size()) - body.mem_first;
+  const BodyWord* words = bb.words.data() + body.first;
+  body.cycles = words[body.n - 1].t + 1u;
+  while (body.direct < body.n && words[body.direct].land <= body.cycles) ++body.direct;
   for (int r = 0; r < kNumFRegs; ++r)
     if (body.bound[r] < kMaxLatency - 1) body.early |= bit(static_cast<unsigned>(r));
   bb.bodies.push_back(body);
@@ -854,9 +857,16 @@ MC1_HOT std::uint64_t Iss::run_body(std::uint64_t avail) {
   }
   const BodyWord* words = bb.words.data() + body.first;
   std::uint32_t n = body.n;
-  while (n > 0 && words[n - 1].t + 1u > avail) --n;
-  if (n == 0) return 0;
-  const std::uint64_t cycles = words[n - 1].t + 1u;
+  std::uint64_t cycles = body.cycles;
+  // The words before `direct` have every write land within the body.
+  std::uint32_t direct = body.direct;
+  if (__builtin_expect(cycles > avail, 0)) {  // the call ends first: a prefix
+    while (n > 0 && words[n - 1].t + 1u > avail) --n;
+    if (n == 0) return 0;
+    cycles = words[n - 1].t + 1u;
+    direct = 0;
+    while (direct < n && words[direct].land <= cycles) ++direct;
+  }
   const std::uint64_t end = e + cycles;
   // The writes in flight that land within the body enter the state first
   // (no word of it reads or overwrites them earlier: the bounds).
@@ -870,7 +880,9 @@ MC1_HOT std::uint64_t Iss::run_body(std::uint64_t avail) {
   const auto& dec = decoded_[bank];
   const BodyWord& last = words[n - 1];
   const std::uint32_t m = n - last.branch;
-  for (std::uint32_t i = 0; i < m; ++i) {
+  std::uint32_t i = 0;
+  for (; i < std::min(direct, m); ++i) kBodyDirect[words[i].shape](*this, dec[words[i].pc], end);
+  for (; i < m; ++i) {
     const BodyWord& w = words[i];
     if (__builtin_expect(e + w.land <= end, 1)) {
       kBodyDirect[w.shape](*this, dec[w.pc], end);
@@ -895,6 +907,16 @@ MC1_HOT std::uint64_t Iss::run_body(std::uint64_t avail) {
     pc_ = dec[last.pc].next;
   }
   cycle_ = end;
+  // A branch that missed the fetch: its cycles with no word to issue
+  // (Stall::Fetch; each applies its bucket, as any cycle of run).
+  while (fetching_ > 0 && cycles < avail) {
+    --fetching_;
+    ++counters_.stalls[static_cast<int>(Stall::Fetch)];
+    ++cycles;
+    ++cycle_;
+    Bucket& b = ring_[cycle_ % kRing];
+    if (b.slots) apply_bucket(b);
+  }
   counters_.issued += n;
   for (int u = 0; u < 3; ++u) counters_.unit_ops[u] += last.ops[u];
   counters_.stalls[static_cast<int>(Stall::Raw)] += last.raw;

@@ -227,6 +227,8 @@ class Iss final : public ApuEngine {
   struct Body {
     std::uint64_t early = 0;                 // the registers with a bound below kMaxLatency - 1
     std::uint32_t first = 0, n = 0;          // words in BodyBank::words
+    std::uint32_t direct = 0;                // the words before this one land every write within the body
+    std::uint32_t cycles = 0;                // its cycles (from its first to its last word's issue)
     std::uint32_t mem_first = 0, nmem = 0;   // data addresses in BodyBank::mem
     std::uint64_t cc_at = ~std::uint64_t{0}; // the issue cycle of its BCC/BNCC (no CMP of before may be in flight)
     std::array<std::uint8_t, kNumFRegs> bound{};
