@@ -242,8 +242,12 @@ class Iss final : public ApuEngine {
     std::vector<MemCheck> mem;
     bool stale = true;
   };
+  struct BodySchedule;
   std::uint64_t run_body(std::uint64_t avail);
+  bool body_may_start(const BodyBank& bb, const Body& body, std::uint64_t e) const;
+  void body_branch(const BodyWord& w, const DecodedWord& dw, std::uint64_t e, std::uint64_t end);
   std::int32_t build_body(int bank, std::uint32_t pc);
+  static void add_mem_check(BodyBank& bb, const Body& body, const DecodedWord& dw);
   void apply_bucket(Bucket& b);
   using BodyIssue = void (*)(Iss&, const DecodedWord&, std::uint64_t);
   template <int kShape, bool kTail>
