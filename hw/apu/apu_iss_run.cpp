@@ -65,9 +65,13 @@ struct Iss::BodySchedule {
 
   // The word after the last issues: its cycle; bound takes its reads and
   // writes. Returns t + its longest latency (t + 1 with no FP write or CC).
+  // The bounds count from the first cycle the word tries to issue (t0): a
+  // write of before the body still in flight in one of its stall cycles
+  // would change the cycle's reason (raw before waw before cc), not only
+  // its length.
   int issue(const DecodedWord& dw, std::array<std::uint8_t, kNumFRegs>& bound) {
     const bool cc_branch = (dw.kind & DecodedWord::kCcBranch) != 0;
-    ++t;
+    const int t0 = ++t;
     for (;;) {
       bool r = false, ww = false;
       for (std::uint64_t m = dw.src; m != 0; m &= m - 1) r |= land[__builtin_ctzll(m)] > t;
@@ -80,12 +84,12 @@ struct Iss::BodySchedule {
     int longest = 1;
     for (std::uint64_t m = dw.src; m != 0; m &= m - 1) {
       std::uint8_t& b = bound[__builtin_ctzll(m)];
-      b = static_cast<std::uint8_t>(std::min<int>(b, t));
+      b = static_cast<std::uint8_t>(std::min<int>(b, t0));
     }
     for (int k = 0; k < dw.ndst; ++k) {
       const DecodedWord::FDst& d = dw.dsts[k];
       std::uint8_t& b = bound[d.reg];
-      b = static_cast<std::uint8_t>(std::min<int>(b, t + d.latency - 1));
+      b = static_cast<std::uint8_t>(std::min<int>(b, t0 + d.latency - 1));
       land[d.reg] = t + d.latency;
       longest = std::max<int>(longest, d.latency);
     }
