@@ -163,6 +163,8 @@ class Iss final : public ApuEngine {
   bool writes_landed() const;
   template <bool kKeep, bool kEarly>
   void apply_next();
+  template <bool kKeep, bool kEarly>
+  void apply_bucket(Bucket& b);
   void writes_early();
   void writes_late();
   template <bool kRecord>
@@ -248,7 +250,6 @@ class Iss final : public ApuEngine {
   void body_branch(const BodyWord& w, const DecodedWord& dw, std::uint64_t e, std::uint64_t end);
   std::int32_t build_body(int bank, std::uint32_t pc);
   static void add_mem_check(BodyBank& bb, const Body& body, const DecodedWord& dw);
-  void apply_bucket(Bucket& b);
   using BodyIssue = void (*)(Iss&, const DecodedWord&, std::uint64_t);
   template <int kShape, bool kTail>
   static void body_issue(Iss& iss, const DecodedWord& dw, std::uint64_t end);

@@ -65,7 +65,13 @@ MC1_HOT void Iss::push_a(ASlot slot, int latency, std::uint32_t index, std::uint
 // F registers have their values already (push_f).
 template <bool kKeep, bool kEarly>
 MC1_HOT void Iss::apply_next() {
-  Bucket& b = ring_[cycle_ % kRing];
+  apply_bucket<kKeep, kEarly>(ring_[cycle_ % kRing]);
+}
+
+// A bucket's writes enter the state (run_body applies those of several
+// cycles at once).
+template <bool kKeep, bool kEarly>
+MC1_HOT void Iss::apply_bucket(Bucket& b) {
   if (b.slots) {
     if constexpr (!kEarly) {
       for (std::uint32_t m = b.slots & kFSlotMask; m != 0; m &= m - 1) {

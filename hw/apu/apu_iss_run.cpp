@@ -167,21 +167,6 @@ std::int32_t Iss::build_body(int bank, std::uint32_t pc) {
   return index;
 }
 
-// A bucket's writes enter the state (their F values are there already:
-// run's writes are early) and it is retired.
-MC1_HOT void Iss::apply_bucket(Bucket& b) {
-  pending_ &= ~b.last;
-  b.last = 0;
-  for (std::uint32_t m = b.slots >> kASlotShift & 3; m != 0; m &= m - 1) {
-    const AWrite& w = b.a[__builtin_ctz(m)];
-    a_[w.index] = static_cast<std::uint16_t>(w.value);
-  }
-  if (b.slots & kCcSlot) cc_ = b.cc;
-  flags_ |= b.flags;
-  b.slots = 0;
-  b.flags = 0;
-}
-
 // kTail: the write may land after the body's end (then into the ring).
 template <bool kTail>
 MC1_HOT void Iss::body_write(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags,
@@ -319,8 +304,7 @@ MC1_HOT std::uint64_t Iss::run_body(std::uint64_t avail) {
   // (no word of it reads or overwrites them earlier: the bounds).
   if (ring_last_ > e) {
     for (std::uint64_t c = e + 1; c <= std::min(ring_last_, end); ++c) {
-      Bucket& b = ring_[c % kRing];
-      if (b.slots) apply_bucket(b);
+      apply_bucket<false, true>(ring_[c % kRing]);
     }
   }
   const auto& dec = decoded_[bank];
@@ -350,8 +334,7 @@ MC1_HOT std::uint64_t Iss::run_body(std::uint64_t avail) {
     ++counters_.stalls[static_cast<int>(Stall::Fetch)];
     ++cycles;
     ++cycle_;
-    Bucket& b = ring_[cycle_ % kRing];
-    if (b.slots) apply_bucket(b);
+    apply_next<false, true>();
   }
   counters_.issued += n;
   for (int u = 0; u < 3; ++u) counters_.unit_ops[u] += last.ops[u];
