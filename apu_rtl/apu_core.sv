@@ -171,10 +171,10 @@ module apu_core
   logic              fetch_bank;
   logic [PC_W-1:0]   pc_d_q;       // the address of the word in D
   /* verilator lint_off UNUSEDSIGNAL */
-  microword_t        wd;           // the word in D (D reads its operand and sequencer fields)
-  /* verilator lint_on UNUSEDSIGNAL */
+  microword_t        wd;           // the word in D (D reads its sequencer fields; its sources: apu_freads)
   logic [WORD_W-1:0] i_word_q;     // D/I: the word in I
-  microword_t        w;            // ... as fields
+  microword_t        w;            // ... as fields (its F sources: apu_freads)
+  /* verilator lint_on UNUSEDSIGNAL */
 
   // The sequencer only fetches; the MPU only writes program words, into the
   // bank the sequencer does not use (before a swap of this cycle).
@@ -193,12 +193,10 @@ module apu_core
   assign wd = fetch_word;
   assign w  = i_word_q;
 
-  // A reserved slot takes part in no hazard (Clarification 6); FLOAT, FIX,
-  // NEG and ABS read `a` only (Clarification 4).
-  logic add_ok, add_is_cmp, add_reads_b, is_ld, is_st, i_writes_f, i_writes_a, is_bcc;
+  // A reserved slot takes part in no hazard (Clarification 6).
+  logic add_ok, add_is_cmp, is_ld, is_st, i_writes_f, i_writes_a, is_bcc;
   assign add_ok      = w.a_en && (w.a_op != apu_pkg::A_RSVD);
   assign add_is_cmp  = (w.a_op == apu_pkg::A_CMP);
-  assign add_reads_b = (w.a_op == apu_pkg::A_ADD) || (w.a_op == apu_pkg::A_SUB) || (w.a_op == apu_pkg::A_CMP);
   assign is_ld      = (w.d_op == apu_pkg::D_LD);
   assign is_st      = (w.d_op == apu_pkg::D_ST);
   assign i_writes_f = (w.i_op == apu_pkg::I_MOVAF) || (w.i_op == apu_pkg::I_LIF);
@@ -208,77 +206,45 @@ module apu_core
   // F operands of the word, one register-file read port each.
   localparam int RD_MA = 0, RD_MB = 1, RD_AA = 2, RD_AB = 3, RD_FA = 4, RD_ST = 5,
                  RD_MOVFA = 6, N_RD = 7;
-  // F destinations of the word (for `waw`).
-  localparam int DS_M = 0, DS_A = 1, DS_F = 2, DS_LD = 3, DS_I = 4, N_DS = 5;
+  // F destinations of the word (for `waw`), by index: 0 M d, 1 A d, 2 F d,
+  // 3 LD f, 4 MOVAF/LIF d.
+  localparam int N_DS = 5;
 
   localparam int LAT_W = 4;  // apu_interlock's latency fields
 
-  logic [FREG_AW-1:0] src_addr [N_RD];
-  logic [N_RD-1:0]    src_en;
-  logic [FREG_AW-1:0] dst_addr [N_DS];
   logic [N_DS-1:0]    dst_en;
-  logic [LAT_W-1:0]   dst_lat  [N_DS];  // the latency of each destination's write
   logic [FP_W-1:0]    fop      [N_RD];
   logic               fu_trig;
 
   assign fu_trig = (w.f_op == apu_pkg::F_SIN) || (w.f_op == apu_pkg::F_COS);
 
-  always_comb begin
-    src_addr[RD_MA]    = w.m_a;
-    src_addr[RD_MB]    = w.m_b;
-    src_addr[RD_AA]    = w.a_a;
-    src_addr[RD_AB]    = w.a_b;
-    src_addr[RD_FA]    = w.f_a;
-    src_addr[RD_ST]    = w.d_f;
-    src_addr[RD_MOVFA] = w.i_imm[5:0];
-    dst_addr[DS_M]     = w.m_d;
-    dst_addr[DS_A]     = w.a_d;
-    dst_addr[DS_F]     = w.f_d;
-    dst_addr[DS_LD]    = w.d_f;
-    dst_addr[DS_I]     = w.i_d;
-    dst_lat[DS_M]      = LAT_W'(apu_pkg::LAT_MUL);
-    dst_lat[DS_A]      = LAT_W'(apu_pkg::LAT_ADD);
-    dst_lat[DS_F]      = fu_trig ? LAT_W'(apu_pkg::LAT_TRIG) : LAT_W'(apu_pkg::LAT_FUNC);
-    dst_lat[DS_LD]     = LAT_W'(apu_pkg::LAT_LOAD);
-    dst_lat[DS_I]      = LAT_W'(apu_pkg::LAT_LOAD);
-  end
-  // The enables by RD_* / DS_* index, each vector one concatenation.
-  assign src_en = {w.i_op == apu_pkg::I_MOVFA, is_st, w.f_en, add_ok && add_reads_b, add_ok, w.m_en, w.m_en};
+  // The destinations by index as flat vectors, entry i at
+  // [i*FREG_AW +: FREG_AW] / [i*LAT_W +: LAT_W]: their registers and the
+  // latency of each one's write (constants but the function unit's), each
+  // vector one concatenation (a simulator folds the constant entries, and
+  // the interlock's compares on them, into the code).
+  logic [N_DS*FREG_AW-1:0] dst_addr_v;
+  logic [N_DS*LAT_W-1:0]   dst_lat_v;
+  assign dst_addr_v = {w.i_d, w.d_f, w.f_d, w.a_d, w.m_d};
+  assign dst_lat_v  = {LAT_W'(apu_pkg::LAT_LOAD), LAT_W'(apu_pkg::LAT_LOAD),
+                       fu_trig ? LAT_W'(apu_pkg::LAT_TRIG) : LAT_W'(apu_pkg::LAT_FUNC),
+                       LAT_W'(apu_pkg::LAT_ADD), LAT_W'(apu_pkg::LAT_MUL)};
+  // The enables by index, one concatenation.
   assign dst_en = {i_writes_f, is_ld, w.f_en, add_ok && !add_is_cmp, w.m_en};
 
-  // The word in D reads the same seven ports, those its slots use (d_src_en,
-  // the src_en it has in I, where the hazards are checked): an operand
-  // register of an unused port takes 0 (no slot reads it), and a simulator
-  // evaluates no compare of the port (about three ports in four are unused).
-  logic [FREG_AW-1:0] d_src_addr [N_RD];
-  logic [N_RD-1:0]    d_src_en;
-  logic               d_add_ok;
-  assign d_add_ok = wd.a_en && (wd.a_op != apu_pkg::A_RSVD);
-  assign d_src_en = {wd.i_op == apu_pkg::I_MOVFA, wd.d_op == apu_pkg::D_ST, wd.f_en,
-                     d_add_ok && ((wd.a_op == apu_pkg::A_ADD) || (wd.a_op == apu_pkg::A_SUB) || (wd.a_op == apu_pkg::A_CMP)),
-                     d_add_ok, wd.m_en, wd.m_en};
-  always_comb begin
-    d_src_addr[RD_MA]    = wd.m_a;
-    d_src_addr[RD_MB]    = wd.m_b;
-    d_src_addr[RD_AA]    = wd.a_a;
-    d_src_addr[RD_AB]    = wd.a_b;
-    d_src_addr[RD_FA]    = wd.f_a;
-    d_src_addr[RD_ST]    = wd.d_f;
-    d_src_addr[RD_MOVFA] = wd.i_imm[5:0];
-  end
-
-  // The same as flat vectors, entry i at [i*FREG_AW +: FREG_AW] (the port
-  // convention of apu_regfile and apu_interlock): the I word's sources for
-  // the interlock, the D word's for the register file. Flat vectors are
-  // written as one concatenation each (N_RD = 7, N_DS = 5 entries): a
-  // simulator then computes the vector once, not one field after another
-  // (a masked rewrite of the whole vector per entry).
-  logic [N_RD*FREG_AW-1:0] src_addr_v;
-  logic [N_RD*FREG_AW-1:0] f_rd_addr_v;
-  logic [N_DS*FREG_AW-1:0] dst_addr_v;
-  assign src_addr_v  = {src_addr[6], src_addr[5], src_addr[4], src_addr[3], src_addr[2], src_addr[1], src_addr[0]};
-  assign f_rd_addr_v = {d_src_addr[6], d_src_addr[5], d_src_addr[4], d_src_addr[3], d_src_addr[2], d_src_addr[1], d_src_addr[0]};
-  assign dst_addr_v  = {dst_addr[4], dst_addr[3], dst_addr[2], dst_addr[1], dst_addr[0]};
+  // The F read ports the word's slots use (src_en, src_addr_v: the
+  // interlock's sources, the bypass of a word held) and those of the word in
+  // D (d_src_en, f_rd_addr_v: the register file's reads, the bypass of a
+  // word moving in), by RD_* index, the addresses as flat vectors, port i at
+  // [i*FREG_AW +: FREG_AW]: one function of a word (apu_freads), twice. An
+  // unused port's operand register takes 0 (no slot reads it), and a
+  // simulator evaluates no compare of it (about three ports in four are
+  // unused).
+  localparam int RD_V = N_RD * FREG_AW;
+  logic [N_RD-1:0] src_en, d_src_en;
+  logic [RD_V-1:0] src_addr_v, f_rd_addr_v;
+  apu_freads u_i_reads (.word(i_word_q),   .en(src_en),   .addr(src_addr_v));
+  apu_freads u_d_reads (.word(fetch_word), .en(d_src_en), .addr(f_rd_addr_v));
 
   // A operands: I s, I t, D base, S r.
   localparam int AR_S = 0, AR_T = 1, AR_BASE = 2, AR_R = 3, N_AR = 4;
@@ -359,9 +325,6 @@ module apu_core
   logic [FREG_AW-1:0] mul_wb_d, add_wb_d, fu_wb_d, fu_trig_wb_d;
   logic               mul_nx_valid, add_nx_valid, fu_nx_valid, fu_trig_nx_valid;
   logic [FREG_AW-1:0] mul_nx_d, add_nx_d, fu_nx_d, fu_trig_nx_d;
-  // The destinations' latencies as a flat vector for the interlock.
-  logic [N_DS*LAT_W-1:0]   dst_lat_v;
-  assign dst_lat_v = {dst_lat[4], dst_lat[3], dst_lat[2], dst_lat[1], dst_lat[0]};
 
   apu_interlock #(
       .ADDR_W  (FREG_AW),
@@ -537,6 +500,7 @@ module apu_core
   logic [FP_W-1:0]    opnd_next [N_RD];
   logic [FREG_AW-1:0] byp_addr  [N_RD];  // the register operand i holds in the next cycle
   logic [N_RD-1:0]    byp_en;            // ... if the word there uses port i
+  logic [RD_V-1:0]    byp_addr_v;        // byp_addr as a flat vector
   int                 bp;                // the bypass loop's (set on every path, as apu_regfile's)
   logic [FP_W-1:0]    f_rd      [N_RD];  // the register file's read ports
   logic               advance;           // the word in D moves into I at this edge
@@ -558,7 +522,7 @@ module apu_core
     nx_en[4] = issue && is_ld;    nx_addr[4] = w.d_f;
     bp = 0;
     for (int i = 0; i < N_RD; i++) begin
-      byp_addr[i] = advance ? d_src_addr[i] : src_addr[i];
+      byp_addr[i] = byp_addr_v[i*FREG_AW +: FREG_AW];
       f_rd[i]     = f_rd_data_v[i*FP_W +: FP_W];
       // The register file's word for a word moving in (the state after this
       // cycle's writes), the operand as this cycle's word has it for a word
@@ -572,7 +536,8 @@ module apu_core
       end
     end
   end
-  assign byp_en = advance ? d_src_en : src_en;
+  assign byp_en     = advance ? d_src_en : src_en;
+  assign byp_addr_v = advance ? f_rd_addr_v : src_addr_v;
   for (genvar i = 0; i < N_RD; i++) begin : g_byp_ld
     assign byp_ld_next[i] = byp_en[i] && nx_en[4] && (nx_addr[4] == byp_addr[i]);
   end

@@ -200,16 +200,28 @@ module apu_interlock #(
     assign fu_new[(l-1)*N_REG +: N_REG] = (LAT_W'(l) < fu_lat) ? fu_1h : '0;
   end
 
+  // A unit's vectors are all 0 while it has no op in flight (an op sets
+  // bits only in the entries below its latency, and leaves one a cycle).
+  // So the function unit's eight entries (SIN/COS: LAT_TRIG) may as well be
+  // cleared in a cycle with no op of its in flight and none issued (a
+  // synchronous reset on that condition: the same values, and no more
+  // cells than the reset alone), and its destinations' test below only
+  // looks with an op in flight. A simulator then skips the 512-bit shift
+  // and the test in the cycles without (most of a frame's: docs/apu-rtl.md
+  // "RtlEngine").
+  logic fu_in_flight;
+  assign fu_in_flight = |fl[O_FU +: D_FU];
+
   always_ff @(posedge clk) begin
     if (!rst_n) begin
       mul_ge <= '0;
       add_ge <= '0;
-      fu_ge  <= '0;
     end else begin
       mul_ge <= (mul_ge >> N_REG) | mul_new;
       add_ge <= (add_ge >> N_REG) | add_new;
-      fu_ge  <= (fu_ge >> N_REG) | fu_new;
     end
+    if (!rst_n || !(fu_issue || fu_in_flight)) fu_ge <= '0;
+    else                                       fu_ge <= (fu_ge >> N_REG) | fu_new;
   end
 
   // Per slot and unit: source i waits for unit u ([i*3 + u]); destination j
@@ -231,14 +243,24 @@ module apu_interlock #(
     assign src_add[i] = src_en[i] && add_busy[r];
     assign src_fu[i]  = src_en[i] && fu_busy[r];
   end
+  logic [LAT_W-1:0]  dst_l [N_DST];
+  logic [ADDR_W-1:0] dst_r [N_DST];
   for (genvar j = 0; j < N_DST; j++) begin : g_dst
-    logic [LAT_W-1:0]  l;
-    logic [ADDR_W-1:0] r;
-    assign l = (dst_lat[j*LAT_W +: LAT_W] == '0) ? LAT_W'(1) : dst_lat[j*LAT_W +: LAT_W];
-    assign r = dst_addr[j*ADDR_W +: ADDR_W];
-    assign dst_mul[j] = dst_en[j] && (l <= LAT_W'(R_MUL)) && mul_ge[IW_MUL'({l - LAT_W'(1), r})];
-    assign dst_add[j] = dst_en[j] && (l <= LAT_W'(R_ADD)) && add_ge[IW_ADD'({l - LAT_W'(1), r})];
-    assign dst_fu[j]  = dst_en[j] && (l <= LAT_W'(R_FU))  && fu_ge[IW_FU'({l - LAT_W'(1), r})];
+    assign dst_l[j] = (dst_lat[j*LAT_W +: LAT_W] == '0) ? LAT_W'(1) : dst_lat[j*LAT_W +: LAT_W];
+    assign dst_r[j] = dst_addr[j*ADDR_W +: ADDR_W];
+    assign dst_mul[j] = dst_en[j] && (dst_l[j] <= LAT_W'(R_MUL)) && mul_ge[IW_MUL'({dst_l[j] - LAT_W'(1), dst_r[j]})];
+    assign dst_add[j] = dst_en[j] && (dst_l[j] <= LAT_W'(R_ADD)) && add_ge[IW_ADD'({dst_l[j] - LAT_W'(1), dst_r[j]})];
+  end
+  // (the loop's variable is the module's, set on every path: Yosys 0.23
+  // would name a latch on one under an if, docs/fp24-rtl.md)
+  int jf;
+  always_comb begin
+    dst_fu = '0;
+    jf = 0;
+    if (fu_in_flight) begin
+      for (jf = 0; jf < N_DST; jf++)
+        dst_fu[jf] = dst_en[jf] && (dst_l[jf] <= LAT_W'(R_FU)) && fu_ge[IW_FU'({dst_l[jf] - LAT_W'(1), dst_r[jf]})];
+    end
   end
   assign waw_dst  = dst_mul | dst_add | dst_fu;
   assign raw_unit = {|src_fu, |src_add, |src_mul};

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <utility>
+#include <vector>
 
 #include "apu_engine.hpp"
 #include "microword.hpp"
@@ -162,6 +163,8 @@ class Iss final : public ApuEngine {
   bool writes_landed() const;
   template <bool kKeep, bool kEarly>
   void apply_next();
+  template <bool kKeep, bool kEarly>
+  void apply_bucket(Bucket& b);
   void writes_early();
   void writes_late();
   template <bool kRecord>
@@ -199,7 +202,76 @@ class Iss final : public ApuEngine {
   static const std::array<RunIssue, kShapes> kRunIssue;
   static const std::array<PlainCycle, kShapes> kPlainCycle;
   friend struct DecodedWord;
+
+  // A body: a straight run of plain words from a program address, clocked
+  // by run() as a unit (run_body). Its timing is worked out once, when it is
+  // built: each word's issue cycle counted from the body's first (its own
+  // raw/waw stalls included, as if nothing were in flight when it starts),
+  // and for each F register the latest landing cycle of a write in flight
+  // at its start that changes none of that schedule (bound). An entry state
+  // that meets the bounds and whose data addresses are all in range takes
+  // the body, or a prefix of it; any other goes cycle by cycle. A write
+  // that lands within the body goes straight to the state (no bucket, no
+  // scoreboard); one that lands after it goes to the ring as on any cycle.
+  struct BodyWord {
+    std::uint16_t pc;        // in the body's bank
+    std::uint16_t t;         // issue cycle, from the body's first
+    std::uint16_t land;      // t + the longest latency of its FP writes and CC (t + 1 without)
+    std::uint8_t shape;
+    std::uint8_t branch;     // the body's last word is a conditional branch (not plain)
+    std::uint32_t raw, waw, cc;  // the body's stall cycles up to this word, by reason
+    std::uint32_t ops[3];    // the body's unit ops up to this word (this one's included)
+  };
+  struct MemCheck {  // the LD/ST of a body on one base register: its least and greatest displacement
+    std::uint8_t base;
+    std::int8_t lo, hi;
+  };
+  struct Body {
+    std::uint64_t early = 0;                 // the registers with a bound below kMaxLatency - 1
+    std::uint32_t first = 0, n = 0;          // words in BodyBank::words
+    std::uint32_t direct = 0;                // the words before this one land every write within the body
+    std::uint32_t cycles = 0;                // its cycles (from its first to its last word's issue)
+    std::uint32_t mem_first = 0, nmem = 0;   // data addresses in BodyBank::mem
+    std::uint64_t cc_at = ~std::uint64_t{0}; // the issue cycle of its BCC/BNCC (no CMP of before may be in flight)
+    std::array<std::uint8_t, kNumFRegs> bound{};
+  };
+  static constexpr std::int32_t kBodyUnknown = -1, kNoBody = -2;
+  static constexpr int kMaxBodyWords = 48;
+  struct BodyBank {
+    std::vector<std::int32_t> at;  // by address: an index into bodies, or kBodyUnknown / kNoBody
+    std::vector<Body> bodies;
+    std::vector<BodyWord> words;
+    std::vector<MemCheck> mem;
+    bool stale = true;
+  };
+  struct BodySchedule;
+  std::uint64_t run_body(std::uint64_t avail);
+  bool body_may_start(const BodyBank& bb, const Body& body, std::uint64_t e) const;
+  void body_branch(const BodyWord& w, const DecodedWord& dw, std::uint64_t e, std::uint64_t end);
+  std::int32_t build_body(int bank, std::uint32_t pc);
+  static void add_mem_check(BodyBank& bb, const Body& body, const DecodedWord& dw);
+  using BodyIssue = void (*)(Iss&, const DecodedWord&, std::uint64_t);
+  template <int kShape, bool kTail>
+  static void body_issue(Iss& iss, const DecodedWord& dw, std::uint64_t end);
+  template <bool kTail>
+  void body_write(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags,
+                  std::uint64_t end);
+  template <int... kShape>
+  static constexpr std::array<BodyIssue, sizeof...(kShape)> body_table(std::integer_sequence<int, kShape...>,
+                                                                       std::false_type) {
+    return {&body_issue<kShape, false>...};
+  }
+  template <int... kShape>
+  static constexpr std::array<BodyIssue, sizeof...(kShape)> body_table(std::integer_sequence<int, kShape...>,
+                                                                       std::true_type) {
+    return {&body_issue<kShape, true>...};
+  }
+  static const std::array<BodyIssue, kShapes> kBodyDirect, kBodyTail;
+
   void int_op(const DecodedWord& dw);
+  // The I slot's A register result (its reads see the state before the
+  // word's writes); false if it writes no A register.
+  bool int_value(const DecodedWord& dw, std::uint16_t& value) const;
   void seq_op(const DecodedWord& dw);
   // An F write and the flags of the op that makes it; pending: the
   // scoreboard before the word. Returns the register's scoreboard bit.
@@ -216,6 +288,7 @@ class Iss final : public ApuEngine {
   // visible (writes to one register land in issue order: waw).
   std::uint64_t pending_ = 0;
   std::uint64_t cmp_done_ = 0;     // first cycle with no CMP in flight
+  std::uint64_t ring_last_ = 0;    // no bucket after this cycle's holds anything (the latest write pushed)
   std::uint32_t pc_ = 0;
   RunState state_ = RunState::Idle;
   // Cycles left with no word to issue (`fetch`): a start's fetch and decode,
@@ -236,6 +309,7 @@ class Iss final : public ApuEngine {
   std::array<std::array<DecodedWord, kProgramWords>, 2> decoded_{};
   std::array<std::array<std::uint32_t, kDataWords>, 2> data_{};
   std::array<std::array<Encoded, kProgramWords>, 2> program_{};
+  std::array<BodyBank, 2> body_{};
 };
 
 }  // namespace mc1::apu

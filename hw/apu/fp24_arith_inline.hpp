@@ -126,13 +126,17 @@ namespace inl {
   const std::uint64_t q = p << (hi ^ 1);
   const auto sig = static_cast<std::int32_t>(
       (q + ((std::uint64_t{1} << (kDrop - 1)) - 1) + ((q >> kDrop) & 1)) >> kDrop);
-  const std::int32_t mag = (bits::exp_of(a) + bits::exp_of(b) - kBias + hi - 1) * (1 << kFracBits) + sig;
-  const bool s = bits::sign_of(a) != bits::sign_of(b);
+  // (ea + eb - kBias + hi - 1) * 2^16 + sig, with the exponent fields added
+  // where they are.
+  constexpr Bits kExpField = kPosInf;
+  const std::int32_t mag = static_cast<std::int32_t>((a & kExpField) + (b & kExpField)) + (hi << kFracBits) + sig -
+                           ((kBias + 1) << kFracBits);
+  const Bits s = (a ^ b) & kSignBit;
   if (__builtin_expect(mag >= static_cast<std::int32_t>(kPosInf), 0))
-    return {bits::signed_inf(s), static_cast<std::uint8_t>(kOF | kNX)};
-  if (__builtin_expect(mag < (1 << kFracBits), 0)) return {bits::signed_zero(s), static_cast<std::uint8_t>(kUF | kNX)};
+    return {s | kPosInf, static_cast<std::uint8_t>(kOF | kNX)};
+  if (__builtin_expect(mag < (1 << kFracBits), 0)) return {s, static_cast<std::uint8_t>(kUF | kNX)};
   const bool inexact = (q & ((std::uint64_t{1} << kDrop) - 1)) != 0;
-  return {bits::signed_zero(s) | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
+  return {s | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
 }
 
 [[gnu::always_inline]] inline Result add24(Bits a, Bits b) {

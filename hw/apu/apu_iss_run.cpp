@@ -1,0 +1,394 @@
+// The ISS's fast path, run() (docs/apu-tools.md "The ISS"): cycles clocked
+// with no records, F results written at issue, and bodies, straight runs of
+// plain words clocked as a unit.
+#include "apu_iss.hpp"
+
+#include "apu_iss_inline.hpp"
+
+namespace mc1::apu {
+
+// run()'s F writes are early (push_f): on the way in the writes in flight
+// take their registers too, in the order they land; on the way out the
+// registers get back the values of the writes still in flight, last first,
+// so that between calls the state is the one step() keeps.
+void Iss::writes_early() {
+  if (pending_ == 0) return;  // no F write in flight
+  for (int k = 1; k <= kMaxLatency; ++k) {
+    Bucket& b = ring_[(cycle_ + k) % kRing];
+    for (std::uint32_t m = b.slots & kFSlotMask; m != 0; m &= m - 1) {
+      FWrite& w = b.f[__builtin_ctz(m)];
+      w.prev = f_[w.index];
+      f_[w.index] = w.value;
+    }
+  }
+}
+
+void Iss::writes_late() {
+  if (pending_ == 0) return;
+  for (int k = kMaxLatency; k >= 1; --k) {
+    const Bucket& b = ring_[(cycle_ + k) % kRing];
+    for (std::uint32_t m = b.slots & kFSlotMask; m != 0; m &= m - 1) {
+      const FWrite& w = b.f[__builtin_ctz(m)];
+      f_[w.index] = w.prev;
+    }
+  }
+}
+
+// ---- Bodies (run_body): straight runs of plain words clocked as a unit.
+
+const std::array<Iss::BodyIssue, Iss::kShapes> Iss::kBodyDirect =
+    Iss::body_table(std::make_integer_sequence<int, Iss::kShapes>{}, std::false_type{});
+const std::array<Iss::BodyIssue, Iss::kShapes> Iss::kBodyTail =
+    Iss::body_table(std::make_integer_sequence<int, Iss::kShapes>{}, std::true_type{});
+
+namespace {
+
+// A conditional branch on an A register or CC may end a body: it can stall
+// only on raw, waw or cc, and fault only past the bank's end.
+bool ends_body(const DecodedWord& dw, std::uint32_t addr) {
+  const SeqOp op = dw.w.s.op;
+  return (op == SeqOp::Dbnz || op == SeqOp::Bz || op == SeqOp::Bnz || op == SeqOp::Bltz || op == SeqOp::Bcc ||
+          op == SeqOp::Bncc) &&
+         !(dw.kind & DecodedWord::kReserved) && addr + 1 < static_cast<std::uint32_t>(kProgramWords);
+}
+
+}  // namespace
+
+// A body's own timing while it is built, as if nothing were in flight when
+// it starts (docs/apu-isa.md "Timing": raw first, then waw, then cc).
+struct Iss::BodySchedule {
+  std::array<int, kNumFRegs> land;  // the cycle each register's last write of the body lands
+  int cc_land = -1;                 // the cycle the body's last CMP lands
+  int t = -1;                       // the last word's issue cycle
+  std::uint32_t raw = 0, waw = 0, cc = 0;
+  BodySchedule() { land.fill(-1); }
+
+  // The word after the last issues: its cycle; bound takes its reads and
+  // writes. Returns t + its longest latency (t + 1 with no FP write or CC).
+  // The bounds count from the first cycle the word tries to issue (t0): a
+  // write of before the body still in flight in one of its stall cycles
+  // would change the cycle's reason (raw before waw before cc), not only
+  // its length.
+  int issue(const DecodedWord& dw, std::array<std::uint8_t, kNumFRegs>& bound) {
+    const bool cc_branch = (dw.kind & DecodedWord::kCcBranch) != 0;
+    const int t0 = ++t;
+    for (;;) {
+      bool r = false, ww = false;
+      for (std::uint64_t m = dw.src; m != 0; m &= m - 1) r |= land[__builtin_ctzll(m)] > t;
+      for (int k = 0; k < dw.ndst; ++k) ww |= land[dw.dsts[k].reg] >= t + dw.dsts[k].latency;
+      const bool c = cc_branch && cc_land > t;
+      if (!r && !ww && !c) break;
+      ++(r ? raw : ww ? waw : cc);
+      ++t;
+    }
+    int longest = 1;
+    for (std::uint64_t m = dw.src; m != 0; m &= m - 1) {
+      std::uint8_t& b = bound[__builtin_ctzll(m)];
+      b = static_cast<std::uint8_t>(std::min<int>(b, t0));
+    }
+    for (int k = 0; k < dw.ndst; ++k) {
+      const DecodedWord::FDst& d = dw.dsts[k];
+      std::uint8_t& b = bound[d.reg];
+      b = static_cast<std::uint8_t>(std::min<int>(b, t0 + d.latency - 1));
+      land[d.reg] = t + d.latency;
+      longest = std::max<int>(longest, d.latency);
+    }
+    if (dw.w.a.en) {
+      longest = std::max<int>(longest, dw.lat_a);  // CMP's CC
+      if (dw.w.a.op == AddOp::Cmp) cc_land = t + dw.lat_a;
+    }
+    return t + longest;
+  }
+};
+
+// The LD/ST of a body on one base register: their displacements' range.
+void Iss::add_mem_check(BodyBank& bb, const Body& body, const DecodedWord& dw) {
+  const std::int8_t d = dw.w.d.disp;
+  const auto it = std::find_if(bb.mem.begin() + body.mem_first, bb.mem.end(),
+                               [&dw](const MemCheck& c) { return c.base == dw.w.d.base; });
+  if (it == bb.mem.end()) {
+    bb.mem.push_back({static_cast<std::uint8_t>(dw.w.d.base), d, d});
+  } else {
+    it->lo = std::min(it->lo, d);
+    it->hi = std::max(it->hi, d);
+  }
+}
+
+// The body from pc: its words, their schedule and the bounds on the writes
+// in flight at its start that keep that schedule. It ends before a word
+// that is neither plain nor ends_body() (after one that is), after
+// kMaxBodyWords words, or before a LD/ST whose base register an earlier
+// word of it writes (so that its data addresses are known, and checked,
+// when it starts).
+std::int32_t Iss::build_body(int bank, std::uint32_t pc) {
+  BodyBank& bb = body_[bank];
+  Body body;
+  body.first = static_cast<std::uint32_t>(bb.words.size());
+  body.mem_first = static_cast<std::uint32_t>(bb.mem.size());
+  body.bound.fill(255);
+  BodySchedule sched;
+  std::uint32_t a_written = 0, ops[3] = {0, 0, 0};
+  std::uint32_t p = pc;
+  while (body.n < static_cast<std::uint32_t>(kMaxBodyWords)) {
+    const DecodedWord& dw = decoded_[bank][p];
+    const bool branch = !dw.plain && ends_body(dw, p);
+    if (!dw.plain && !branch) break;
+    const bool mem = dw.w.d.op != MemOp::None;
+    if (mem && ((a_written >> dw.w.d.base) & 1)) break;
+    const int land = sched.issue(dw, body.bound);
+    if (dw.kind & DecodedWord::kCcBranch) body.cc_at = static_cast<std::uint64_t>(sched.t);
+    ops[0] += dw.w.m.en;
+    ops[1] += dw.w.a.en;
+    ops[2] += dw.w.f.en;
+    bb.words.push_back({static_cast<std::uint16_t>(p), static_cast<std::uint16_t>(sched.t),
+                        static_cast<std::uint16_t>(land), dw.shape, branch, sched.raw, sched.waw, sched.cc,
+                        {ops[0], ops[1], ops[2]}});
+    if (mem) add_mem_check(bb, body, dw);
+    std::uint16_t v;
+    if (int_value(dw, v)) a_written |= 1u << (dw.w.i.d & 15);
+    if (dw.w.s.op == SeqOp::Dbnz) a_written |= 1u << (dw.w.s.r & 15);
+    p = dw.next;
+    ++body.n;
+    if (branch) break;
+  }
+  if (body.n == 0) {
+    bb.at[pc] = kNoBody;
+    return kNoBody;
+  }
+  body.nmem = static_cast<std::uint32_t>(bb.mem.size()) - body.mem_first;
+  const BodyWord* words = bb.words.data() + body.first;
+  body.cycles = words[body.n - 1].t + 1u;
+  while (body.direct < body.n && words[body.direct].land <= body.cycles) ++body.direct;
+  for (int r = 0; r < kNumFRegs; ++r)
+    if (body.bound[r] < kMaxLatency - 1) body.early |= bit(static_cast<unsigned>(r));
+  bb.bodies.push_back(body);
+  const auto index = static_cast<std::int32_t>(bb.bodies.size() - 1);
+  bb.at[pc] = index;
+  return index;
+}
+
+// kTail: the write may land after the body's end (then into the ring).
+template <bool kTail>
+MC1_HOT void Iss::body_write(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags,
+                             std::uint64_t end) {
+  if (kTail && cycle_ + latency > end) {
+    pending_ |= push_f<true>(slot, latency, index, value, flags, pending_);
+    return;
+  }
+  f_[index] = value;
+  flags_ |= flags;
+}
+
+// A word of a body issues: as issue(), with writes that land within the
+// body (all of them unless kTail) made at once. The I slot's A write lands
+// in the next cycle, always within the body. kTail: cycle_ is the word's
+// issue cycle.
+template <int kShape, bool kTail>
+void Iss::body_issue(Iss& iss, const DecodedWord& dw, std::uint64_t end) {
+  constexpr bool m_en = (kShape & 1) != 0, a_en = (kShape & 6) != 0, f_en = (kShape & 8) != 0;
+  constexpr auto d_op = static_cast<MemOp>(kShape >> 4);
+  const MicroWord& w = dw.w;
+  const auto& f = iss.f_;
+  fp24::Result rm{}, ra{}, rf{};
+  if constexpr (m_en) rm = fp24::inl::mul24(f[w.m.a], f[w.m.b]);
+  if constexpr ((kShape & 6) == 2) {
+    ra = fp24::inl::add24(f[w.a.a], f[w.a.b]);
+  } else if constexpr ((kShape & 6) == 4) {
+    ra = fp24::inl::sub24(f[w.a.a], f[w.a.b]);
+  } else if constexpr (a_en) {
+    ra = add_unit(w.a.op, f[w.a.a], f[w.a.b]);
+  }
+  if constexpr (f_en) rf = func_unit(w.f.op, f[w.f.a]);
+  std::uint32_t loaded = 0;
+  if constexpr (d_op != MemOp::None) {
+    const std::uint16_t addr = static_cast<std::uint16_t>(iss.a_[w.d.base] + w.d.disp);
+    if constexpr (d_op == MemOp::Ld) {
+      loaded = iss.data_[iss.dsel_][addr];
+    } else {
+      iss.data_[iss.dsel_][addr] = f[w.d.f];
+    }
+  }
+  std::uint16_t av = 0;
+  const bool a_write = w.i.op != IntOp::None && iss.int_value(dw, av);  // MOVFA reads F
+  std::uint32_t mov = 0;
+  if (dw.kind & DecodedWord::kMovF) mov = w.i.op == IntOp::Movaf ? iss.a_[w.i.s] : (std::uint32_t{w.i.imm} << 8) & kMask24;
+
+  if constexpr (m_en) iss.body_write<kTail>(kSlotM, kMulLatency, w.m.d, rm.value, rm.flags, end);
+  if constexpr (a_en) {
+    if ((kShape & 6) == 6 && w.a.op == AddOp::Cmp) {
+      if (kTail && iss.cycle_ + dw.lat_a > end) {
+        Bucket& b = iss.ring_[(iss.cycle_ + dw.lat_a) % kRing];
+        b.slots |= kCcSlot;
+        b.cc = ra.value;
+        b.flags |= ra.flags;
+        iss.cmp_done_ = iss.cycle_ + dw.lat_a;
+        iss.ring_last_ = std::max(iss.ring_last_, iss.cmp_done_);
+      } else {
+        iss.cc_ = ra.value;  // lands within the body: no CMP in flight after it
+        iss.flags_ |= ra.flags;
+      }
+    } else {
+      iss.body_write<kTail>(kSlotA, dw.lat_a, w.a.d, ra.value, ra.flags, end);
+    }
+  }
+  if constexpr (f_en) {
+    const FSlot slot = w.f.op == FuncOp::Sin || w.f.op == FuncOp::Cos ? kSlotTrig : kSlotRsq;
+    iss.body_write<kTail>(slot, dw.lat_f, w.f.d, rf.value, rf.flags, end);
+  }
+  if constexpr (d_op == MemOp::Ld) iss.f_[w.d.f] = loaded;
+  if (dw.kind & DecodedWord::kMovF) iss.f_[w.i.d] = mov;
+  if (a_write && (w.i.d & 15) != 0) iss.a_[w.i.d & 15] = av;
+}
+
+// Whether the state lets the body start at cycle e: every write in flight
+// lands no later than its bound, no CMP is in flight at its BCC/BNCC, and
+// every data address is in range without a wrap (else cycle by cycle: a
+// fault, or a wrap that lands in range).
+MC1_HOT bool Iss::body_may_start(const BodyBank& bb, const Body& body, std::uint64_t e) const {
+  for (std::uint64_t m = pending_ & body.early; m != 0; m &= m - 1) {
+    const int r = __builtin_ctzll(m);
+    if (land_[r] - e > body.bound[r]) return false;
+  }
+  if (cmp_done_ > e + body.cc_at) return false;
+  const MemCheck* mc = bb.mem.data() + body.mem_first;
+  for (std::uint32_t i = 0; i < body.nmem; ++i) {
+    const int a = a_[mc[i].base];
+    if (a + mc[i].lo < 0 || a + mc[i].hi >= kDataWords) return false;
+  }
+  return true;
+}
+
+// A body's closing conditional branch issues in cycle e + w.t: its reads
+// (A[r], CC) see the state before its own writes.
+MC1_HOT void Iss::body_branch(const BodyWord& w, const DecodedWord& dw, std::uint64_t e, std::uint64_t end) {
+  pc_ = w.pc;
+  const std::uint32_t next = next_pc(dw);
+  if (fetch_missed(dw, next)) fetching_ = kBranchMissCycles;
+  const std::uint32_t r = dw.w.s.r & 15;
+  const auto dec_r = static_cast<std::uint16_t>(a_[r] - 1);
+  cycle_ = e + w.t;
+  (e + w.land <= end ? kBodyDirect : kBodyTail)[w.shape](*this, dw, end);
+  if (dw.w.s.op == SeqOp::Dbnz && r != 0) a_[r] = dec_r;
+  pc_ = next;
+}
+
+// The body at pc, or its longest prefix that fits in avail cycles, when
+// body_may_start: returns the cycles clocked, 0 if none. As many cycles of
+// run() (none of them its last) would leave the state, the ring and the
+// counters.
+MC1_HOT std::uint64_t Iss::run_body(std::uint64_t avail) {
+  const int bank = psel_;
+  BodyBank& bb = body_[bank];
+  std::int32_t index = bb.at[pc_];
+  if (index < 0) {
+    if (index == kNoBody) return 0;
+    index = build_body(bank, pc_);
+    if (index < 0) return 0;
+  }
+  const Body& body = bb.bodies[static_cast<std::size_t>(index)];
+  const std::uint64_t e = cycle_;
+  if (!body_may_start(bb, body, e)) return 0;
+  const BodyWord* words = bb.words.data() + body.first;
+  std::uint32_t n = body.n;
+  std::uint64_t cycles = body.cycles;
+  std::uint32_t direct = body.direct;  // the words before it land every write within the body
+  if (__builtin_expect(cycles > avail, 0)) {  // the call ends first: a prefix
+    while (n > 0 && words[n - 1].t + 1u > avail) --n;
+    if (n == 0) return 0;
+    cycles = words[n - 1].t + 1u;
+    direct = 0;
+    while (direct < n && words[direct].land <= cycles) ++direct;
+  }
+  const std::uint64_t end = e + cycles;
+  // The writes in flight that land within the body enter the state first
+  // (no word of it reads or overwrites them earlier: the bounds).
+  if (ring_last_ > e) {
+    for (std::uint64_t c = e + 1; c <= std::min(ring_last_, end); ++c) {
+      apply_bucket<false, true>(ring_[c % kRing]);
+    }
+  }
+  const auto& dec = decoded_[bank];
+  const BodyWord& last = words[n - 1];
+  const std::uint32_t m = n - last.branch;
+  std::uint32_t i = 0;
+  for (; i < std::min(direct, m); ++i) kBodyDirect[words[i].shape](*this, dec[words[i].pc], end);
+  for (; i < m; ++i) {
+    const BodyWord& w = words[i];
+    if (e + w.land <= end) {
+      kBodyDirect[w.shape](*this, dec[w.pc], end);
+    } else {
+      cycle_ = e + w.t;
+      kBodyTail[w.shape](*this, dec[w.pc], end);
+    }
+  }
+  if (last.branch) {
+    body_branch(last, dec[last.pc], e, end);
+  } else {
+    pc_ = dec[last.pc].next;
+  }
+  cycle_ = end;
+  // A branch that missed the fetch: its cycles with no word to issue
+  // (Stall::Fetch; each applies its bucket, as any cycle of run).
+  while (fetching_ > 0 && cycles < avail) {
+    --fetching_;
+    ++counters_.stalls[static_cast<int>(Stall::Fetch)];
+    ++cycles;
+    ++cycle_;
+    apply_next<false, true>();
+  }
+  counters_.issued += n;
+  for (int u = 0; u < 3; ++u) counters_.unit_ops[u] += last.ops[u];
+  counters_.stalls[static_cast<int>(Stall::Raw)] += last.raw;
+  counters_.stalls[static_cast<int>(Stall::Waw)] += last.waw;
+  counters_.stalls[static_cast<int>(Stall::Cc)] += last.cc;
+  return cycles;
+}
+
+template <bool kUntilDataTaken>
+std::uint64_t Iss::run_fast(std::uint64_t max_cycles) {
+  if (max_cycles == 0 || state_ != RunState::Running) return 0;
+  int cc = kNoCommit, flags = kNoCommit;
+  take_due<false>(nullptr, cc, flags);  // what the last clock applied (nothing records it now)
+  writes_early();
+  for (BodyBank& bb : body_) {
+    if (!bb.stale) continue;
+    bb.at.assign(kProgramWords, kBodyUnknown);
+    bb.bodies.clear();
+    bb.words.clear();
+    bb.mem.clear();
+    bb.stale = false;
+  }
+  for (std::uint64_t n = 1;; ++n) {
+    if (fetching_ == 0 && n < max_cycles) {
+      if (const std::uint64_t k = run_body(max_cycles - n)) {
+        n += k - 1;
+        continue;
+      }
+      const DecodedWord& dw = decoded_[psel_][pc_];
+      if (dw.plain && !(dw.hazard & pending_) && kPlainCycle[dw.shape](*this, dw)) continue;
+    }
+    const Stall s = execute<false>(nullptr);
+    ++cycle_;
+    if (n == max_cycles || state_ != RunState::Running || (kUntilDataTaken && !data_ready_)) {
+      apply_next<true, true>();  // as step() leaves it: a step that follows records these writes
+      writes_late();
+      return n;
+    }
+    apply_next<false, true>();
+    if (s == Stall::Bank && writes_landed()) {
+      // A word waiting for a bank the MPU has not handed over waits every
+      // cycle until the call returns (the MPU acts between calls, and `bank`
+      // comes first in the stall order); with no write left in flight each of
+      // those cycles only counts a bank stall: clock them all at once.
+      const std::uint64_t k = max_cycles - n;
+      counters_.stalls[static_cast<int>(Stall::Bank)] += k;
+      cycle_ += k;
+      return max_cycles;
+    }
+  }
+}
+
+template std::uint64_t Iss::run_fast<false>(std::uint64_t);
+template std::uint64_t Iss::run_fast<true>(std::uint64_t);
+
+}  // namespace mc1::apu
