@@ -125,18 +125,18 @@ void HdlcChannel::from_nc(int index, tlm::tlm_generic_payload& p, sc_core::sc_ti
   p.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
-// Nothing open: sleep until the next send or, while the links are
-// supervised, the networks' next timer (a poll, T1 of a poll).
-void HdlcChannel::idle_wait() {
+// The grid point the networks next have to run to: the one after their
+// earliest event (not before `now`: events left while nothing was open and
+// the links unsupervised wait for the next send), while a message is open
+// or the links are supervised (a poll, T1 of a poll); none: only a send
+// wakes the pump.
+std::optional<Picos> HdlcChannel::next_grid_point(Picos now) {
+  if (drop_settled() && !supervising_) return std::nullopt;
   std::optional<Picos> next;
-  if (supervising_)
-    for (const auto& net : nets_)
-      if (const std::optional<Picos> t = net->next_event(); t && (!next || *t < *next)) next = t;
-  const Picos now = to_picos(sc_core::sc_time_stamp());
-  if (next && *next > now)
-    sc_core::wait(to_sc_time(*next - now), sent_);
-  else
-    sc_core::wait(sent_);
+  for (const auto& net : nets_)
+    if (const std::optional<Picos> t = net->next_event(); t && (!next || *t < *next)) next = t;
+  if (!next) return std::nullopt;
+  return std::max(grid_after(*next), now % step_ == 0 ? now : grid_after(now));
 }
 
 struct HdlcChannel::Due {
@@ -157,13 +157,14 @@ bool HdlcChannel::drop_settled() {
   return idle;
 }
 
-// Every port's deliveries and link-downs up to now, in the one order that
-// does not depend on the ports: time, receiver, sender, then message id.
-void HdlcChannel::take_due(std::vector<Due>& due) {
-  const Picos now = to_picos(sc_core::sc_time_stamp());
+// Every port's deliveries and link-downs before grid point `g` (the
+// networks run up to g - 1: a send at g, handed in after this, is still
+// ahead of them), in the one order that does not depend on the ports:
+// time, receiver, sender, then message id.
+void HdlcChannel::take_due(Picos g, std::vector<Due>& due) {
   due.clear();
   for (unsigned port = 0; port < ports(); ++port) {
-    nets_[port]->run_until(now);
+    nets_[port]->run_until(g - 1);
     for (hdlc::Delivery& d : nets_[port]->take_deliveries()) {
       const unsigned to = d.to_station == 0 ? 0 : first_nc(port) + d.to_station - 1;
       const unsigned from = d.from_station == 0 ? 0 : first_nc(port) + d.from_station - 1;
@@ -210,15 +211,29 @@ void HdlcChannel::deliver(Due& x) {
     SC_REPORT_ERROR(name(), ("a station refused a message: " + q.get_response_string()).c_str());
 }
 
+// The first grid point (a multiple of the step) after t.
+Picos HdlcChannel::grid_after(Picos t) const { return (t / step_ + 1) * step_; }
+
+// The networks advance, and deliver, at the multiples of the step alone:
+// a delivery at the first one after its closing flag, whenever the senders
+// synchronised. A send reaches the networks when it is made (the pump
+// wakes for it), before they run past its own time: they have run up to
+// the grid point before the sender's kernel time, less 1 ps. The pump
+// wakes only at the grid points after the networks' events (where
+// something can be delivered), the same deliveries as at every grid point.
 void HdlcChannel::pump() {
   std::vector<Due> due;
   for (;;) {
-    if (drop_settled())
-      idle_wait();
-    else
-      sc_core::wait(to_sc_time(step_));
     submit();
-    take_due(due);
+    const Picos now = to_picos(sc_core::sc_time_stamp());
+    const std::optional<Picos> g = next_grid_point(now);
+    if (!g)
+      sc_core::wait(sent_);
+    else if (*g > now)
+      sc_core::wait(to_sc_time(*g - now), sent_);
+    if (!g || to_picos(sc_core::sc_time_stamp()) != *g) continue;  // a send came first
+    submit();
+    take_due(*g, due);
     for (Due& x : due) deliver(x);
   }
 }

@@ -12,8 +12,11 @@
 // message at the caller's local time (sc_time_stamp() + delay, temporal
 // decoupling allowed) and returns at once, as a processor hands a buffer to
 // its HDLC controller. A pump process advances the networks with SystemC time
-// in steps of tlm_quantum_ns while any message is open and delivers each
-// message through hdlc2nc / hdlc2rc at most one step after its closing flag.
+// on a fixed grid, the multiples of tlm_quantum_ns (waking only at those
+// after the networks' events), and delivers each message through hdlc2nc /
+// hdlc2rc at the first grid point after its closing flag: when a message
+// arrives depends on the time it was sent at alone, never on where its
+// sender synchronised with the kernel.
 //
 // Order independence: sends reach the networks sorted by (time, sending
 // station, call order) and deliveries of one step leave sorted by (time,
@@ -104,11 +107,12 @@ class HdlcChannel : public sc_core::sc_module {
   };
   void queue(Picos at, unsigned from, sc_dt::uint64 address, const tlm::tlm_generic_payload& p,
              Control control = Control::None);
-  void idle_wait();
+  std::optional<Picos> next_grid_point(Picos now);
   void submit();  // pending sends into the networks, in canonical order
   struct Due;     // a delivery or link-down the networks produced
   bool drop_settled();  // forgets the acknowledged messages; true: nothing open or pending
-  void take_due(std::vector<Due>& due);
+  void take_due(Picos g, std::vector<Due>& due);
+  Picos grid_after(Picos t) const;
   void deliver(Due& x);
   void pump();
   void tracer();

@@ -151,7 +151,7 @@ void Network::silence(unsigned nc, Picos from) {
 }
 
 void Network::supervise(bool on, Picos when) {
-  at(when, [this, on] {
+  at_external(when, 0, [this, on] {
     supervising_ = on;
     if (!on || t_.hdlc_poll_interval_ns == 0) return;
     // Idle from now on: the first poll goes out one interval later.
@@ -175,7 +175,11 @@ std::vector<LinkDown> Network::take_link_downs() {
 // ---------------------------------------------------------------- events
 
 void Network::at(Picos t, std::function<void()> fn) {
-  events_.push(Event{std::max(t, now_), ev_seq_++, std::move(fn)});
+  events_.push(Event{std::max(t, now_), Event::kInternal, ev_seq_++, std::move(fn)});
+}
+
+void Network::at_external(Picos t, unsigned from, std::function<void()> fn) {
+  events_.push(Event{std::max(t, now_), from, ev_seq_++, std::move(fn)});
 }
 
 void Network::step() {
@@ -243,7 +247,7 @@ MessageId Network::send(Picos when, unsigned from, std::uint8_t address, Bytes d
   const std::size_t chunk = t_.hdlc_max_info_bytes - 1;
   st.frames = data.empty() ? 1 : (data.size() + chunk - 1) / chunk;
   messages_.push_back(st);
-  at(when, [this, s, id, data = std::move(data), chunk] {
+  at_external(when, from, [this, s, id, data = std::move(data), chunk] {
     messages_[id].submitted = now_;
     // A link that is down takes nothing (for a broadcast: when every NC's is).
     if (std::all_of(s->gone.begin(), s->gone.end(), [](bool g) { return g; })) {

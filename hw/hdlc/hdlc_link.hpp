@@ -206,6 +206,12 @@ class Network {
   struct Station;
 
   void at(Picos t, std::function<void()> fn);
+  // An event from outside (a send, a supervision command of station
+  // `from`): at one instant before the network's own events, by station,
+  // then in call order, so that the outcome does not depend on when the
+  // caller handed it in (before or after the network's own events for that
+  // instant were scheduled).
+  void at_external(Picos t, unsigned from, std::function<void()> fn);
   void step();
   void try_transmit(Line& l);
   bool transmit_ack(Line& l, Picos& earliest);
@@ -238,9 +244,15 @@ class Network {
   std::uint64_t ev_seq_ = 0;
   struct Event {
     Picos t;
+    std::uint64_t rank;  // external: the sending station; internal: kInternal (after every station)
     std::uint64_t seq;
     std::function<void()> fn;
-    bool operator>(const Event& o) const { return t != o.t ? t > o.t : seq > o.seq; }
+    static constexpr std::uint64_t kInternal = ~std::uint64_t{0};
+    bool operator>(const Event& o) const {
+      if (t != o.t) return t > o.t;
+      if (rank != o.rank) return rank > o.rank;
+      return seq > o.seq;
+    }
   };
   std::priority_queue<Event, std::vector<Event>, std::greater<Event>> events_;
 

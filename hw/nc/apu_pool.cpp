@@ -50,14 +50,13 @@ void acquire(std::unique_lock<std::mutex>& lock) {
 
 bool ApuJob::in_job() { return t_in_job; }
 
-bool ApuJob::lasts(std::uint64_t cycles) {
-  bool known = false;  // decided under the pool's lock: a worker may publish reached_ after help()
+std::uint64_t ApuJob::known(std::uint64_t cycles) {
+  std::uint64_t n = 0;  // decided under the pool's lock: a worker may publish reached_ after help()
   pool_.help(*this, [&] {
-    if (reached_ >= cycles) return known = true;
-    if (done_) known = !error_ && cycles_ >= cycles;
-    return done_;
+    n = done_ ? 0 : reached_;
+    return done_ || reached_ >= cycles;
   });
-  return known;
+  return n;
 }
 
 std::uint64_t ApuJob::result() {

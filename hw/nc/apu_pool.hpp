@@ -45,9 +45,10 @@ class ApuJob {
   void reached(std::uint64_t cycles) { stretch_reached_ = cycles; }
 
   // Simulation side. These clock stretches on the calling thread while they
-  // wait. Whether the run lasts at least `cycles` cycles (false also when
-  // the work threw).
-  bool lasts(std::uint64_t cycles);
+  // wait. Once the run is known to last at least `cycles` cycles or is
+  // over: how many cycles it is known to last while it goes on (>= cycles),
+  // or 0 if it is over (its length, or its exception, is then result()).
+  std::uint64_t known(std::uint64_t cycles);
   // The run's cycle count, or its exception, once it is over.
   std::uint64_t result();
   // Whether the run is over, at once (clocks nothing, waits for nothing).

@@ -103,19 +103,25 @@ NodeComputer::~NodeComputer() {
 }
 
 // The APU run the MPU waits for, from apu_time_ on, clocked by the pool's
-// threads. Meanwhile the NC waits in simulated time, kPoolStepCycles at a
-// step, each step only once the run is known to last past it (a step stays
-// inside the run, the NC does nothing visible in it) and never up to the
-// kill time: the other NCs run their firmware and hand their APU runs to
-// the pool. The steps depend on the run's length alone, so the simulation
-// is the same for any number of threads; the caller then advances to the
-// run's end as without a pool.
+// threads. Meanwhile the NC waits in simulated time, each step only as far
+// as the run is known to last (a step stays inside the run, the NC does
+// nothing visible in it) and never up to the kill time: the other NCs run
+// their firmware and hand their APU runs to the pool. Nothing simulated
+// depends on the steps (nor on any synchronisation of the NC: see
+// advance()), so the simulation is the same for any number of threads; the
+// caller then advances to the run's end as without a pool.
 std::uint64_t NodeComputer::run_on_pool(ApuJob::Stretch stretch) {
   job_ = (pool_ ? *pool_ : inline_).post(std::move(stretch));
+  if (parallel()) qk_.sync();  // the other NCs first, while a worker takes the run
   const Picos start = apu_time_;
-  for (std::uint64_t step = kPoolStepCycles;; step += kPoolStepCycles) {
-    const Picos target = start + step * cycle_ps_;
-    if (target >= kill_at_ || !job_->lasts(step)) break;
+  // One thread: the run is over already (post() clocked it), nothing to
+  // overlap. Else the NC steps as far as the run is known to last, at least
+  // kPoolStepCycles at a time.
+  for (std::uint64_t step = kPoolStepCycles; parallel();) {
+    const std::uint64_t known = job_->known(step);
+    const Picos target = start + known * cycle_ps_;
+    if (known == 0 || target >= kill_at_) break;
+    step = known + kPoolStepCycles;
     const Picos t = now();
     if (target <= t) continue;
     qk_.inc(to_sc_time(target - t));
@@ -190,6 +196,10 @@ void NodeComputer::touch_mpu_bank() {
 // now, where the job would have made it (settling_: the driver's access
 // hook, which run() calls, must not clock the APU past it first).
 void NodeComputer::join_job() {
+  // A catch-up job still running on a worker: the kernel runs the other NCs
+  // first (they hand their APUs to the pool meanwhile), so that the job is
+  // likely over when this NC goes on, instead of its waiting here.
+  if (in_thread_ && !job_->over()) qk_.sync();
   const std::shared_ptr<ApuJob> job = std::move(job_);
   job->result();
   if (hand_over_due_.load(std::memory_order_acquire)) {
@@ -260,38 +270,37 @@ void NodeComputer::advance(Picos ps, Picos t) {
   apu_due_ = detail::sc_resolution_is_ps() ? t + ps : now();  // now(), without asking the kernel again
   apu_due_set_ = true;
   chase_due_.store(apu_due_, std::memory_order_release);
-  if (!qk_.need_sync()) return;
-  // At a synchronisation, what the APU owes goes to the pool and the NC
-  // syncs: the kernel runs the others (their APUs on the pool too), and the
-  // firmware goes on until it next looks at the APU. The job chases the
-  // NC's time as it moves on (chase_due_), and while it runs, the NC syncs
-  // and goes on. A catch-up shorter than kChaseCycles waits for the next
-  // sync; with no worker (one thread) nothing is posted: the catch-up is
-  // clocked where the APU is next looked at, in one piece.
-  if (!pool_ || pool_->threads() <= 1 || (job_ && !job_->over())) {
-    qk_.sync();
+  // No simulated time depends on where the NC synchronises (the HDLC
+  // channel delivers on its own time grid, the NC syncs before it looks at
+  // its mailbox, the image bus waits out the request's time): it syncs
+  // only so that, while its APU runs, the kernel runs the other NCs as a
+  // worker clocks this one's catch-up. What the APU owes goes to the pool,
+  // and the NC syncs, once it owes kChaseCycles; the job chases the NC's
+  // time as it moves on (chase_due_), and while it runs the NC goes on
+  // (and syncs again before it waits for the job: join_job).
+  // With no worker (one thread) nothing is posted and the NC does not
+  // sync: the catch-up is clocked where the APU is next looked at, in one
+  // piece.
+  if (!parallel() || (job_ && !job_->over())) return;
+  if (engine_->state() != apu::RunState::Running || apu_due_ <= apu_time_ ||
+      (apu_due_ - apu_time_) / cycle_ps_ < kChaseCycles)
     return;
-  }
   if (job_) join_job();
-  const Picos until = apu_due_;
-  if (engine_->state() == apu::RunState::Running && until > apu_time_ &&
-      (until - apu_time_) / cycle_ps_ >= kChaseCycles) {
-    job_ = pool_->post([this](ApuJob&) -> std::optional<std::uint64_t> {
-      // chase_due_ first: a due past hand_over_at_ comes with hand_over_due_ set.
-      const Picos due = chase_due_.load(std::memory_order_acquire);
-      const bool hand_over = hand_over_due_.load(std::memory_order_acquire);
-      const Picos until = hand_over ? std::min(due, hand_over_at_) : due;
-      catch_up_to(std::min(until, apu_time_ + kPoolStepCycles * cycle_ps_));
-      if (hand_over && apu_time_ + cycle_ps_ > hand_over_at_) {  // clocked up to the hand-over's time
-        engine_->hand_over_data();
-        hand_over_due_.store(false, std::memory_order_relaxed);
-      } else if (hand_over) {
-        return std::nullopt;
-      }
-      if (engine_->state() != apu::RunState::Running || apu_time_ + cycle_ps_ > due) return 0;
+  job_ = pool_->post([this](ApuJob&) -> std::optional<std::uint64_t> {
+    // chase_due_ first: a due past hand_over_at_ comes with hand_over_due_ set.
+    const Picos due = chase_due_.load(std::memory_order_acquire);
+    const bool hand_over = hand_over_due_.load(std::memory_order_acquire);
+    const Picos until = hand_over ? std::min(due, hand_over_at_) : due;
+    catch_up_to(std::min(until, apu_time_ + kPoolStepCycles * cycle_ps_));
+    if (hand_over && apu_time_ + cycle_ps_ > hand_over_at_) {  // clocked up to the hand-over's time
+      engine_->hand_over_data();
+      hand_over_due_.store(false, std::memory_order_relaxed);
+    } else if (hand_over) {
       return std::nullopt;
-    });
-  }
+    }
+    if (engine_->state() != apu::RunState::Running || apu_time_ + cycle_ps_ > due) return 0;
+    return std::nullopt;
+  });
   qk_.sync();
 }
 
@@ -522,6 +531,7 @@ void NodeComputer::close(Picos frame_end) {
 }
 
 void NodeComputer::run() {
+  const FlagGuard in_thread(in_thread_);
   try {
     firmware_(*this);
     finished();

@@ -3,7 +3,10 @@
 // the image bus.
 //
 // Loosely timed with temporal decoupling (tlm_quantumkeeper): MPU work is
-// annotated from the timing table; the APU engine (ISS or verilated RTL,
+// annotated from the timing table, and the NC synchronises with the kernel
+// only where it waits for something (a message, the image bus, its APU on
+// the pool), never merely at the quantum: nothing simulated depends on
+// where it synchronises (the HDLC channel delivers on its own time grid); the APU engine (ISS or verilated RTL,
 // chosen at run time) is clocked in bulk: k cycles of APU work annotate
 // k x apu_cycle_ps, with no SystemC event per cycle. The MPU and the APU
 // share one timeline: whenever the MPU's time advances (work, waiting for
@@ -104,16 +107,19 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   // The host threads that clock the APU while the MPU waits for it
   // (apu_wait_swap, apu_wait_halt); none (the default): this thread.
   void use_pool(ApuPool* pool) { pool_ = pool; }
-  // How far an NC waiting for its APU on the pool moves in simulated time at
-  // a step (NodeComputer::run_on_pool): a trade between the overlap of the
-  // NCs' runs and the number of synchronisations. Not a hardware figure, and
-  // no simulated time depends on it.
+  // The least an NC waiting for its APU on the pool moves in simulated time
+  // at a step (NodeComputer::run_on_pool; it moves as far as the run is
+  // known to last), and the length of a stretch of APU clocking on the
+  // pool: a trade between the overlap of the NCs' runs and the number of
+  // synchronisations. Not a hardware figure, and no simulated time depends
+  // on it.
   static constexpr std::uint64_t kPoolStepCycles = 256;
   // The least catch-up (APU cycles owed) an NC hands to the pool's workers
-  // at a synchronisation while its MPU works on: small, so that the workers
-  // keep every NC's APU near its MPU's time and the simulation's thread
-  // rarely has to clock it itself (the MPU's next hand-over waits for it).
-  // No simulated time depends on it.
+  // while its MPU works on (it then synchronises, so that the kernel runs
+  // the other NCs meanwhile): small, so that the workers keep every NC's
+  // APU near its MPU's time and the simulation's thread rarely has to clock
+  // it itself (the MPU's next hand-over waits for it). No simulated time
+  // depends on it.
   static constexpr std::uint64_t kChaseCycles = 16;
 
   // After the simulation: the last span runs to `frame_end` (>= finished_at).
@@ -159,6 +165,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   void die();
   [[noreturn]] void watchdog_expired(const std::string& what);
   std::uint64_t run_on_pool(ApuJob::Stretch stretch);
+  bool parallel() const { return pool_ && pool_->threads() > 1; }  // a worker clocks APUs
 
   TimingParams t_;
   unsigned id_;
@@ -196,6 +203,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   std::atomic<bool> hand_over_due_{false};
   Picos hand_over_at_ = 0;  // written before hand_over_due_ is set
   bool settling_ = false;
+  bool in_thread_ = false;  // in run(): the NC's thread may wait
 
   tlm::tlm_generic_payload pixels_;
   std::vector<std::uint8_t> pixel_bytes_;
