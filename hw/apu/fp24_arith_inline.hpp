@@ -49,31 +49,39 @@ inline Result add_normal_generic(Bits a, Bits b) {
 // cancellation, overflow, tininess): which operand is larger, whether the
 // signs differ and whether the rounding goes up are random to a branch
 // predictor, and the ISS's hot loop paid a misprediction for each.
+// No sticky bit: the alignment distance is clamped to kMaxShift, so the
+// shift never loses a bit. That gives the same result as the true distance:
+// for d >= 19 the smaller operand is below 2^38 (kPos = 40) while the sum's
+// round bit is at 2^39 or higher (msb 55..57) and big has no bits below 2^40,
+// so any nonzero small below 2^38 rounds the same way (down for a sum, up
+// for a difference) and is inexact (tests/fp24_fast_path_test.cpp).
 // Rounding as in mul24: the 17-bit significand rounded by an add, the
-// exponent field plus it is the magnitude's encoding, carry included.
+// exponent field plus it is the magnitude's encoding, carry included; one
+// unsigned compare catches both overflow and tininess.
 [[gnu::always_inline]] inline Result add_normal(Bits a, Bits b) {
   constexpr int kPos = 40;
-  constexpr int kDrop = 46;  // q's bits below the 17-bit significand (msb at 62)
+  constexpr int kMaxShift = 24;  // any value in 19..kPos
+  constexpr int kDrop = 46;      // q's bits below the 17-bit significand (msb at 62)
   const Bits swap = 0u - static_cast<Bits>((b & bits::kMagMask) > (a & bits::kMagMask));
   const Bits x = a ^ ((a ^ b) & swap), y = b ^ ((a ^ b) & swap);  // |x| >= |y|
   const int ex = bits::exp_of(x);
-  const int d = std::min(ex - bits::exp_of(y), 63);
+  const int d = std::min(ex - bits::exp_of(y), kMaxShift);
   const std::uint64_t big = std::uint64_t{bits::sig_of(x)} << kPos;
-  const std::uint64_t small_full = std::uint64_t{bits::sig_of(y)} << kPos;
-  std::uint64_t small = small_full >> d;
-  small |= (small << d) != small_full;  // sticky
-  const std::uint64_t differ = 0 - static_cast<std::uint64_t>(((x ^ y) >> 23) & 1);
+  const std::uint64_t small = (std::uint64_t{bits::sig_of(y)} << kPos) >> d;  // exact
+  const std::uint64_t differ = 0 - static_cast<std::uint64_t>(((a ^ b) >> 23) & 1);
   const std::uint64_t m = big + ((small ^ differ) - differ);  // big - small if the signs differ
   if (__builtin_expect(m == 0, 0)) return {0, 0};           // x + (-x) = +0
-  const int lz = __builtin_clzll(m);                         // 5..63; 7 when m's msb is big's
+  const int lz = __builtin_clzll(m);                         // 6..63; 7 when m's msb is big's
   const std::uint64_t q = m << (lz - 1);
   const auto sig = static_cast<std::int32_t>(
       (q + ((std::uint64_t{1} << (kDrop - 1)) - 1) + ((q >> kDrop) & 1)) >> kDrop);
   // Biased exponent of m: ex + 7 - lz; the field holds e - 1 plus sig's 2^16.
   const std::int32_t mag = (ex + 6 - lz) * (1 << kFracBits) + sig;
   const Bits s = x & kSignBit;
-  if (__builtin_expect(mag >= static_cast<std::int32_t>(kPosInf), 0)) return {s | kPosInf, static_cast<std::uint8_t>(kOF | kNX)};
-  if (__builtin_expect(mag < (1 << kFracBits), 0)) return {s, static_cast<std::uint8_t>(kUF | kNX)};
+  if (__builtin_expect(static_cast<std::uint32_t>(mag - (1 << kFracBits)) >= kPosInf - (1u << kFracBits), 0)) {
+    if (mag >= static_cast<std::int32_t>(kPosInf)) return {s | kPosInf, static_cast<std::uint8_t>(kOF | kNX)};
+    return {s, static_cast<std::uint8_t>(kUF | kNX)};
+  }
   const bool inexact = (q & ((std::uint64_t{1} << kDrop) - 1)) != 0;
   return {s | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
 }
@@ -132,9 +140,10 @@ namespace inl {
   const std::int32_t mag = static_cast<std::int32_t>((a & kExpField) + (b & kExpField)) + (hi << kFracBits) + sig -
                            ((kBias + 1) << kFracBits);
   const Bits s = (a ^ b) & kSignBit;
-  if (__builtin_expect(mag >= static_cast<std::int32_t>(kPosInf), 0))
-    return {s | kPosInf, static_cast<std::uint8_t>(kOF | kNX)};
-  if (__builtin_expect(mag < (1 << kFracBits), 0)) return {s, static_cast<std::uint8_t>(kUF | kNX)};
+  if (__builtin_expect(static_cast<std::uint32_t>(mag - (1 << kFracBits)) >= kPosInf - (1u << kFracBits), 0)) {
+    if (mag >= static_cast<std::int32_t>(kPosInf)) return {s | kPosInf, static_cast<std::uint8_t>(kOF | kNX)};
+    return {s, static_cast<std::uint8_t>(kUF | kNX)};
+  }
   const bool inexact = (q & ((std::uint64_t{1} << kDrop) - 1)) != 0;
   return {s | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
 }
@@ -152,17 +161,17 @@ namespace inl {
 [[gnu::always_inline]] inline Result sub(Bits a, Bits b) { return add(a, b ^ kSignBit); }
 [[gnu::always_inline]] inline Result sub24(Bits a, Bits b) { return add24(a, b ^ kSignBit); }
 
+// With no branch but the NaN test: magnitudes below 2^16 (e = 0) read as
+// 0 (DAZ), a NaN is a magnitude above infinity's; signed magnitudes order
+// like the values and the condition is 2 - LT + 2 GT.
 [[gnu::always_inline]] inline Result cmp(Bits a, Bits b) {
-  a = bits::flush(a);
-  b = bits::flush(b);
-  if (bits::is_nan(a) || bits::is_nan(b)) return {kUN, kNV};
-  // Signed magnitudes order like the values; zeros of either sign map to 0.
-  const auto key = [](Bits x) {
-    const auto mag = static_cast<std::int32_t>(x & bits::kMagMask);
-    return bits::sign_of(x) ? -mag : mag;
-  };
-  const std::int32_t ka = key(a), kb = key(b);
-  return {static_cast<Bits>(ka < kb ? kLT : (ka == kb ? kEQ : kGT)), 0};
+  std::int32_t ma = static_cast<std::int32_t>(a & bits::kMagMask), mb = static_cast<std::int32_t>(b & bits::kMagMask);
+  if (__builtin_expect(std::max(ma, mb) > static_cast<std::int32_t>(kPosInf), 0)) return {kUN, kNV};
+  ma = ma < (1 << kFracBits) ? 0 : ma;
+  mb = mb < (1 << kFracBits) ? 0 : mb;
+  const std::int32_t sa = -static_cast<std::int32_t>((a >> 23) & 1), sb = -static_cast<std::int32_t>((b >> 23) & 1);
+  const std::int32_t ka = (ma ^ sa) - sa, kb = (mb ^ sb) - sb;
+  return {static_cast<Bits>(2 - (ka < kb) + 2 * (ka > kb)), 0};
 }
 
 }  // namespace inl
