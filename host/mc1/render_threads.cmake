@@ -35,6 +35,8 @@ set(cases
     # 8x8 blocks: more data hand-overs, which a catch-up job may make (hw/nc)
     "iss-b8,render,${SCENE},--size,64x48,--nodes,8,--block,8,--engine,iss"
     "rtl,render,${SCENE},--size,48x32,--nodes,8,--engine,rtl"
+    # the RTL engine's data hand-overs made by catch-up jobs too (untraced model)
+    "rtl-b8,render,${SCENE},--size,32x24,--nodes,4,--block,8,--engine,rtl"
     "diag,diag,--size,64x64,--nodes,16,--block,8")
 foreach(c ${cases})
   string(REPLACE "," ";" parts "${c}")

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 
 #include "Vapu_core.h"
@@ -48,6 +49,11 @@ class RtlEngine::ModelOf final : public Model {
   void write_data(std::uint16_t addr, std::uint32_t value) override;
   std::uint32_t read_data(std::uint16_t addr) const override;
   void write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) override;
+  void read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const override;
+  // The untraced model: the MPU's data bank is an array the clocking thread
+  // does not write (the APU's port never selects it, the MPU's port is tied
+  // off), and its calls set nothing the clock reads (note_banks()).
+  bool mpu_bank_while_running() const override { return !kTraced; }
   void hand_over_program() override;
   void hand_over_data() override;
   bool program_ready() const override { return top_->apu2mpu_program_ready; }
@@ -75,6 +81,8 @@ class RtlEngine::ModelOf final : public Model {
   void settle();       // re-evaluate after an MPU-side input change
   void dump(std::uint64_t ps);  // at simulated time ps, if in the window (times strictly increase)
   void dump_requests();         // the MPU's requests, before the edge that takes them
+  void note_banks();            // mpu_dbank_ after an eval()
+  int mpu_dbank() const { return mpu_dbank_.load(std::memory_order_relaxed); }
   std::uint64_t time_of(std::uint64_t cycle) const { return time_.time_of(cycle); }
 
   const ApuEngine& time_;
@@ -90,8 +98,17 @@ class RtlEngine::ModelOf final : public Model {
   bool dumped_ = false;        // a dump was written; last_dump_ is its time
   std::uint64_t last_dump_ = 0;
   // An MPU call changed an input or a bank word since the last eval(): the
-  // next edge is a full eval() (clock()).
+  // next edge is a full eval() (clock()). Not set by the untraced model's
+  // data-bank calls: nothing in front of its flip-flops reads the MPU's
+  // bank (apu_banks.sv reads a bank at the edge, and the MPU's port is
+  // tied off), so an edge after them needs no input logic recomputed.
   bool changed_ = true;
+  // The MPU's data bank (apu2mpu_dsel ^ 1), kept by the thread that clocks
+  // the model: the MPU's calls on its bank may run on another thread
+  // meanwhile (mpu_bank_while_running), and read this, not the model's
+  // port. It changes only with a swap, which no cycle makes while no data
+  // hand-over is pending, and that is when those calls overlap a clock.
+  std::atomic<std::uint8_t> mpu_dbank_{1};
 };
 
 namespace {
@@ -124,6 +141,7 @@ RtlEngine::ModelOf<Top, kTraced>::ModelOf(const ApuEngine& time, const char* fst
   t.clk = 0;
   t.rst_n = 1;
   t.eval();
+  note_banks();
 
   if constexpr (kTraced) {
     if (fst_path) {
@@ -215,21 +233,33 @@ void RtlEngine::ModelOf<Top, kTraced>::write_program(std::uint16_t addr, const E
 
 template <class Top, bool kTraced>
 void RtlEngine::ModelOf<Top, kTraced>::write_data(std::uint16_t addr, std::uint32_t value) {
-  backdoor_.write_data(top_->apu2mpu_dsel ^ 1, addr, value);
-  changed_ = true;
+  backdoor_.write_data(mpu_dbank(), addr, value);
+  if constexpr (kTraced) changed_ = true;
 }
 
 template <class Top, bool kTraced>
 void RtlEngine::ModelOf<Top, kTraced>::write_data_block(std::uint16_t addr, const std::uint32_t* values,
                                                         std::size_t n) {
-  const int bank = top_->apu2mpu_dsel ^ 1;
+  const int bank = mpu_dbank();
   for (std::size_t i = 0; i < n; ++i) backdoor_.write_data(bank, static_cast<std::uint16_t>(addr + i), values[i]);
-  changed_ = true;
+  if constexpr (kTraced) changed_ = true;
 }
 
 template <class Top, bool kTraced>
 std::uint32_t RtlEngine::ModelOf<Top, kTraced>::read_data(std::uint16_t addr) const {
-  return backdoor_.read_data(top_->apu2mpu_dsel ^ 1, addr);
+  return backdoor_.read_data(mpu_dbank(), addr);
+}
+
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const {
+  const int bank = mpu_dbank();
+  for (std::size_t i = 0; i < n; ++i) out[i] = backdoor_.read_data(bank, static_cast<std::uint16_t>(addr + i));
+}
+
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::note_banks() {
+  const std::uint8_t bank = top_->apu2mpu_dsel ^ 1;
+  if (mpu_dbank_.load(std::memory_order_relaxed) != bank) mpu_dbank_.store(bank, std::memory_order_relaxed);
 }
 
 template <class Top, bool kTraced>
@@ -259,6 +289,7 @@ void RtlEngine::ModelOf<Top, kTraced>::start(std::uint16_t pc) {
 template <class Top, bool kTraced>
 void RtlEngine::ModelOf<Top, kTraced>::settle() {
   top_->eval();
+  note_banks();
   changed_ = true;  // the inputs: the next rising edge recomputes their logic
   dump_pending_ = fst_ != nullptr;
 }
@@ -297,6 +328,7 @@ void RtlEngine::ModelOf<Top, kTraced>::clock() {
     backdoor_.clock_low_unchanged();
   }
   ++cycle_;
+  note_banks();
   if (traced) dump(time_of(cycle_));
 }
 
@@ -403,6 +435,10 @@ std::uint32_t RtlEngine::read_data(std::uint16_t addr) const { return model_->re
 void RtlEngine::write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) {
   model_->write_data_block(addr, values, n);
 }
+void RtlEngine::read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const {
+  model_->read_data_block(addr, out, n);
+}
+bool RtlEngine::mpu_bank_while_running() const { return model_->mpu_bank_while_running(); }
 void RtlEngine::hand_over_program() { model_->hand_over_program(); }
 void RtlEngine::hand_over_data() { model_->hand_over_data(); }
 bool RtlEngine::program_ready() const { return model_->program_ready(); }

@@ -38,6 +38,10 @@ class RtlEngine final : public ApuEngine {
   void write_data(std::uint16_t addr, std::uint32_t value) override;
   std::uint32_t read_data(std::uint16_t addr) const override;
   void write_data_block(std::uint16_t addr, const std::uint32_t* values, std::size_t n) override;
+  void read_data_block(std::uint16_t addr, std::uint32_t* out, std::size_t n) const override;
+  // True without a waveform (Vapu_fast): the MPU's data-bank calls may run
+  // while another thread clocks the model (apu_rtl_engine.cpp, note_banks).
+  bool mpu_bank_while_running() const override;
   void hand_over_program() override;
   void hand_over_data() override;
   bool program_ready() const override;
