@@ -81,7 +81,7 @@ class RtlEngine::ModelOf final : public Model {
   void settle();       // re-evaluate after an MPU-side input change
   void dump(std::uint64_t ps);  // at simulated time ps, if in the window (times strictly increase)
   void dump_requests();         // the MPU's requests, before the edge that takes them
-  void note_banks();            // mpu_dbank_ after an eval()
+  void note_banks();            // mpu_dbank_ after a call that clocks or evaluates
   int mpu_dbank() const { return mpu_dbank_.load(std::memory_order_relaxed); }
   std::uint64_t time_of(std::uint64_t cycle) const { return time_.time_of(cycle); }
 
@@ -328,7 +328,6 @@ void RtlEngine::ModelOf<Top, kTraced>::clock() {
     backdoor_.clock_low_unchanged();
   }
   ++cycle_;
-  note_banks();
   if (traced) dump(time_of(cycle_));
 }
 
@@ -374,6 +373,7 @@ void RtlEngine::ModelOf<Top, kTraced>::step(CycleRecord& rec) {
   if (t.dbg_flags_en) rec.commits.push_back({Commit::Kind::Flags, 0, t.dbg_flags_val});
 
   clock();
+  note_banks();
 }
 
 template <class Top, bool kTraced>
@@ -401,6 +401,9 @@ std::uint64_t RtlEngine::ModelOf<Top, kTraced>::clock_until(std::uint64_t max_cy
     clock();
     ++n;
   }
+  // Once a call: the MPU's calls that overlap it find no swap in it (none
+  // while no hand-over is pending), and the others come after it.
+  note_banks();
   return n;
 }
 
