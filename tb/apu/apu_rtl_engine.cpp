@@ -97,11 +97,12 @@ class RtlEngine::ModelOf final : public Model {
   std::uint64_t from_ = 0, to_ = ~std::uint64_t{0};  // the dump window (ps)
   bool dumped_ = false;        // a dump was written; last_dump_ is its time
   std::uint64_t last_dump_ = 0;
-  // An MPU call changed an input or a bank word since the last eval(): the
-  // next edge is a full eval() (clock()). Not set by the untraced model's
-  // data-bank calls: nothing in front of its flip-flops reads the MPU's
-  // bank (apu_banks.sv reads a bank at the edge, and the MPU's port is
-  // tied off), so an edge after them needs no input logic recomputed.
+  // An MPU call changed an input or a program word since the last eval():
+  // the next edge is a full eval() (clock()). Not set by the data-bank
+  // calls: nothing in front of the flip-flops reads a data bank
+  // (apu_banks.sv reads one at the edge), so an edge after them needs no
+  // input logic recomputed. (The traced model evaluates fully at every
+  // edge anyway.)
   bool changed_ = true;
   // The MPU's data bank (apu2mpu_dsel ^ 1), kept by the thread that clocks
   // the model: the MPU's calls on its bank may run on another thread
@@ -234,7 +235,6 @@ void RtlEngine::ModelOf<Top, kTraced>::write_program(std::uint16_t addr, const E
 template <class Top, bool kTraced>
 void RtlEngine::ModelOf<Top, kTraced>::write_data(std::uint16_t addr, std::uint32_t value) {
   backdoor_.write_data(mpu_dbank(), addr, value);
-  if constexpr (kTraced) changed_ = true;
 }
 
 template <class Top, bool kTraced>
@@ -242,7 +242,6 @@ void RtlEngine::ModelOf<Top, kTraced>::write_data_block(std::uint16_t addr, cons
                                                         std::size_t n) {
   const int bank = mpu_dbank();
   for (std::size_t i = 0; i < n; ++i) backdoor_.write_data(bank, static_cast<std::uint16_t>(addr + i), values[i]);
-  if constexpr (kTraced) changed_ = true;
 }
 
 template <class Top, bool kTraced>
