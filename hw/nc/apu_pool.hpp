@@ -7,7 +7,7 @@
 // the run has got, and the NC only ever waits as far as the run is known to
 // last (NodeComputer::run_on_pool), so every time is the one-thread time.
 //
-// A run is clocked a stretch at a time (a few hundred cycles), and the
+// A run is clocked a stretch at a time (some thousands of cycles), and the
 // runs waiting take turns: the N - 1 workers and the simulation's own
 // thread, which clocks stretches whenever it would otherwise wait for a run
 // to get far enough (the run it waits for first, if no worker has it). So

@@ -112,15 +112,20 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   // known to last), and the length of a stretch of APU clocking on the
   // pool: a trade between the overlap of the NCs' runs and the number of
   // synchronisations. Not a hardware figure, and no simulated time depends
-  // on it.
-  static constexpr std::uint64_t kPoolStepCycles = 256;
+  // on it. Long (2026-12-05: 4096, from 256): most runs then end within
+  // one stretch (an APU batch is some hundreds to thousands of cycles), so
+  // a run goes back to the queue, and to the other thread's core and
+  // caches, far less often; the 256x256 16-NC ISS frame at 2 threads took
+  // about a quarter less host time (docs/platform.md, Host threads).
+  static constexpr std::uint64_t kPoolStepCycles = 4096;
   // The least catch-up (APU cycles owed) an NC hands to the pool's workers
   // while its MPU works on (it then synchronises, so that the kernel runs
   // the other NCs meanwhile): small, so that the workers keep every NC's
   // APU near its MPU's time and the simulation's thread rarely has to clock
-  // it itself (the MPU's next hand-over waits for it). No simulated time
-  // depends on it.
-  static constexpr std::uint64_t kChaseCycles = 16;
+  // it itself (the MPU's next hand-over waits for it), but not so small
+  // that every few cycles of MPU work post a job (64, from 16). No
+  // simulated time depends on it.
+  static constexpr std::uint64_t kChaseCycles = 64;
 
   // After the simulation: the last span runs to `frame_end` (>= finished_at).
   void close(Picos frame_end);  // also reads the ISS's counters
