@@ -116,7 +116,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   // one stretch (an APU batch is some hundreds to thousands of cycles), so
   // a run goes back to the queue, and to the other thread's core and
   // caches, far less often; the 256x256 16-NC ISS frame at 2 threads took
-  // about a quarter less host time (docs/platform.md, Host threads).
+  // about a quarter less host time (docs/platform.md, Rendering benchmark).
   static constexpr std::uint64_t kPoolStepCycles = 4096;
   // The least catch-up (APU cycles owed) an NC hands to the pool's workers
   // while its MPU works on (it then synchronises, so that the kernel runs
