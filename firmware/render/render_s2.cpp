@@ -128,6 +128,8 @@ void RenderFirmware::shadows(std::vector<Ray>& rays) {
   const ShadowGroups g = shadow_groups(rays);
   std::vector<Ray> probes;
   std::vector<std::pair<int, int>> owner;  // (ray, light)
+  probes.reserve(rays.size() * static_cast<std::size_t>(lights));  // at most one probe per ray and light
+  owner.reserve(probes.capacity());
   for (int i = 0; i < static_cast<int>(rays.size()); ++i) {
     rays[i].rec[R_SHADOW] = 0;
     if (!is_hit(rays[i])) continue;
