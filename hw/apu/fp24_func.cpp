@@ -35,9 +35,10 @@ std::uint64_t to_sig63(std::uint64_t q18, bool sticky) { return (q18 << 46) | (s
 // square. The RTL computes it bit by bit (a restoring recurrence); the model
 // takes the host's sqrt, which gives the same integer: the double is
 // correctly rounded, and for x < 2^36 no non-square lies within half an ulp
-// of the next integer's square root (sqrt(k^2 - 1) < k - 2^-19, ulps there
-// are 2^-34). The check below fixes the root should that ever not hold;
-// fp24-regress proves every input against MPFR and the RTL.
+// of the next integer's square root (sqrt(k^2 - 1) < k - 2^-19 for
+// k <= 2^18, where an ulp is at most 2^-35). The check below fixes the root
+// should that ever not hold; fp24-regress proves every input against MPFR
+// and the RTL.
 std::uint64_t isqrt36(std::uint64_t x, bool* inexact) {
   auto root = static_cast<std::uint64_t>(std::sqrt(static_cast<double>(x)));
   if (root * root > x) --root;
