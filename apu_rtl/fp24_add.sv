@@ -5,7 +5,7 @@
 //   s1: unpack with DAZ (fp24_classify); ADD/SUB: align the operand of the
 //       smaller exponent by the exponents' distance while the magnitude
 //       compare orders the operands (guard, round and a sticky bit, from
-//       the trailing zeros, jammed into the LSB) and add or subtract;
+//       a mask of the bits lost below them, jammed into the LSB) and add or subtract;
 //       FLOAT: take the integer's magnitude. Both leave an unnormalised sum
 //       for stage 2. CMP, FIX, NEG, ABS and the zero/inf/NaN cases of
 //       ADD/SUB finish here as a "direct" result.
@@ -54,12 +54,6 @@ module fp24_add #(
   localparam logic [W-1:0] CANON_NAN = {1'b0, EXP_ONES, 1'b1, {(FRAC_W - 1) {1'b0}}};
 
   // ---- stage 1 ----------------------------------------------------------------
-  // The trailing zeros of a significand below its top bit (SIG_W - 1 for
-  // none: a zero, or 1.0).
-  function automatic logic [4:0] trailing_zeros(input logic [SIG_W-1:0] x);
-    trailing_zeros = 5'(SIG_W - 1);
-    for (int i = SIG_W - 2; i >= 0; i--) if (x[i]) trailing_zeros = 5'(i);
-  endfunction
 
   logic              a_sign, b_sign;
   logic [EXP_W-1:0]  a_exp, b_exp;
@@ -102,7 +96,8 @@ module fp24_add #(
     logic [EXP_W-1:0]   big_exp;
     logic [SIG_W-1:0]   big_sig, small_sig, far_sig;
     logic [SHIFT_W-1:0] shift;
-    logic [4:0]         tz_a, tz_b, far_tz;  // trailing zeros of a_sig, b_sig
+    logic [EXP_W-1:0]   lost_n;            // exp_diff - GRS_W: far_sig's bits below it are lost
+    logic [SIG_W-1:0]   lost_mask;         // those bits
     logic               sticky;
     logic [SUM_W-2:0]   small_sh;          // far_sig aligned (the bits shifted out: sticky)
     logic [SUM_W-2:0]   small_al;          // aligned small significand
@@ -153,12 +148,16 @@ module fp24_add #(
       shift      = (exp_diff > EXP_W'(SUM_W - 1)) ? SHIFT_W'(SUM_W - 1) : exp_diff[SHIFT_W-1:0];
       small_sh   = {far_sig, {GRS_W{1'b0}}} >> shift;
       small_al   = exp_eq ? {small_sig, {GRS_W{1'b0}}} : small_sh;
-      // The lost bits (those below GRS) are nonzero iff the distance passes
-      // far_sig's trailing zeros + GRS: known beside the shifter, not after it.
-      tz_a = trailing_zeros(a_sig);
-      tz_b = trailing_zeros(b_sig);
-      far_tz = exp_lt ? tz_a : tz_b;
-      sticky = (far_sig != '0) && (exp_diff > {2'b00, far_tz} + EXP_W'(GRS_W));
+      // The lost bits (those shifted out below GRS) are far_sig's bits below
+      // exp_diff - GRS_W: a mask decoded from the distance, known beside the
+      // shifter, not after it (a thermometer decoder, an AND and an OR
+      // reduction; a simulator computes it in a few operations, where a
+      // trailing-zero count of both operands was a priority chain each).
+      lost_n    = exp_diff - EXP_W'(GRS_W);
+      lost_mask = (exp_diff <= EXP_W'(GRS_W)) ? '0
+                : (lost_n >= EXP_W'(SIG_W)) ? '1
+                : ~({SIG_W{1'b1}} << lost_n[SHIFT_W-1:0]);
+      sticky    = (far_sig & lost_mask) != '0;
       // Jamming the lost bits into the LSB keeps the rounding exact: the true
       // and the jammed sum then lie strictly between the same two multiples of
       // 2 LSBs, and the guard bit of the result is never below bit 1.
