@@ -13,7 +13,7 @@ the table is not a refactor). With Debian's Yosys 0.23: each side is read,
 elaborated with MODULE on top, `proc`ed and flattened on its own (so the
 two may differ in their submodules), then `equiv_make` pairs their outputs
 and state by name, `equiv_simple` and `equiv_induct` (N cycles, default 2)
-prove the pairs, and `equiv_status -assert` requires all of them proven.
+prove the pairs, and `equiv_status` counts them: all must be proven.
 Registers are matched by name: a refactor that renames or retimes state is
 beyond this check (it reports the unmatched cells as unproven).
 
@@ -28,15 +28,8 @@ import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-RTL = os.path.join(ROOT, "apu_rtl")
-
-
-def sv_files(directory):
-    """Packages first (Yosys resolves pkg::name at read time), then the rest."""
-    names = sorted(f for f in os.listdir(directory) if f.endswith(".sv"))
-    return ([os.path.join(directory, f) for f in names if f.endswith("_pkg.sv")] +
-            [os.path.join(directory, f) for f in names if not f.endswith("_pkg.sv")])
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from synth import RTL, ROOT, sources  # noqa: E402  (the same files, in the same order, as synthesis reads)
 
 
 def export_rev(rev, into):
@@ -55,9 +48,8 @@ def export_rev(rev, into):
 
 def side(name, directory, gen, module):
     """Yosys commands that read one side and stash it as design `name`."""
-    files = " ".join(sv_files(directory))
-    pkg = os.path.join(gen, "apu_pkg.sv")
-    return (f"design -reset; read_verilog -sv -I{gen} -I{directory} {pkg} {files}; "
+    files = " ".join(sources(gen, directory))
+    return (f"design -reset; read_verilog -sv -I{gen} -I{directory} {files}; "
             f"hierarchy -check -top {module}; proc; flatten; opt_clean; memory -nomap; opt -fast; "
             f"rename {module} {name}; design -stash {name}; ")
 
@@ -77,6 +69,9 @@ def main():
     gen = os.path.join(os.path.abspath(a.build), "generated")
     if not os.path.isfile(os.path.join(gen, "apu_pkg.sv")):
         print(f"rtl_equiv: {gen}/apu_pkg.sv not found: configure the build first", file=sys.stderr)
+        return 2
+    if a.seq < 1:
+        print(f"rtl_equiv: --seq must be at least 1, not {a.seq}", file=sys.stderr)
         return 2
     if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", a.module):
         print(f"rtl_equiv: not a module name: {a.module!r}", file=sys.stderr)

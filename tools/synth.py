@@ -42,13 +42,14 @@ class CheckFailed(Exception):
     pass
 
 
-def sources(gen):
-    """Packages first (Yosys resolves pkg::name at read time), then the rest."""
+def sources(gen, rtl=RTL):
+    """Packages first (Yosys resolves pkg::name at read time), then the rest:
+    the generated apu_pkg.sv and the .sv files of `rtl` (apu_rtl/)."""
     pkgs = [os.path.join(gen, "apu_pkg.sv")]
     rest = []
-    for f in sorted(os.listdir(RTL)):
+    for f in sorted(os.listdir(rtl)):
         if f.endswith(".sv"):
-            (pkgs if f.endswith("_pkg.sv") else rest).append(os.path.join(RTL, f))
+            (pkgs if f.endswith("_pkg.sv") else rest).append(os.path.join(rtl, f))
     return pkgs + rest
 
 
