@@ -60,9 +60,9 @@ module fp24_add #(
   logic [FRAC_W-1:0] a_frac, b_frac;
   logic              a_zero, b_zero, a_inf, b_inf, a_nan, b_nan;
   fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class_a (
-      .x(in_a), .sign(a_sign), .exp(a_exp), .frac(a_frac), .zero(a_zero), .inf(a_inf), .nan(a_nan));
+      .en(in_valid), .x(in_a), .sign(a_sign), .exp(a_exp), .frac(a_frac), .zero(a_zero), .inf(a_inf), .nan(a_nan));
   fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class_b (
-      .x(in_b), .sign(b_sign), .exp(b_exp), .frac(b_frac), .zero(b_zero), .inf(b_inf), .nan(b_nan));
+      .en(in_valid), .x(in_b), .sign(b_sign), .exp(b_exp), .frac(b_frac), .zero(b_zero), .inf(b_inf), .nan(b_nan));
 
   // Stage 1's logic and its register bank, in one block: the logic computes
   // into the block's own variables (blocking), the registers take them, all
@@ -261,33 +261,44 @@ module fp24_add #(
     // upper half), so lzc[4] comes first and the shift takes 16/8/4/2/1.
     // Word-wide: group j of 2^k bits keeps its all-zero flag (zk) and its
     // count's bits (ck_b) at bit j * 2^k.
-    n16  = {s1_sum, {(NORM_W - SUM_W) {1'b0}}};
-    z1   = ~(n16 | (n16 >> 1)) & 32'h5555_5555;
-    c1_0 = ~(n16 >> 1) & 32'h5555_5555;
-    z2   = z1 & (z1 >> 2) & 32'h1111_1111;
-    sel2 = (z1 >> 2) & 32'h1111_1111;        // upper half zero
-    c2_0 = (sel2 & c1_0) | (~sel2 & (c1_0 >> 2));
-    c2_1 = sel2;
-    z3   = z2 & (z2 >> 4) & 32'h0101_0101;
-    sel3 = (z2 >> 4) & 32'h0101_0101;
-    c3_0 = (sel3 & c2_0) | (~sel3 & (c2_0 >> 4));
-    c3_1 = (sel3 & c2_1) | (~sel3 & (c2_1 >> 4));
-    c3_2 = sel3;
-    sel4 = (z3 >> 8) & 32'h0001_0001;
-    c4_0 = (sel4 & c3_0) | (~sel4 & (c3_0 >> 8));
-    c4_1 = (sel4 & c3_1) | (~sel4 & (c3_1 >> 8));
-    c4_2 = (sel4 & c3_2) | (~sel4 & (c3_2 >> 8));
-    c4_3 = sel4;
-    z4   = z3[16] & z3[24];                  // the upper 16 bits all zero
-    lzc  = z4 ? {1'b1, c4_3[0], c4_2[0], c4_1[0], c4_0[0]}
-              : {1'b0, c4_3[16], c4_2[16], c4_1[16], c4_0[16]};
-    n8  = lzc[4] ? {n16[NORM_W-17:0], 16'b0} : n16;
-    n4  = lzc[3] ? {n8[NORM_W-9:0], 8'b0} : n8;
-    n2  = lzc[2] ? {n4[NORM_W-5:0], 4'b0} : n4;
-    n1  = lzc[1] ? {n2[NORM_W-3:0], 2'b0} : n2;
-    n0  = lzc[0] ? {n1[NORM_W-2:0], 1'b0} : n1;
-    sum_zero = !n0[NORM_W-1];
-    rnd_exp  = s1_exp - {{(SEXP_W - 5) {1'b0}}, lzc};
+    // Only for an op in the stage that stage 1 left a sum to normalise: a
+    // don't care otherwise (docs/fp24-rtl.md "Idle stages"; a direct
+    // result is special, whatever sum_zero is).
+    {n16, n8, n4, n2, n1, n0, lzc} = 'x;
+    {z1, z2, z3, sel2, sel3, sel4} = 'x;
+    {c1_0, c2_0, c2_1, c3_0, c3_1, c3_2, c4_0, c4_1, c4_2, c4_3} = 'x;
+    z4       = 1'bx;
+    sum_zero = 1'bx;
+    rnd_exp  = 'x;
+    if (s1_valid && !s1_direct) begin
+      n16  = {s1_sum, {(NORM_W - SUM_W) {1'b0}}};
+      z1   = ~(n16 | (n16 >> 1)) & 32'h5555_5555;
+      c1_0 = ~(n16 >> 1) & 32'h5555_5555;
+      z2   = z1 & (z1 >> 2) & 32'h1111_1111;
+      sel2 = (z1 >> 2) & 32'h1111_1111;        // upper half zero
+      c2_0 = (sel2 & c1_0) | (~sel2 & (c1_0 >> 2));
+      c2_1 = sel2;
+      z3   = z2 & (z2 >> 4) & 32'h0101_0101;
+      sel3 = (z2 >> 4) & 32'h0101_0101;
+      c3_0 = (sel3 & c2_0) | (~sel3 & (c2_0 >> 4));
+      c3_1 = (sel3 & c2_1) | (~sel3 & (c2_1 >> 4));
+      c3_2 = sel3;
+      sel4 = (z3 >> 8) & 32'h0001_0001;
+      c4_0 = (sel4 & c3_0) | (~sel4 & (c3_0 >> 8));
+      c4_1 = (sel4 & c3_1) | (~sel4 & (c3_1 >> 8));
+      c4_2 = (sel4 & c3_2) | (~sel4 & (c3_2 >> 8));
+      c4_3 = sel4;
+      z4   = z3[16] & z3[24];                  // the upper 16 bits all zero
+      lzc  = z4 ? {1'b1, c4_3[0], c4_2[0], c4_1[0], c4_0[0]}
+                : {1'b0, c4_3[16], c4_2[16], c4_1[16], c4_0[16]};
+      n8  = lzc[4] ? {n16[NORM_W-17:0], 16'b0} : n16;
+      n4  = lzc[3] ? {n8[NORM_W-9:0], 8'b0} : n8;
+      n2  = lzc[2] ? {n4[NORM_W-5:0], 4'b0} : n4;
+      n1  = lzc[1] ? {n2[NORM_W-3:0], 2'b0} : n2;
+      n0  = lzc[0] ? {n1[NORM_W-2:0], 1'b0} : n1;
+      sum_zero = !n0[NORM_W-1];
+      rnd_exp  = s1_exp - {{(SEXP_W - 5) {1'b0}}, lzc};
+    end
   end
 
   logic         s2_valid;

@@ -62,7 +62,7 @@ module fp24_func_rsq #(
   // The operand's fields and class (DAZ, infinity, NaN), as the multiplier
   // and the adder unit unpack theirs.
   fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class (
-      .x(s1_a), .sign(x_sign), .exp(x_exp), .frac(x_frac), .zero(x_zero), .inf(x_inf), .nan(x_nan));
+      .en(1'b1), .x(s1_a), .sign(x_sign), .exp(x_exp), .frac(x_frac), .zero(x_zero), .inf(x_inf), .nan(x_nan));
   assign x_eunb = {2'b00, x_exp} - BIAS;
 
   logic [8:0]        d;

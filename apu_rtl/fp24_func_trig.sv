@@ -79,7 +79,7 @@ module fp24_func_trig #(
   // The operand's fields and class (DAZ, infinity, NaN), as the multiplier
   // and the adder unit unpack theirs.
   fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class (
-      .x(s1_a), .sign(x_sign), .exp(x_exp), .frac(x_frac), .zero(x_zero), .inf(x_inf), .nan(x_nan));
+      .en(1'b1), .x(s1_a), .sign(x_sign), .exp(x_exp), .frac(x_frac), .zero(x_zero), .inf(x_inf), .nan(x_nan));
   assign x_eunb = {2'b00, x_exp} - BIAS;
 
   logic [V_W-1:0]    v;
@@ -386,7 +386,7 @@ module fp24_func_trig #(
 
   // sin and cos are transcendental: never exact, never a tie (sticky = 1).
   fp24_round #(.EXP_W(EXP_W), .FRAC_W(FRAC_W), .SEXP_W(SEXP_W)) u_round (
-      .sign(s8_sign), .exp(yexp), .frac(ny[51-:FRAC_W]), .guard(ny[51-FRAC_W]), .sticky(1'b1),
+      .en(1'b1), .sign(s8_sign), .exp(yexp), .frac(ny[51-:FRAC_W]), .guard(ny[51-FRAC_W]), .sticky(1'b1),
       .result(trig_result), .flags(trig_flags));
 
   // ---- stage 9 registers: the result ------------------------------------------

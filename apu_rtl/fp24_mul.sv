@@ -34,9 +34,9 @@ module fp24_mul #(
   logic              a_zero, b_zero, a_inf, b_inf, a_nan, b_nan;
 
   fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class_a (
-      .x(in_a), .sign(a_sign), .exp(a_exp), .frac(a_frac), .zero(a_zero), .inf(a_inf), .nan(a_nan));
+      .en(in_valid), .x(in_a), .sign(a_sign), .exp(a_exp), .frac(a_frac), .zero(a_zero), .inf(a_inf), .nan(a_nan));
   fp24_classify #(.EXP_W(EXP_W), .FRAC_W(FRAC_W)) u_class_b (
-      .x(in_b), .sign(b_sign), .exp(b_exp), .frac(b_frac), .zero(b_zero), .inf(b_inf), .nan(b_nan));
+      .en(in_valid), .x(in_b), .sign(b_sign), .exp(b_exp), .frac(b_frac), .zero(b_zero), .inf(b_inf), .nan(b_nan));
 
   logic              s1_valid;
   logic              s1_sign;
@@ -69,20 +69,32 @@ module fp24_mul #(
   logic [EXP_W+FRAC_W:0] special_result;
   logic [4:0]            special_flags;
 
+  // Only for an op in the stage; without one every value here is a don't
+  // care (the stage's register takes nothing, and the core reads
+  // out_next_result only for a result completing): docs/fp24-rtl.md "Idle
+  // stages".
   always_comb begin
-    norm    = s1_prod[PROD_W-1];
-    prod_n  = norm ? s1_prod[PROD_W-2:0] : {s1_prod[PROD_W-3:0], 1'b0};
-    rnd_exp = s1_exp + {{(SEXP_W - 1) {1'b0}}, norm};
-    // NaN wins over inf wins over zero (0 * inf is already NaN).
-    special       = s1_nan || s1_inf || s1_zero;
-    special_flags = 5'b00000;
-    if (s1_nan) begin
-      special_result = CANON_NAN;
-      special_flags  = {s1_nv, 4'b0000};
-    end else if (s1_inf) begin
-      special_result = {s1_sign, EXP_ONES, {FRAC_W{1'b0}}};
-    end else begin
-      special_result = {s1_sign, {(EXP_W + FRAC_W) {1'b0}}};
+    norm           = 1'bx;
+    prod_n         = 'x;
+    rnd_exp        = 'x;
+    special        = 1'bx;
+    special_result = 'x;
+    special_flags  = 'x;
+    if (s1_valid) begin
+      norm    = s1_prod[PROD_W-1];
+      prod_n  = norm ? s1_prod[PROD_W-2:0] : {s1_prod[PROD_W-3:0], 1'b0};
+      rnd_exp = s1_exp + {{(SEXP_W - 1) {1'b0}}, norm};
+      // NaN wins over inf wins over zero (0 * inf is already NaN).
+      special       = s1_nan || s1_inf || s1_zero;
+      special_flags = 5'b00000;
+      if (s1_nan) begin
+        special_result = CANON_NAN;
+        special_flags  = {s1_nv, 4'b0000};
+      end else if (s1_inf) begin
+        special_result = {s1_sign, EXP_ONES, {FRAC_W{1'b0}}};
+      end else begin
+        special_result = {s1_sign, {(EXP_W + FRAC_W) {1'b0}}};
+      end
     end
   end
 

@@ -8,8 +8,10 @@
 // its flags are registered at the edge that ends the cycle and drive out_*
 // from then on (docs/fp24-rtl.md "Timing"); `next_result` is that result
 // before the register (the APU core's operand registers take it a cycle
-// early: docs/apu-rtl.md "Register files and the bypass"). rst_n is
-// synchronous and clears only the valid bit.
+// early: docs/apu-rtl.md "Register files and the bypass"); without an op
+// (in_valid low) it is a don't care, as nothing takes it then. fp24_round
+// works only for an op that needs it. rst_n is synchronous and clears only
+// the valid bit.
 module fp24_result_stage #(
     parameter int EXP_W  = 7,
     parameter int FRAC_W = 16,
@@ -37,7 +39,7 @@ module fp24_result_stage #(
   logic [4:0]            rnd_flags;
 
   fp24_round #(.EXP_W(EXP_W), .FRAC_W(FRAC_W), .SEXP_W(SEXP_W)) u_round (
-      .sign(sign), .exp(exp), .frac(frac), .guard(guard), .sticky(sticky),
+      .en(in_valid && !special), .sign(sign), .exp(exp), .frac(frac), .guard(guard), .sticky(sticky),
       .result(rnd_result), .flags(rnd_flags));
 
   assign next_result = special ? special_result : rnd_result;

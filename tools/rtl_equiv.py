@@ -15,7 +15,11 @@ two may differ in their submodules), then `equiv_make` pairs their outputs
 and state by name, `equiv_simple` and `equiv_induct` (N cycles, default 2)
 prove the pairs, and `equiv_status` counts them: all must be proven.
 Registers are matched by name: a refactor that renames or retimes state is
-beyond this check (it reports the unmatched cells as unproven).
+beyond this check (it reports the unmatched cells as unproven). An `'x`
+the RTL assigns on one branch is a don't care, as synthesis takes it
+(`opt_expr -mux_undef` on both sides: the multiplexer keeps its other
+input), so a value left open where nothing reads it (docs/fp24-rtl.md
+"Idle stages") is proven as the netlist is built.
 
 Exit 0: proven equivalent; 1: not proven (the unproven cells are listed);
 2: usage error, a missing tool, or a design that does not read.
@@ -51,6 +55,7 @@ def side(name, directory, gen, module):
     files = " ".join(sources(gen, directory))
     return (f"design -reset; read_verilog -sv -I{gen} -I{directory} {files}; "
             f"hierarchy -check -top {module}; proc; flatten; opt_clean; memory -nomap; opt -fast; "
+            f"opt_expr -mux_undef; opt_clean; "
             f"rename {module} {name}; design -stash {name}; ")
 
 
