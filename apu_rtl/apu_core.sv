@@ -526,10 +526,12 @@ module apu_core
       f_rd[i]     = f_rd_data_v[i*FP_W +: FP_W];
       // The register file's word for a word moving in (the state after this
       // cycle's writes), the operand as this cycle's word has it for a word
-      // held; a unit's result of the next cycle over either, for a port the
-      // word uses.
-      opnd_next[i] = advance ? f_rd[i] : fop[i];
+      // held; a unit's result of the next cycle over either. Only for a port
+      // the word uses: the others' operands are don't care (nothing takes
+      // them; docs/fp24-rtl.md "Idle stages").
+      opnd_next[i] = 'x;
       if (byp_en[i]) begin
+        opnd_next[i] = advance ? f_rd[i] : fop[i];
         for (bp = 0; bp < N_WB - 1; bp++) begin
           if (nx_en[bp] && (nx_addr[bp] == byp_addr[i])) opnd_next[i] = nx_result[bp];  // byp_hit
         end
