@@ -237,8 +237,8 @@ module apu_core
   // D (d_src_en, f_rd_addr_v: the register file's reads, the bypass of a
   // word moving in), by RD_* index, the addresses as flat vectors, port i at
   // [i*FREG_AW +: FREG_AW]: one function of a word (apu_freads), twice. An
-  // unused port's operand register takes 0 (no slot reads it), and a
-  // simulator evaluates no compare of it (about three ports in four are
+  // unused port's operand register takes a don't care (no slot reads it),
+  // and a simulator evaluates no compare of it (about three ports in four are
   // unused).
   localparam int RD_V = N_RD * FREG_AW;
   logic [N_RD-1:0] src_en, d_src_en;

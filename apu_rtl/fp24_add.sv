@@ -54,7 +54,6 @@ module fp24_add #(
   localparam logic [W-1:0] CANON_NAN = {1'b0, EXP_ONES, 1'b1, {(FRAC_W - 1) {1'b0}}};
 
   // ---- stage 1 ----------------------------------------------------------------
-
   logic              a_sign, b_sign;
   logic [EXP_W-1:0]  a_exp, b_exp;
   logic [FRAC_W-1:0] a_frac, b_frac;
