@@ -61,6 +61,7 @@ module apu_core
     // ---- debug: what this cycle does (read before the clock edge) ----------
     output logic [apu_pkg::PC_W-1:0]          dbg_pc,
     output logic                              dbg_issue,
+    output logic [2:0]                        dbg_unit_issue,  // units taking an op: bit 0 multiplier, 1 adder, 2 function unit
     output apu_pkg::stall_e                   dbg_stall_reason,
     // why: the word's F sources (bit per read port: M a, M b, A a, A b, F a,
     // ST f, MOVFA) that read a register in flight, and the units whose
@@ -847,6 +848,7 @@ module apu_core
 
   assign dbg_pc           = start_req ? mpu2apu_start_pc : pc;  // a start's fetch cycle shows the start PC
   assign dbg_issue        = issue;
+  assign dbg_unit_issue   = {fu_issue, add_issue, mul_issue};
   assign dbg_stall_reason = stall_reason;
   assign dbg_raw_src      = raw_src;
   assign dbg_raw_unit     = raw_unit;

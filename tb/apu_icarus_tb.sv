@@ -67,6 +67,7 @@ module apu_icarus_tb;
       /* verilator lint_off PINCONNECTEMPTY */
       .dbg_pc                   (),
       .dbg_issue                (),
+      .dbg_unit_issue           (),
       .dbg_stall_reason         (),
       .dbg_raw_src              (),
       .dbg_raw_unit             (),

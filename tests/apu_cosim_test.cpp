@@ -36,6 +36,7 @@ class CorruptEngine final : public ApuEngine {
   std::uint16_t areg(int i) const override { return iss_->areg(i); }
   std::uint8_t flags() const override { return iss_->flags(); }
   std::uint8_t cc() const override { return iss_->cc(); }
+  const ApuCounters& counters() const override { return iss_->counters(); }
 
   void step(CycleRecord& rec) override {
     iss_->step(rec);
@@ -314,6 +315,19 @@ TEST(ApuCosim, IssRunBodiesAgreeWithStepsOnRandomPrograms) {
   EXPECT_GT(compared, 5000u);
 }
 
+// The RTL engine's counters against the ISS's.
+::testing::AssertionResult same_counters(const ApuCounters& iss, const ApuCounters& rtl) {
+  if (rtl.issued != iss.issued) return ::testing::AssertionFailure() << "issued " << rtl.issued << ", ISS " << iss.issued;
+  for (int u = 0; u < 3; ++u)
+    if (rtl.unit_ops[u] != iss.unit_ops[u])
+      return ::testing::AssertionFailure() << "unit " << u << " ops " << rtl.unit_ops[u] << ", ISS " << iss.unit_ops[u];
+  for (int k = 0; k < kStallKinds; ++k)
+    if (rtl.stalls[k] != iss.stalls[k])
+      return ::testing::AssertionFailure() << stall_name(static_cast<Stall>(k)) << " stalls " << rtl.stalls[k] << ", ISS "
+                                           << iss.stalls[k];
+  return ::testing::AssertionSuccess();
+}
+
 TEST(ApuCosim, IssAndRtlAgreeOnRandomPrograms) {
   for (std::uint64_t i = 0; i < 30; ++i) {
     const RandomCase c = make_random_case(case_seed(5, i));
@@ -321,7 +335,41 @@ TEST(ApuCosim, IssAndRtlAgreeOnRandomPrograms) {
     RtlEngine rtl(nullptr);
     const auto d = lockstep_case(c, *iss, rtl);
     EXPECT_FALSE(d) << c.describe() << "\n" << d->report("iss", "rtl");
+    EXPECT_TRUE(same_counters(iss->counters(), rtl.counters())) << c.describe();
   }
+}
+
+// The RTL engine counts what the ISS counts (issues, unit ops, stalls by
+// reason), on its fast path too: its run() in calls of 1 to 400 cycles
+// (a bank stall's cycles taken at once among them) against the ISS's steps.
+TEST(ApuCosim, RtlRunCountsAsTheIssSteps) {
+  ApuCounters total;
+  for (std::uint64_t i = 0; i < 40; ++i) {
+    const RandomCase c = make_random_case(case_seed(17, i));
+    auto stepped = std::make_unique<Iss>();
+    RtlEngine rtl(nullptr);
+    ApuEngine* both[2] = {stepped.get(), &rtl};
+    RandomMpu mpu(c);
+    mpu.boot(both, 2);
+    Rng chunks(c.seed ^ 0x9e3779b9);
+    CycleRecord r;
+    while (stepped->state() == RunState::Running && stepped->cycle() < c.max_cycles) {
+      mpu.before_cycle(both, 2);
+      const auto k = static_cast<std::uint64_t>(chunks.range(0, 1) ? chunks.range(1, 12) : chunks.range(1, 400));
+      std::uint64_t n = 0;
+      while (n < k && stepped->state() == RunState::Running) stepped->step(r), ++n;
+      const std::string at = c.describe() + " at cycle " + std::to_string(stepped->cycle());
+      ASSERT_EQ(rtl.run(k), n) << at;
+      ASSERT_EQ(rtl.state(), stepped->state()) << at;
+      ASSERT_TRUE(same_counters(stepped->counters(), rtl.counters())) << at;
+    }
+    const ApuCounters& s = stepped->counters();
+    total.issued += s.issued;
+    for (int k = 0; k < kStallKinds; ++k) total.stalls[k] += s.stalls[k];
+  }
+  // The cases issue words and stall for every reason the random programs make.
+  EXPECT_GT(total.issued, 10000u);
+  for (Stall k : {Stall::Bank, Stall::Raw, Stall::Fetch}) EXPECT_GT(total.stalls[static_cast<int>(k)], 100u) << stall_name(k);
 }
 
 }  // namespace

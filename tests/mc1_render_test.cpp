@@ -542,7 +542,22 @@ TEST_F(Mc1Render, RtlEngineGivesTheSameFrameAndTimes) {
   const FrameReport rtl = render_frame(c).report;
   EXPECT_EQ(rtl.rgb, iss.rgb);
   EXPECT_EQ(rtl.frame_time, iss.frame_time);
-  for (std::size_t k = 0; k < iss.ncs.size(); ++k) EXPECT_EQ(rtl.ncs[k].apu_cycles, iss.ncs[k].apu_cycles);
+  // Both engines count the same issues and stalls, NC by NC and kernel by kernel.
+  ASSERT_EQ(rtl.ncs.size(), iss.ncs.size());
+  for (std::size_t k = 0; k < iss.ncs.size(); ++k) {
+    EXPECT_EQ(rtl.ncs[k].apu_cycles, iss.ncs[k].apu_cycles);
+    EXPECT_GT(iss.ncs[k].apu_issued, 0u);
+    EXPECT_EQ(rtl.ncs[k].apu_issued, iss.ncs[k].apu_issued);
+    EXPECT_EQ(rtl.ncs[k].apu_stalls, iss.ncs[k].apu_stalls);
+  }
+  ASSERT_EQ(rtl.kernels.size(), iss.kernels.size());
+  for (std::size_t k = 0; k < iss.kernels.size(); ++k) {
+    SCOPED_TRACE(iss.kernels[k].name);
+    EXPECT_EQ(rtl.kernels[k].apu_issued, iss.kernels[k].apu_issued);
+    EXPECT_EQ(rtl.kernels[k].apu_bank_stalls, iss.kernels[k].apu_bank_stalls);
+    EXPECT_EQ(rtl.kernels[k].apu_dependence_stalls, iss.kernels[k].apu_dependence_stalls);
+    EXPECT_EQ(rtl.kernels[k].unit_ops, iss.kernels[k].unit_ops);
+  }
 }
 
 // The NCs run the microcode the RC broadcast, not their firmware library's

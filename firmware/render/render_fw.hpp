@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "apu_driver.hpp"
-#include "apu_iss.hpp"
+#include "apu_engine.hpp"
 #include "scene_image.hpp"
 
 namespace mc1::render {
@@ -63,14 +63,14 @@ struct StepCost {
   std::uint64_t list_elements = 0;
   std::uint64_t sort_compares = 0;
   std::uint64_t apu_commands = 0;  // hand-overs and starts
-  // On the ISS (apu::Iss::Counters; 0 on another engine): words issued, and
-  // cycles the APU waited at SWAPD for the MPU's data bank.
+  // The engine's counters (apu::ApuCounters): words issued, and cycles the
+  // APU waited at SWAPD for the MPU's data bank.
   std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
   StepCost& operator+=(const StepCost& o);
 };
 
 // APU work of one kernel over the frame (docs/renderer.md "Timing"): start()
-// to HALT; the rest on the ISS only, as StepCost's.
+// to HALT; issues, stalls and unit ops from the engine's counters, as StepCost's.
 struct KernelCost {
   std::uint64_t apu_cycles = 0, apu_runs = 0, batches = 0;
   std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
@@ -231,7 +231,7 @@ class RenderFirmware {
   // MPU's bank, drain(i) reads its results back.
   using BatchFn = std::function<void(int)>;
   void stream(const std::string& kernel, int items, Step step, const BatchFn& fill, const BatchFn& drain);
-  static void count_issue(const apu::Iss::Counters& before, const apu::Iss::Counters& after, StepCost& c,
+  static void count_issue(const apu::ApuCounters& before, const apu::ApuCounters& after, StepCost& c,
                           KernelCost& k);
   // The stream of most kernels: `count` items in batches of at most
   // `per_batch`; item j of a batch at base + stride j. A batch is filled by

@@ -4,8 +4,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "apu_engine.hpp"
 #include "apu_image.hpp"
-#include "apu_iss.hpp"
 #include "render_internal.hpp"
 #include "render_kernels.hpp"
 
@@ -151,8 +151,7 @@ void RenderFirmware::stream(const std::string& kernel, int items, Step step, con
   fill(0);
   drv.hand_over_data();
   const std::uint64_t c0 = drv.engine().cycle();
-  const auto* iss = dynamic_cast<const apu::Iss*>(&drv.engine());
-  const apu::Iss::Counters k0 = iss ? iss->counters() : apu::Iss::Counters{};
+  const apu::ApuCounters k0 = drv.engine().counters();
   drv.start(0);
   link_.apu_commands(2);
   c.apu_commands += 2;
@@ -181,11 +180,11 @@ void RenderFirmware::stream(const std::string& kernel, int items, Step step, con
   k.apu_cycles += cycles;
   k.apu_runs += 1;
   k.batches += static_cast<std::uint64_t>(items);
-  if (iss) count_issue(k0, iss->counters(), c, k);
+  count_issue(k0, drv.engine().counters(), c, k);
 }
 
-// The ISS's counters over one kernel run, into its step's and its kernel's costs.
-void RenderFirmware::count_issue(const apu::Iss::Counters& before, const apu::Iss::Counters& after, StepCost& c,
+// The engine's counters over one kernel run, into its step's and its kernel's costs.
+void RenderFirmware::count_issue(const apu::ApuCounters& before, const apu::ApuCounters& after, StepCost& c,
                                  KernelCost& k) {
   const auto stalls = [&](apu::Stall s) {
     return after.stalls[static_cast<int>(s)] - before.stalls[static_cast<int>(s)];

@@ -64,7 +64,7 @@ void add_render_options(CLI::App& cmd) {
   add_report_options(cmd);
   value_option(cmd, "profile", "FILE.md|FILE.json",
                "FILE.md: the timing evaluation, per step and per kernel APU cycles, issue, bank stalls, MPU cycles "
-               "(docs/renderer.md \"Timing\"; issue and stalls on the ISS engine only); FILE.json: the stall "
+               "(docs/renderer.md \"Timing\"); FILE.json: the stall "
                "profile per kernel and pc, over NCs and per NC (schema apu-profile/2, docs/apu-tools.md), its "
                "summary on stdout");
   value_option(cmd, "trace", "FILE.fst",

@@ -131,16 +131,13 @@ void nc_json(std::ostream& o, const FrameReport& r, const NcReport& n) {
   o << "    {\"id\": " << n.id << ", \"busy_ps\": " << n.busy << ", \"waiting_ps\": " << n.wait_rc + n.wait_bus
     << ", \"wait_rc_ps\": " << n.wait_rc << ", \"wait_bus_ps\": " << n.wait_bus << ", \"idle_ps\": " << n.idle
     << ", \"dead_ps\": " << n.dead << ", \"apu_busy_ps\": " << n.apu_busy << ", \"apu_utilization\": " << num(ratio(n.apu_busy, T))
-    << ", \"apu_cycles\": " << n.apu_cycles;
-  if (n.apu_counted) {
-    o << ", \"apu_issued\": " << n.apu_issued << ", \"apu_bank_stall_cycles\": " << n.apu_bank_stalls
-      << ", \"apu_stall_cycles\": {";
-    for (int k = 1; k < apu::kStallKinds; ++k)
-      o << (k > 1 ? ", " : "") << quote(apu::stall_name(static_cast<apu::Stall>(k))) << ": " << n.apu_stalls[k];
-    o << "}, \"apu_issue_utilization\": "
-      << num(T ? static_cast<double>(n.apu_issued) * static_cast<double>(r.apu_cycle_ps) / static_cast<double>(T) : 0.0);
-  }
-  o << ", \"mpu_busy_ps\": " << n.mpu_busy
+    << ", \"apu_cycles\": " << n.apu_cycles << ", \"apu_issued\": " << n.apu_issued << ", \"apu_bank_stall_cycles\": " << n.apu_bank_stalls
+    << ", \"apu_stall_cycles\": {";
+  for (int k = 1; k < apu::kStallKinds; ++k)
+    o << (k > 1 ? ", " : "") << quote(apu::stall_name(static_cast<apu::Stall>(k))) << ": " << n.apu_stalls[k];
+  o << "}, \"apu_issue_utilization\": "
+    << num(T ? static_cast<double>(n.apu_issued) * static_cast<double>(r.apu_cycle_ps) / static_cast<double>(T) : 0.0)
+    << ", \"mpu_busy_ps\": " << n.mpu_busy
     << ", \"blocks\": " << n.blocks << ", \"pixels\": " << n.pixels << ", \"runs\": " << n.runs
     << ", \"finished_ps\": " << n.finished_at;
   if (n.killed) o << ", \"killed_ps\": " << n.killed_at;

@@ -38,6 +38,15 @@ struct CycleRecord {
   std::vector<Commit> commits;  // in a fixed order: FReg (by index), AReg, Mem, Cc, Flags
 };
 
+// What an engine counts from its reset, in step() and run() alike: the same
+// figures on every engine (a word issues, or stalls for one reason, in the
+// same cycles on the ISS and on the RTL core).
+struct ApuCounters {
+  std::uint64_t issued = 0;                // words issued
+  std::uint64_t unit_ops[3] = {0, 0, 0};   // of those, the ones with a multiplier, adder, function unit op
+  std::uint64_t stalls[kStallKinds] = {};  // running cycles that issued nothing, by Stall (None: 0)
+};
+
 class ApuEngine {
  public:
   virtual ~ApuEngine() = default;
@@ -93,6 +102,7 @@ class ApuEngine {
   virtual std::uint16_t areg(int i) const = 0;
   virtual std::uint8_t flags() const = 0;
   virtual std::uint8_t cc() const = 0;
+  virtual const ApuCounters& counters() const = 0;
 
   // The platform's time. A machine that clocks the APU in bursts (the NC:
   // idle between kernel runs) says before each burst at which simulated time

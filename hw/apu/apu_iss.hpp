@@ -100,6 +100,7 @@ class Iss final : public ApuEngine {
   std::uint16_t areg(int i) const override { return a_[i & 15]; }
   std::uint8_t flags() const override { return static_cast<std::uint8_t>(flags_); }
   std::uint8_t cc() const override { return static_cast<std::uint8_t>(cc_); }
+  const ApuCounters& counters() const override { return counters_; }
 
   // Fast path: clocks until the APU stops running (HALT issued, fault) or
   // max_cycles cycles have passed; returns the cycles clocked (0 when the
@@ -118,13 +119,7 @@ class Iss final : public ApuEngine {
     return program_[bank & 1][addr % kProgramWords];
   }
 
-  // Counters since reset, kept by both step() and run().
-  struct Counters {
-    std::uint64_t issued = 0;                  // words issued
-    std::uint64_t unit_ops[3] = {0, 0, 0};     // multiplier, adder unit, function unit
-    std::uint64_t stalls[kStallKinds] = {};    // by Stall
-  };
-  const Counters& counters() const { return counters_; }
+  using Counters = ApuCounters;
 
  private:
   // 32-bit fields throughout: a byte store could alias any member and make

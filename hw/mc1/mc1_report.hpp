@@ -30,9 +30,8 @@ struct NcReport {
   Picos mpu_busy = 0;
   Picos finished_at = 0;
   double apu_host_seconds = 0;  // host time inside the APU engine
-  bool apu_counted = false;     // the ISS counted issues and stalls
   std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
-  std::array<std::uint64_t, apu::kStallKinds> apu_stalls{};  // by apu::Stall (ISS only)
+  std::array<std::uint64_t, apu::kStallKinds> apu_stalls{};  // by apu::Stall
   std::vector<nc::Span> spans;
   std::vector<nc::ApuSpan> apu;
 };
@@ -69,7 +68,7 @@ struct StepReport {
   std::string name;
   std::uint64_t apu_cycles = 0, apu_runs = 0, batches = 0, word_copies = 0, list_elements = 0,
                 sort_compares = 0, apu_commands = 0;
-  std::uint64_t apu_issued = 0, apu_bank_stalls = 0;  // ISS engine only (0 on the RTL engine)
+  std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
   std::uint64_t mpu_cycles = 0;  // the MPU work above at the timing table's cycles per class
 };
 
@@ -77,8 +76,8 @@ struct StepReport {
 struct KernelReport {
   std::string name;
   std::uint64_t apu_cycles = 0, apu_runs = 0, batches = 0;
-  std::uint64_t apu_issued = 0, apu_bank_stalls = 0, apu_dependence_stalls = 0;  // ISS engine only
-  std::array<std::uint64_t, 3> unit_ops{};  // multiplier, adder, function unit (ISS only)
+  std::uint64_t apu_issued = 0, apu_bank_stalls = 0, apu_dependence_stalls = 0;
+  std::array<std::uint64_t, 3> unit_ops{};  // multiplier, adder, function unit
 };
 
 struct DeadLinkReport {

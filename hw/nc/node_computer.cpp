@@ -518,12 +518,10 @@ void NodeComputer::close(Picos frame_end) {
   if (!stats_.killed) catch_up();
   apu_stopped(std::min(apu_time_, frame_end));
   mark(current_, frame_end);
-  if (const auto* iss = dynamic_cast<const apu::Iss*>(engine_.get())) {
-    stats_.apu_counted = true;
-    stats_.apu_issued = iss->counters().issued;
-    stats_.apu_bank_stalls = iss->counters().stalls[static_cast<int>(apu::Stall::Bank)];
-    for (int k = 0; k < apu::kStallKinds; ++k) stats_.apu_stalls[k] = iss->counters().stalls[k];
-  }
+  const apu::ApuCounters& counted = engine_->counters();
+  stats_.apu_issued = counted.issued;
+  stats_.apu_bank_stalls = counted.stalls[static_cast<int>(apu::Stall::Bank)];
+  for (int k = 0; k < apu::kStallKinds; ++k) stats_.apu_stalls[k] = counted.stalls[k];
   stats_.apu_host_seconds = host_seconds(apu_host_ticks_);
   engine_->set_time(std::max(apu_time_, frame_end), cycle_ps_);  // a waveform's idle tail ends with the frame
   for (Picos& p : stats_.time) p = 0;

@@ -83,7 +83,6 @@ struct NcStats {
   double apu_host_seconds = 0;      // host time spent clocking the APU engine (set by close())
   // Only when the engine is the ISS (it counts them): words issued, and
   // cycles stalled on `bank` (the APU waiting for the MPU's hand-over).
-  bool apu_counted = false;
   std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
   std::uint64_t apu_stalls[apu::kStallKinds] = {};  // stall cycles by apu::Stall
 };

@@ -69,6 +69,7 @@ class RtlEngine::ModelOf final : public Model {
   std::uint16_t areg(int i) const override { return backdoor_.areg_array(i); }
   std::uint8_t flags() const override { return top_->apu2mpu_flags; }
   std::uint8_t cc() const override { return top_->apu2mpu_cc; }
+  const ApuCounters& counters() const override;
   void trace_window(std::uint64_t from_ps, std::uint64_t to_ps) override;
   void trace_kernel(int bank, std::uint16_t id) override;
   bool unit_mismatch() const override { return top_->dbg_unit_mismatch; }
@@ -78,6 +79,7 @@ class RtlEngine::ModelOf final : public Model {
   // takes the handed-over data bank.
   std::uint64_t clock_until(std::uint64_t max_cycles, bool until_data_taken);
   void clock();        // one rising edge and the falling edge after it
+  void count();        // this cycle's issue or stall into cycles_by_ (before its edge)
   void settle();       // re-evaluate after an MPU-side input change
   void dump(std::uint64_t ps);  // at simulated time ps, if in the window (times strictly increase)
   void dump_requests();         // the MPU's requests, before the edge that takes them
@@ -93,6 +95,11 @@ class RtlEngine::ModelOf final : public Model {
   std::unique_ptr<RtlFastFunc> func_;   // Vapu_fast's function unit (not kTraced)
   typename BasicRtlBackdoor<Top>::Snapshot snapshot_;  // run()'s fixed-point test
   std::uint64_t cycle_ = 0;
+  // Cycles by what the core's debug ports said before their edge, at
+  // [stall reason << 4 | issue << 3 | units issuing]: one increment a cycle;
+  // counters() sums them up.
+  std::array<std::uint64_t, 16 << 4> cycles_by_{};
+  mutable ApuCounters counters_;
   bool dump_pending_ = false;  // MPU inputs changed since the last waveform dump
   std::uint64_t from_ = 0, to_ = ~std::uint64_t{0};  // the dump window (ps)
   bool dumped_ = false;        // a dump was written; last_dump_ is its time
@@ -330,6 +337,27 @@ void RtlEngine::ModelOf<Top, kTraced>::clock() {
   if (traced) dump(time_of(cycle_));
 }
 
+// The core's debug ports say, before the edge, whether the cycle issues (and
+// to which units) or why it stalls: the ISS counts the same cycles.
+template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::count() {
+  const Top& t = *top_;
+  ++cycles_by_[(unsigned{t.dbg_stall_reason} << 4 | unsigned{t.dbg_issue} << 3 | t.dbg_unit_issue) & 0xFF];
+}
+
+template <class Top, bool kTraced>
+const ApuCounters& RtlEngine::ModelOf<Top, kTraced>::counters() const {
+  counters_ = {};
+  for (unsigned key = 0; key < cycles_by_.size(); ++key) {
+    const std::uint64_t n = cycles_by_[key];
+    const unsigned stall = key >> 4, units = key & 7;
+    if (key & 8) counters_.issued += n;
+    for (int u = 0; u < 3; ++u) counters_.unit_ops[u] += (units >> u & 1) * n;
+    if (stall != static_cast<unsigned>(Stall::None) && stall < kStallKinds) counters_.stalls[stall] += n;
+  }
+  return counters_;
+}
+
 template <class Top, bool kTraced>
 void RtlEngine::ModelOf<Top, kTraced>::step(CycleRecord& rec) {
   // Show forwarded MPU requests in the waveform before the edge that takes them.
@@ -371,6 +399,7 @@ void RtlEngine::ModelOf<Top, kTraced>::step(CycleRecord& rec) {
   if (t.dbg_cc_en) rec.commits.push_back({Commit::Kind::Cc, 0, t.dbg_cc_val});
   if (t.dbg_flags_en) rec.commits.push_back({Commit::Kind::Flags, 0, t.dbg_flags_val});
 
+  count();
   clock();
   note_banks();
 }
@@ -389,14 +418,17 @@ std::uint64_t RtlEngine::ModelOf<Top, kTraced>::clock_until(std::uint64_t max_cy
       // banks change only by a store, and none issues), every further clock
       // would too: the rest of the call's cycles are taken at once.
       backdoor_.snapshot(snapshot_);
+      count();
       clock();
       ++n;
       if (n < max_cycles && backdoor_.same_state(snapshot_) && (kTraced || func_->idle())) {
         cycle_ += max_cycles - n;
+        cycles_by_[static_cast<unsigned>(Stall::Bank) << 4] += max_cycles - n;
         n = max_cycles;
       }
       continue;
     }
+    count();
     clock();
     ++n;
   }
@@ -458,6 +490,7 @@ std::uint32_t RtlEngine::freg(int i) const { return model_->freg(i); }
 std::uint16_t RtlEngine::areg(int i) const { return model_->areg(i); }
 std::uint8_t RtlEngine::flags() const { return model_->flags(); }
 std::uint8_t RtlEngine::cc() const { return model_->cc(); }
+const ApuCounters& RtlEngine::counters() const { return model_->counters(); }
 void RtlEngine::trace_window(std::uint64_t from_ps, std::uint64_t to_ps) { model_->trace_window(from_ps, to_ps); }
 void RtlEngine::trace_kernel(int bank, std::uint16_t id) { model_->trace_kernel(bank, id); }
 bool RtlEngine::unit_mismatch() const { return model_->unit_mismatch(); }

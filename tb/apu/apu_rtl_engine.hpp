@@ -57,6 +57,7 @@ class RtlEngine final : public ApuEngine {
   std::uint16_t areg(int i) const override;
   std::uint8_t flags() const override;
   std::uint8_t cc() const override;
+  const ApuCounters& counters() const override;
 
   // Clocks without records until the APU stops running or max_cycles have
   // passed; returns the cycles clocked (the fast path, as Iss::run).
