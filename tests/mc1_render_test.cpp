@@ -560,6 +560,35 @@ TEST_F(Mc1Render, RtlEngineGivesTheSameFrameAndTimes) {
   }
 }
 
+// --rtl-nodes: the RTL core on NCs 2 and 4, the ISS on 1 and 3, gives the
+// ISS frame and its statistics, and the factory is asked for the RTL engine
+// for those two NCs only.
+TEST_F(Mc1Render, RtlOnSomeNodesGivesTheIssFrameAndStatistics) {
+  const FrameReport iss = render_frame(config(4)).report;
+  SystemConfig c = config(4);
+  c.rtl_nodes = {4, 2, 4};
+  std::vector<EngineKind> asked;
+  c.engines = [&asked](EngineKind e, const std::string& fst) {
+    asked.push_back(e);
+    return make_engine(e, fst);
+  };
+  const FrameReport mixed = render_frame(c).report;
+  EXPECT_EQ(asked, (std::vector<EngineKind>{EngineKind::Iss, EngineKind::Rtl, EngineKind::Iss, EngineKind::Rtl}));
+  EXPECT_EQ(mixed.rtl_nodes, (std::vector<unsigned>{2, 4}));
+  EXPECT_EQ(mixed.engine, "iss");
+  EXPECT_EQ(mixed.rgb, iss.rgb);
+  EXPECT_EQ(mixed.frame_time, iss.frame_time);
+  ASSERT_EQ(mixed.ncs.size(), iss.ncs.size());
+  for (std::size_t k = 0; k < iss.ncs.size(); ++k) {
+    EXPECT_EQ(mixed.ncs[k].apu_cycles, iss.ncs[k].apu_cycles);
+    EXPECT_EQ(mixed.ncs[k].apu_issued, iss.ncs[k].apu_issued);
+    EXPECT_EQ(mixed.ncs[k].apu_stalls, iss.ncs[k].apu_stalls);
+    EXPECT_EQ(mixed.ncs[k].finished_at, iss.ncs[k].finished_at);
+  }
+  c.rtl_nodes = {5};
+  EXPECT_THROW(render_frame(c), std::invalid_argument);
+}
+
 // The NCs run the microcode the RC broadcast, not their firmware library's
 // copy: a broadcast r_sum that writes (10 + i, 20, 30) for pixel i of each
 // batch gives exactly that frame.

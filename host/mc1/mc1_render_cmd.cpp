@@ -42,7 +42,8 @@ const char* const kBenchRenderDescription =
     "  2. the same size on --static-nodes (16) NCs with the static split: lpt's gain;\n"
     "  3. --big (512x512) on 1 and --big-nodes (64) NCs, lpt and static: parallel efficiency\n"
     "     T1 / (N TN), the serial download's share, lpt's gain over static;\n"
-    "  4. with --rtl: --size on --static-nodes NCs on the RTL engine (host time).\n"
+    "  4. with --rtl: --size on --static-nodes NCs on the RTL engine, and with the RTL core on NC 1\n"
+    "     only (--rtl-nodes 1; host times).\n"
     "Then the double-precision reference renderer (mc1-ref) on the same scene and size: the\n"
     "co-simulation's host time on --static-nodes NCs over the reference's, and with --rtl the RTL\n"
     "engine's over the ISS's, each the best of --repeat runs. Every run's frame must equal the\n"
@@ -55,6 +56,9 @@ void add_render_options(CLI::App& cmd) {
   value_option(cmd, "size", "WxH", "frame size (default: the scene's camera size)");
   value_option(cmd, "block", "B|WxH", "block size (default 16)");
   value_option(cmd, "engine", "iss|rtl", "APU engine: C++ ISS or verilated RTL core (default iss)");
+  value_option(cmd, "rtl-nodes", "K,...",
+               "these NCs run the verilated RTL core, the others the ISS (with --engine iss): the RTL in a whole "
+               "frame at a fraction of its host time; the frame and every statistic are the same");
   value_option(cmd, "schedule", "S",
                "lpt: heaviest predicted load first (the paper's, default); fifo: screen order as NCs ask; "
                "static: block i to NC (i mod N) + 1");
@@ -149,6 +153,10 @@ class ProgressBar {
 void frame_options(const Parsed& a, SystemConfig& cfg, RenderJob& job) {
   if (a.has("nodes")) cfg.nodes = parse_unsigned("--nodes", a.get("nodes"), 1, 4096);
   if (a.has("engine")) cfg.engine = parse_engine(a.get("engine"));
+  if (a.has("rtl-nodes")) {
+    if (cfg.engine == EngineKind::Rtl) throw CliError("--rtl-nodes: with --engine rtl every NC runs the RTL core");
+    cfg.rtl_nodes = parse_list("--rtl-nodes", a.get("rtl-nodes"), 1, cfg.nodes);
+  }
   if (a.has("size")) std::tie(job.width, job.height) = parse_size("--size", a.get("size"), false);
   if (a.has("block")) std::tie(cfg.block_w, cfg.block_h) = parse_size("--block", a.get("block"), true);
   if (a.has("schedule")) {
@@ -167,8 +175,13 @@ imgcmp::Image frame_image(const FrameReport& r) {
 void print_summary(const RenderRun& run) {
   const FrameReport& r = run.report;
   const Picos T = r.frame_time;
-  std::printf("mc1 render: %s, %u NCs (%s engine, %s), %ux%u pixels, %u blocks of %ux%u\n", r.scene.c_str(), r.nodes,
-              r.engine.c_str(), r.schedule.c_str(), r.width, r.height, r.blocks, r.block_w, r.block_h);
+  std::string engine = r.engine + " engine";
+  if (!r.rtl_nodes.empty()) {
+    engine += ", RTL core on NC";
+    for (std::size_t i = 0; i < r.rtl_nodes.size(); ++i) engine += (i ? "," : " ") + std::to_string(r.rtl_nodes[i]);
+  }
+  std::printf("mc1 render: %s, %u NCs (%s, %s), %ux%u pixels, %u blocks of %ux%u\n", r.scene.c_str(), r.nodes,
+              engine.c_str(), r.schedule.c_str(), r.width, r.height, r.blocks, r.block_w, r.block_h);
   const Picos dl = milestone_time(r, "downloaded"), s1 = milestone_time(r, "step1");
   std::printf("  simulated %s: download done %s (%s), step 1 done %s, block lists done %s; host %.2f s\n",
               ms(T).c_str(), ms(dl).c_str(), pct(T ? static_cast<double>(dl) / T : 0).c_str(), ms(s1).c_str(),
@@ -288,6 +301,7 @@ struct BenchRun {
   unsigned nodes = 0, width = 0, height = 0;
   rc::Schedule schedule = rc::Schedule::Lpt;
   EngineKind engine = EngineKind::Iss;
+  std::vector<unsigned> rtl_nodes;  // on the RTL engine beside `engine` (--rtl-nodes)
   FrameReport r;
 };
 
@@ -313,7 +327,9 @@ void runs_json(std::ostream& json, const std::vector<BenchRun>& runs) {
     const BenchRun& b = runs[i];
     json << (i ? ", " : "") << "{\"label\": \"" << b.label << "\", \"nodes\": " << b.nodes << ", \"width\": " << b.width
          << ", \"height\": " << b.height << ", \"schedule\": \"" << rc::schedule_name(b.schedule)
-         << "\", \"engine\": \"" << engine_name(b.engine) << "\", \"simulated_time_s\": " << b.r.frame_time * 1e-12
+         << "\", \"engine\": \"" << engine_name(b.engine) << "\", \"rtl_nodes\": [";
+    for (std::size_t k = 0; k < b.rtl_nodes.size(); ++k) json << (k ? ", " : "") << b.rtl_nodes[k];
+    json << "], \"simulated_time_s\": " << b.r.frame_time * 1e-12
          << ", \"host_seconds\": " << b.r.host_seconds << ", \"apu_utilization\": " << apu_utilization_mean(b.r)
          << ", \"download_done_s\": " << milestone_time(b.r, "downloaded") * 1e-12 << "}";
   }
@@ -353,13 +369,15 @@ class BenchRuns {
   }
 
   const FrameReport& run(const std::string& label, unsigned n, std::pair<unsigned, unsigned> wh, rc::Schedule s,
-                         EngineKind e) {
+                         EngineKind e, const std::vector<unsigned>& rtl_nodes = {}) {
     if (!runs_.empty()) fresh_systemc_kernel();
     SystemConfig cfg = base_;
     cfg.nodes = n;
     cfg.schedule = s;
     cfg.engine = e;
-    BenchRun b{label, n, wh.first, wh.second, s, e, run_render(RenderJob{scene_, wh.first, wh.second}, cfg).report};
+    cfg.rtl_nodes = rtl_nodes;
+    BenchRun b{label, n,         wh.first, wh.second, s,
+               e,     rtl_nodes, run_render(RenderJob{scene_, wh.first, wh.second}, cfg).report};
     auto it = first_image_.find(wh);
     bool ok = true;
     if (it == first_image_.end())
@@ -397,21 +415,23 @@ struct BenchTimes {
   Picos lpt_ref = 0, static_ref = 0;  // --size on --static-nodes
   Picos big1 = 0, bign = 0, bigs = 0, big_dl = 0;  // --big on 1 and --big-nodes NCs, static; the download
   double rtl_host = 0, iss_host = 0, ref_host = 0;
+  double rtl1_host = 0;  // the RTL core on NC 1 only, the ISS on the others
 };
 
 // The least host time of --repeat runs of --size on --static-nodes NCs (lpt)
-// on `engine`: the benchmark's runs of that frame so far, and as many more
-// as it takes.
-double best_host_seconds(BenchRuns& b, const BenchOptions& o, EngineKind engine, const std::string& label) {
+// on `engine` (and the RTL engine on `rtl_nodes`): the benchmark's runs of
+// that frame so far, and as many more as it takes.
+double best_host_seconds(BenchRuns& b, const BenchOptions& o, EngineKind engine, const std::string& label,
+                         const std::vector<unsigned>& rtl_nodes = {}) {
   double best = 0;
   unsigned runs = 0;
   for (const BenchRun& r : b.runs())
-    if (r.engine == engine && r.nodes == o.static_nodes && r.schedule == rc::Schedule::Lpt &&
-        r.width == o.size.first && r.height == o.size.second) {
+    if (r.engine == engine && r.rtl_nodes == rtl_nodes && r.nodes == o.static_nodes &&
+        r.schedule == rc::Schedule::Lpt && r.width == o.size.first && r.height == o.size.second) {
       best = runs++ ? std::min(best, r.r.host_seconds) : r.r.host_seconds;
     }
   for (; runs < o.repeat; ++runs) {
-    const double h = b.run(label, o.static_nodes, o.size, rc::Schedule::Lpt, engine).host_seconds;
+    const double h = b.run(label, o.static_nodes, o.size, rc::Schedule::Lpt, engine, rtl_nodes).host_seconds;
     best = runs ? std::min(best, h) : h;
   }
   return best;
@@ -436,7 +456,10 @@ BenchTimes run_bench(BenchRuns& b, const BenchOptions& o) {
   // count), over the reference's best; with --rtl the RTL engine's best over
   // the ISS's.
   t.iss_host = best_host_seconds(b, o, EngineKind::Iss, "lpt");
-  if (o.rtl) t.rtl_host = best_host_seconds(b, o, EngineKind::Rtl, "RTL engine");
+  if (o.rtl) {
+    t.rtl_host = best_host_seconds(b, o, EngineKind::Rtl, "RTL engine");
+    t.rtl1_host = best_host_seconds(b, o, EngineKind::Iss, "RTL core on NC 1", {1});
+  }
   t.ref_host = reference_host_seconds(o.scene, o.size, std::max(3u, o.repeat));
   return t;
 }
@@ -481,8 +504,12 @@ void efficiency_summary(std::ostream& json, const BenchOptions& o, const BenchTi
        << ", \"reference_host_seconds\": " << t.ref_host << ", \"cosim_over_reference\": " << over_ref;
   if (o.rtl) {
     const double rtl_over_iss = t.iss_host > 0 ? t.rtl_host / t.iss_host : 0;
+    const double rtl1_over_iss = t.iss_host > 0 ? t.rtl1_host / t.iss_host : 0;
     std::printf("RTL engine, %u NCs: host %.1f s, %.1fx the ISS's\n", o.static_nodes, t.rtl_host, rtl_over_iss);
-    json << ", \"rtl_host_seconds\": " << t.rtl_host << ", \"rtl_over_iss\": " << rtl_over_iss;
+    std::printf("RTL core on NC 1 only (--rtl-nodes 1), the ISS on the other %u: host %.2f s, %.1fx the ISS's\n",
+                o.static_nodes - 1, t.rtl1_host, rtl1_over_iss);
+    json << ", \"rtl_host_seconds\": " << t.rtl_host << ", \"rtl_over_iss\": " << rtl_over_iss
+         << ", \"rtl_nc1_host_seconds\": " << t.rtl1_host << ", \"rtl_nc1_over_iss\": " << rtl1_over_iss;
   }
 }
 

@@ -37,6 +37,8 @@ set(cases
     "rtl,render,${SCENE},--size,48x32,--nodes,8,--engine,rtl"
     # the RTL engine's data hand-overs made by catch-up jobs too (untraced model)
     "rtl-b8,render,${SCENE},--size,32x24,--nodes,4,--block,8,--engine,rtl"
+    # the RTL core on NC 3, the ISS on the others
+    "mixed,render,${SCENE},--size,48x32,--nodes,8,--rtl-nodes,3"
     "diag,diag,--size,64x64,--nodes,16,--block,8")
 foreach(c ${cases})
   string(REPLACE "," ";" parts "${c}")

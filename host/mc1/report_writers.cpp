@@ -224,7 +224,13 @@ std::string stats_json(const FrameReport& r) {
   std::ostringstream o;
   const Picos T = r.frame_time;
   o << "{\n  \"schema\": \"mc1-stats/1\",\n";
-  o << "  \"engine\": \"" << r.engine << "\",\n  \"nodes\": " << r.nodes << ",\n";
+  o << "  \"engine\": \"" << r.engine << "\",\n";
+  if (!r.rtl_nodes.empty()) {
+    o << "  \"rtl_nodes\": [";
+    for (std::size_t i = 0; i < r.rtl_nodes.size(); ++i) o << (i ? ", " : "") << r.rtl_nodes[i];
+    o << "],\n";
+  }
+  o << "  \"nodes\": " << r.nodes << ",\n";
   if (!r.schedule.empty()) o << "  \"schedule\": \"" << r.schedule << "\",\n";
   if (!r.scene.empty()) o << "  \"scene\": " << quote(r.scene) << ",\n";
   o << "  \"image\": {\"width\": " << r.width << ", \"height\": " << r.height << ", \"block_width\": " << r.block_w

@@ -92,6 +92,7 @@ struct CutLineReport {
 
 struct FrameReport {
   std::string engine;
+  std::vector<unsigned> rtl_nodes;  // NCs on the RTL engine beside `engine` (SystemConfig::rtl_nodes)
   std::string schedule;
   std::string scene;  // rendered frame: the scene file
   unsigned nodes = 0, width = 0, height = 0, block_w = 0, block_h = 0, blocks = 0;

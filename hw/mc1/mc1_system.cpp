@@ -72,10 +72,18 @@ Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::
   if (cfg.trace_node > cfg.nodes)
     throw std::invalid_argument("--trace-node " + std::to_string(cfg.trace_node) + ": the machine has NC 1.." +
                                 std::to_string(cfg.nodes));
+  std::vector<bool> on_rtl(cfg.nodes + 1, cfg.engine == EngineKind::Rtl);
+  for (unsigned k : cfg.rtl_nodes) {
+    if (k < 1 || k > cfg.nodes)
+      throw std::invalid_argument("--rtl-nodes " + std::to_string(k) + ": the machine has NC 1.." +
+                                  std::to_string(cfg.nodes));
+    on_rtl[k] = true;
+  }
   for (unsigned k = 1; k <= cfg.nodes; ++k) {
     const std::string fst = k == cfg.trace_node ? cfg.trace_path : std::string();
+    const EngineKind kind = on_rtl[k] ? EngineKind::Rtl : cfg.engine;
     ncs_.push_back(std::make_unique<nc::NodeComputer>(("nc" + std::to_string(k)).c_str(), t, k,
-                                                      cfg.engines(cfg.engine, fst), firmware));
+                                                      cfg.engines(kind, fst), firmware));
     nc::NodeComputer& n = *ncs_.back();
     n.use_pool(pool_.get());
     n.nc2rc_hdlc.bind(hdlc_->nc2rc_hdlc);
@@ -157,6 +165,11 @@ void add_sender(HdlcReport& h, const hdlc::SenderStats& s) {
 // The machine's configuration, as the report states it.
 void config_into(FrameReport& r, const SystemConfig& cfg) {
   r.engine = engine_name(cfg.engine);
+  if (cfg.engine != EngineKind::Rtl) {
+    r.rtl_nodes = cfg.rtl_nodes;
+    std::sort(r.rtl_nodes.begin(), r.rtl_nodes.end());
+    r.rtl_nodes.erase(std::unique(r.rtl_nodes.begin(), r.rtl_nodes.end()), r.rtl_nodes.end());
+  }
   r.nodes = cfg.nodes;
   r.width = cfg.width;
   r.height = cfg.height;
