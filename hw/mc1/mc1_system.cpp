@@ -35,6 +35,31 @@ rc::FramePlan diag_plan(const SystemConfig& cfg, std::vector<apu::Encoded> progr
   return p;
 }
 
+// An NC number the user gave (`what` names the option) must be one of the machine's.
+void check_nc(unsigned nc, unsigned nodes, const std::string& what) {
+  if (nc < 1 || nc > nodes)
+    throw std::invalid_argument(what + std::to_string(nc) + ": the machine has NC 1.." + std::to_string(nodes));
+}
+
+// Each line's faults: the bit error rate, the dead windows and the cut lines.
+void set_link_faults(HdlcChannel& hdlc, const SystemConfig& cfg) {
+  for (const DeadLink& d : cfg.dead_links) check_nc(d.nc, cfg.nodes, "dead link of NC ");
+  for (const CutLine& c : cfg.cut_lines) check_nc(c.nc, cfg.nodes, "cut line of NC ");
+  for (unsigned k = 1; k <= cfg.nodes; ++k) {
+    hdlc::LinkFaults f;
+    f.bit_error_rate = cfg.ber;
+    for (const DeadLink& d : cfg.dead_links)
+      if (d.nc == k) f.dead.push_back(hdlc::DeadWindow{d.begin, d.end});
+    for (const CutLine& c : cfg.cut_lines)
+      if (c.nc == k) f.dead.push_back(hdlc::DeadWindow{c.time, hdlc::kNever});
+    if (f.bit_error_rate == 0 && f.dead.empty()) continue;
+    f.seed = cfg.seed + 2 * k;
+    hdlc.set_faults(hdlc::Direction::Down, k, f);
+    f.seed = cfg.seed + 2 * k + 1;
+    hdlc.set_faults(hdlc::Direction::Up, k, f);
+  }
+}
+
 }  // namespace
 
 // The threads still waiting when the frame ended (the NCs' firmware, the
@@ -69,14 +94,10 @@ Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::
 
   rc_->rc2nc_hdlc.bind(hdlc_->rc2nc_hdlc);
   hdlc_->hdlc2rc.bind(rc_->hdlc2rc);
-  if (cfg.trace_node > cfg.nodes)
-    throw std::invalid_argument("--trace-node " + std::to_string(cfg.trace_node) + ": the machine has NC 1.." +
-                                std::to_string(cfg.nodes));
+  if (cfg.trace_node != 0) check_nc(cfg.trace_node, cfg.nodes, "--trace-node ");
   std::vector<bool> on_rtl(cfg.nodes + 1, cfg.engine == EngineKind::Rtl);
   for (unsigned k : cfg.rtl_nodes) {
-    if (k < 1 || k > cfg.nodes)
-      throw std::invalid_argument("--rtl-nodes " + std::to_string(k) + ": the machine has NC 1.." +
-                                  std::to_string(cfg.nodes));
+    check_nc(k, cfg.nodes, "--rtl-nodes ");
     on_rtl[k] = true;
   }
   for (unsigned k = 1; k <= cfg.nodes; ++k) {
@@ -99,34 +120,12 @@ Mc1System::Mc1System(sc_core::sc_module_name name, const SystemConfig& cfg, rc::
   dc_->dc2fm.bind(fm_->dc2fm);
 
   for (const NodeKill& x : cfg.kills) {
-    if (x.nc < 1 || x.nc > cfg.nodes)
-      throw std::invalid_argument("kill of NC " + std::to_string(x.nc) + ": the machine has NC 1.." +
-                                  std::to_string(cfg.nodes));
+    check_nc(x.nc, cfg.nodes, "kill of NC ");
     ncs_[x.nc - 1]->kill_at(x.time);
     // The NC's MPU runs its link protocol: its station falls silent with it.
     hdlc_->stop_station(x.nc, x.time);
   }
-  for (const DeadLink& d : cfg.dead_links)
-    if (d.nc < 1 || d.nc > cfg.nodes)
-      throw std::invalid_argument("dead link of NC " + std::to_string(d.nc) + ": the machine has NC 1.." +
-                                  std::to_string(cfg.nodes));
-  for (const CutLine& c : cfg.cut_lines)
-    if (c.nc < 1 || c.nc > cfg.nodes)
-      throw std::invalid_argument("cut line of NC " + std::to_string(c.nc) + ": the machine has NC 1.." +
-                                  std::to_string(cfg.nodes));
-  for (unsigned k = 1; k <= cfg.nodes; ++k) {
-    hdlc::LinkFaults f;
-    f.bit_error_rate = cfg.ber;
-    for (const DeadLink& d : cfg.dead_links)
-      if (d.nc == k) f.dead.push_back(hdlc::DeadWindow{d.begin, d.end});
-    for (const CutLine& c : cfg.cut_lines)
-      if (c.nc == k) f.dead.push_back(hdlc::DeadWindow{c.time, hdlc::kNever});
-    if (f.bit_error_rate == 0 && f.dead.empty()) continue;
-    f.seed = cfg.seed + 2 * k;
-    hdlc_->set_faults(hdlc::Direction::Down, k, f);
-    f.seed = cfg.seed + 2 * k + 1;
-    hdlc_->set_faults(hdlc::Direction::Up, k, f);
-  }
+  set_link_faults(*hdlc_, cfg);
 }
 
 void Mc1System::trace(sc_core::sc_trace_file* tf) {

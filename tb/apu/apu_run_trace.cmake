@@ -45,11 +45,16 @@ execute_process(COMMAND ${FST2VCD} ${WORK_DIR}/s.fst OUTPUT_FILE ${WORK_DIR}/s.v
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "fst2vcd s.fst: exit ${rc}")
 endif()
-# A VCD code may hold [ ] or ;, which a CMake list does not keep: < > , instead.
+# A VCD code may hold [ ] ; or \, which a CMake list does not keep (a \ at a
+# line's end escapes the list's next ;): control characters instead, which
+# no code holds (codes are the printable ASCII ! to ~).
 file(READ ${WORK_DIR}/s.vcd vcd)
-string(REPLACE "[" "<" vcd "${vcd}")
-string(REPLACE "]" ">" vcd "${vcd}")
-string(REPLACE ";" "," vcd "${vcd}")
+set(byte 0)
+foreach(c "[" "]" ";" "\\")
+  math(EXPR byte "${byte} + 1")
+  string(ASCII ${byte} sub)
+  string(REPLACE "${c}" "${sub}" vcd "${vcd}")
+endforeach()
 string(REPLACE "\n" ";" vcd "${vcd}")
 set(header ${vcd})
 list(FILTER header INCLUDE REGEX "^\\$(scope|upscope|var)")
