@@ -81,8 +81,8 @@ struct NcStats {
   std::vector<std::pair<Picos, std::string>> phases;      // step changes, in time order (phase())
   Picos mpu_busy = 0;               // MPU work annotated (copies, commands, interrupts)
   double apu_host_seconds = 0;      // host time spent clocking the APU engine (set by close())
-  // Only when the engine is the ISS (it counts them): words issued, and
-  // cycles stalled on `bank` (the APU waiting for the MPU's hand-over).
+  // The engine's counters (apu::ApuCounters, set by close()): words issued,
+  // and cycles stalled on `bank` (the APU waiting for the MPU's hand-over).
   std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
   std::uint64_t apu_stalls[apu::kStallKinds] = {};  // stall cycles by apu::Stall
 };
