@@ -32,6 +32,7 @@ expect(window_needs_trace 2 "--trace-from and --trace-to need --trace" render ${
 expect(window_empty 2 "--trace-to must be later than --trace-from" render ${tiny} --trace t.fst --trace-from 2ms --trace-to 1ms)
 expect(window_bad_time 2 "--trace-to: bad time" render ${tiny} --trace t.fst --trace-to soon)
 expect(rtl_nodes_range 2 "--rtl-nodes: '3' is out of range \\[1, 2\\]" render ${tiny} --rtl-nodes 1,3)
+expect(rtl_nodes_twice 2 "--rtl-nodes: NC 2 is given twice" render ${tiny} --rtl-nodes 2,1,2)
 expect(rtl_nodes_bad 2 "--rtl-nodes: 'x' is not a number" render ${tiny} --rtl-nodes 2,x)
 expect(rtl_nodes_all_rtl 2 "--rtl-nodes: with --engine rtl every NC runs the RTL core" render ${tiny} --engine rtl --rtl-nodes 1)
 

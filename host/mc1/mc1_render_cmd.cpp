@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -156,6 +157,10 @@ void frame_options(const Parsed& a, SystemConfig& cfg, RenderJob& job) {
   if (a.has("rtl-nodes")) {
     if (cfg.engine == EngineKind::Rtl) throw CliError("--rtl-nodes: with --engine rtl every NC runs the RTL core");
     cfg.rtl_nodes = parse_list("--rtl-nodes", a.get("rtl-nodes"), 1, cfg.nodes);
+    std::vector<unsigned> sorted = cfg.rtl_nodes;
+    std::sort(sorted.begin(), sorted.end());
+    if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+      throw CliError("--rtl-nodes: NC " + std::to_string(*twice) + " is given twice");
   }
   if (a.has("size")) std::tie(job.width, job.height) = parse_size("--size", a.get("size"), false);
   if (a.has("block")) std::tie(cfg.block_w, cfg.block_h) = parse_size("--block", a.get("block"), true);
