@@ -47,8 +47,9 @@ const char* const kBenchRenderDescription =
     "     only (--rtl-nodes 1; host times).\n"
     "Then the double-precision reference renderer (mc1-ref) on the same scene and size: the\n"
     "co-simulation's host time on --static-nodes NCs over the reference's, and with --rtl the RTL\n"
-    "engine's over the ISS's, each the best of --repeat runs. Every run's frame must equal the\n"
-    "first run's of its size bit for bit.";
+    "engine's over the ISS's, each the best of --repeat runs; under each, the frame's runs (best,\n"
+    "worst, median), and a note if the host's load moved them by over 20 %. Every run's frame\n"
+    "must equal the first run's of its size bit for bit.";
 
 void add_render_options(CLI::App& cmd) {
   cmd.add_option("SCENE", "the scene file (or --scene FILE)")->type_name("FILE");
@@ -310,21 +311,41 @@ struct BenchRun {
   FrameReport r;
 };
 
-// The double-precision reference renderer's host time for the frame: the
-// best of `runs` (at least three: it is short, so the best is the least
-// disturbed by other load).
-double reference_host_seconds(const std::string& scene, std::pair<unsigned, unsigned> size, unsigned runs) {
+// The host times of one frame's runs: the best is the figure compared (the
+// least disturbed by other load); the median and the worst show how far
+// the host's load moved the runs.
+struct HostTimes {
+  double best = 0, median = 0, worst = 0;
+  unsigned runs = 0;
+
+  explicit HostTimes(std::vector<double> t) : runs(static_cast<unsigned>(t.size())) {
+    if (t.empty()) return;
+    std::sort(t.begin(), t.end());
+    best = t.front();
+    worst = t.back();
+    const std::size_t m = t.size() / 2;
+    median = t.size() % 2 ? t[m] : (t[m - 1] + t[m]) / 2;
+  }
+  HostTimes() = default;
+  // The worst run over the best, less one (0.2: the worst took 20 % longer);
+  // 0 for frames under 20 ms, which vary more with caches and start-up than
+  // with the host's load.
+  double spread() const { return best >= 0.02 ? worst / best - 1 : 0; }
+};
+
+// The double-precision reference renderer's host times for the frame,
+// `runs` of them (at least three: it is short).
+HostTimes reference_host_times(const std::string& scene, std::pair<unsigned, unsigned> size, unsigned runs) {
   const scene::Scene sc = scene::load_scene(scene);
   const refrender::Renderer ref(sc);
-  double best = 0;
+  std::vector<double> times;
   for (unsigned i = 0; i < runs; ++i) {
     const auto t0 = std::chrono::steady_clock::now();
     const imgcmp::Image img = ref.render(static_cast<int>(size.first), static_cast<int>(size.second));
-    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (i == 0 || t < best) best = t;
+    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     if (img.width != static_cast<int>(size.first)) throw std::runtime_error("reference renderer: wrong size");
   }
-  return best;
+  return HostTimes(std::move(times));
 }
 
 void runs_json(std::ostream& json, const std::vector<BenchRun>& runs) {
@@ -419,27 +440,23 @@ struct BenchTimes {
   std::map<unsigned, Picos> t_size;  // --size, lpt, per node count
   Picos lpt_ref = 0, static_ref = 0;  // --size on --static-nodes
   Picos big1 = 0, bign = 0, bigs = 0, big_dl = 0;  // --big on 1 and --big-nodes NCs, static; the download
-  double rtl_host = 0, iss_host = 0, ref_host = 0;
-  double rtl1_host = 0;  // the RTL core on NC 1 only, the ISS on the others
+  HostTimes rtl, iss, ref;
+  HostTimes rtl1;  // the RTL core on NC 1 only, the ISS on the others
 };
 
-// The least host time of --repeat runs of --size on --static-nodes NCs (lpt)
-// on `engine` (and the RTL engine on `rtl_nodes`): the benchmark's runs of
-// that frame so far, and as many more as it takes.
-double best_host_seconds(BenchRuns& b, const BenchOptions& o, EngineKind engine, const std::string& label,
-                         const std::vector<unsigned>& rtl_nodes = {}) {
-  double best = 0;
-  unsigned runs = 0;
+// The host times of --repeat runs of --size on --static-nodes NCs (lpt) on
+// `engine` (and the RTL engine on `rtl_nodes`): the benchmark's runs of that
+// frame so far, and as many more as it takes.
+HostTimes host_times(BenchRuns& b, const BenchOptions& o, EngineKind engine, const std::string& label,
+                     const std::vector<unsigned>& rtl_nodes = {}) {
+  std::vector<double> times;
   for (const BenchRun& r : b.runs())
     if (r.engine == engine && r.rtl_nodes == rtl_nodes && r.nodes == o.static_nodes &&
-        r.schedule == rc::Schedule::Lpt && r.width == o.size.first && r.height == o.size.second) {
-      best = runs++ ? std::min(best, r.r.host_seconds) : r.r.host_seconds;
-    }
-  for (; runs < o.repeat; ++runs) {
-    const double h = b.run(label, o.static_nodes, o.size, rc::Schedule::Lpt, engine, rtl_nodes).host_seconds;
-    best = runs ? std::min(best, h) : h;
-  }
-  return best;
+        r.schedule == rc::Schedule::Lpt && r.width == o.size.first && r.height == o.size.second)
+      times.push_back(r.r.host_seconds);
+  while (times.size() < o.repeat)
+    times.push_back(b.run(label, o.static_nodes, o.size, rc::Schedule::Lpt, engine, rtl_nodes).host_seconds);
+  return HostTimes(std::move(times));
 }
 
 BenchTimes run_bench(BenchRuns& b, const BenchOptions& o) {
@@ -460,12 +477,12 @@ BenchTimes run_bench(BenchRuns& b, const BenchOptions& o) {
   // ISS run on --static-nodes NCs (lpt), the best of --repeat (the runs above
   // count), over the reference's best; with --rtl the RTL engine's best over
   // the ISS's.
-  t.iss_host = best_host_seconds(b, o, EngineKind::Iss, "lpt");
+  t.iss = host_times(b, o, EngineKind::Iss, "lpt");
   if (o.rtl) {
-    t.rtl_host = best_host_seconds(b, o, EngineKind::Rtl, "RTL engine");
-    t.rtl1_host = best_host_seconds(b, o, EngineKind::Iss, "RTL core on NC 1", {1});
+    t.rtl = host_times(b, o, EngineKind::Rtl, "RTL engine");
+    t.rtl1 = host_times(b, o, EngineKind::Iss, "RTL core on NC 1", {1});
   }
-  t.ref_host = reference_host_seconds(o.scene, o.size, std::max(3u, o.repeat));
+  t.ref = reference_host_times(o.scene, o.size, std::max(3u, o.repeat));
   return t;
 }
 
@@ -487,8 +504,7 @@ void speedup_summary(std::ostream& json, const BenchOptions& o, BenchTimes& t) {
   json << "}, \"lpt_over_static\": " << gain;
 }
 
-// Parallel efficiency on --big; the host time of the co-simulation over the
-// reference renderer's, and of the RTL engine over the ISS.
+// Parallel efficiency on --big.
 void efficiency_summary(std::ostream& json, const BenchOptions& o, const BenchTimes& t) {
   if (o.big.first) {
     const double eff = static_cast<double>(t.big1) / (static_cast<double>(o.big_nodes) * static_cast<double>(t.bign));
@@ -501,21 +517,54 @@ void efficiency_summary(std::ostream& json, const BenchOptions& o, const BenchTi
          << ", \"efficiency\": " << eff << ", \"download_share\": " << static_cast<double>(t.big_dl) / t.bign
          << ", \"lpt_over_static\": " << big_gain << "}";
   }
-  const double over_ref = t.ref_host > 0 ? t.iss_host / t.ref_host : 0;
+}
+
+// "0.67-0.72 s (median 0.69)": a frame's runs, with `digits` decimals.
+std::string runs_text(const HostTimes& h, int digits) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.*f-%.*f s (median %.*f)", digits, h.best, digits, h.worst, digits, h.median);
+  return buf;
+}
+
+void host_times_json(std::ostream& json, const char* key, const HostTimes& h) {
+  json << ", \"" << key << "\": " << h.best << ", \"" << key << "_median\": " << h.median << ", \"" << key
+       << "_worst\": " << h.worst;
+}
+
+// The host time of the co-simulation over the reference renderer's, and of
+// the RTL engine over the ISS: the best runs' ratios, then each frame's
+// runs, so that a host whose load moved them shows it.
+void host_summary(std::ostream& json, const BenchOptions& o, const BenchTimes& t) {
+  const double over_ref = t.ref.best > 0 ? t.iss.best / t.ref.best : 0;
+  const double medians = t.ref.median > 0 ? t.iss.median / t.ref.median : 0;
   std::printf("%ux%u on %u NCs: co-simulation (ISS) host %.2f s, reference renderer %.3f s (best of %u, %u): %.1fx\n",
-              o.size.first, o.size.second, o.static_nodes, t.iss_host, t.ref_host, o.repeat, std::max(3u, o.repeat),
-              over_ref);
-  json << ", \"repeat\": " << o.repeat << ", \"cosim_host_seconds\": " << t.iss_host
-       << ", \"reference_host_seconds\": " << t.ref_host << ", \"cosim_over_reference\": " << over_ref;
+              o.size.first, o.size.second, o.static_nodes, t.iss.best, t.ref.best, t.iss.runs, t.ref.runs, over_ref);
+  std::printf("  runs: co-simulation %s, reference %s: %.1fx of the medians\n", runs_text(t.iss, 2).c_str(),
+              runs_text(t.ref, 3).c_str(), medians);
+  json << ", \"repeat\": " << o.repeat;
+  host_times_json(json, "cosim_host_seconds", t.iss);
+  host_times_json(json, "reference_host_seconds", t.ref);
+  json << ", \"cosim_over_reference\": " << over_ref << ", \"cosim_over_reference_median\": " << medians;
+  double spread = std::max(t.iss.spread(), t.ref.spread());
   if (o.rtl) {
-    const double rtl_over_iss = t.iss_host > 0 ? t.rtl_host / t.iss_host : 0;
-    const double rtl1_over_iss = t.iss_host > 0 ? t.rtl1_host / t.iss_host : 0;
-    std::printf("RTL engine, %u NCs: host %.1f s, %.1fx the ISS's\n", o.static_nodes, t.rtl_host, rtl_over_iss);
+    const double rtl_over_iss = t.iss.best > 0 ? t.rtl.best / t.iss.best : 0;
+    const double rtl1_over_iss = t.iss.best > 0 ? t.rtl1.best / t.iss.best : 0;
+    std::printf("RTL engine, %u NCs: host %.1f s, %.1fx the ISS's\n", o.static_nodes, t.rtl.best, rtl_over_iss);
+    std::printf("  runs: %s\n", runs_text(t.rtl, 1).c_str());
     std::printf("RTL core on NC 1 only (--rtl-nodes 1), the ISS on the other %u: host %.2f s, %.1fx the ISS's\n",
-                o.static_nodes - 1, t.rtl1_host, rtl1_over_iss);
-    json << ", \"rtl_host_seconds\": " << t.rtl_host << ", \"rtl_over_iss\": " << rtl_over_iss
-         << ", \"rtl_nc1_host_seconds\": " << t.rtl1_host << ", \"rtl_nc1_over_iss\": " << rtl1_over_iss;
+                o.static_nodes - 1, t.rtl1.best, rtl1_over_iss);
+    std::printf("  runs: %s\n", runs_text(t.rtl1, 2).c_str());
+    host_times_json(json, "rtl_host_seconds", t.rtl);
+    json << ", \"rtl_over_iss\": " << rtl_over_iss;
+    host_times_json(json, "rtl_nc1_host_seconds", t.rtl1);
+    json << ", \"rtl_nc1_over_iss\": " << rtl1_over_iss;
+    spread = std::max({spread, t.rtl.spread(), t.rtl1.spread()});
   }
+  // A quiet host repeats a frame within a few per cent.
+  if (spread > 0.2)
+    std::printf("The host's load moved the runs of one frame by up to %.0f %%: the ratios above are the best runs'; "
+                "compare figures from a quiet host.\n",
+                spread * 100);
 }
 
 }  // namespace
@@ -535,6 +584,7 @@ int cmd_bench_render(const CLI::App& cmd) {
   runs_json(json, bench.runs());
   speedup_summary(json, o, t);
   efficiency_summary(json, o, t);
+  host_summary(json, o, t);
   const bool same = bench.same();
   json << ", \"frames_equal\": " << (same ? "true" : "false") << "}\n";
   if (a.has("json")) write_file_atomically(a.get("json"), json.str());
