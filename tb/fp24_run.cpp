@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,7 @@ constexpr const char* kDescription =
 struct Options {
   std::string engine;
   std::string trace;
+  std::string fst;  // the file the RTL writes --trace's waveform to: its staged temporary
   std::string check;  // a golden file, "-" for standard input
 };
 
@@ -77,7 +79,7 @@ std::string conflicts(Options& o) {
 std::vector<Result> compute(const Options& o, const std::string& engine, const std::vector<Issue>& vectors) {
   std::vector<Result> results;
   results.reserve(vectors.size());
-  if (engine == "rtl") return RtlUnits(o.trace).run(vectors);
+  if (engine == "rtl") return RtlUnits(o.fst).run(vectors);
   if (engine == "oracle") {
     Oracle oracle;
     for (const Issue& v : vectors) results.push_back(oracle.run(v.op, v.a, v.b));
@@ -137,6 +139,12 @@ int check(const Options& o, const std::vector<Golden>& golden) {
   return summary.mismatches() == 0 ? cli::kExitOk : cli::kExitFailed;
 }
 
+// The staged waveform put in place (a failure throws); returns `status`.
+int commit(std::optional<mc1::StagedFile>& fst, int status) {
+  if (fst) fst->commit();
+  return status;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -159,13 +167,23 @@ int main(int argc, char** argv) {
   } catch (const cli::UsageError& e) {
     return cli::usage_error(app, e.what());
   }
+  // The waveform is staged: the RTL writes it under a temporary name, put in
+  // place once the run is over.
+  std::optional<mc1::StagedFile> fst;
   try {
-    if (!o.check.empty()) return check(o, golden);
+    if (!o.trace.empty()) fst.emplace(cli::writer_output("--trace", o.trace));
+  } catch (const cli::UsageError& e) {
+    return cli::usage_error(app, e.what());
+  }
+  if (fst) o.fst = fst->temp();
+  try {
+    if (!o.check.empty()) return commit(fst, check(o, golden));
     const std::vector<Result> results = compute(o, o.engine, vectors);
     std::string out;
     out.reserve(results.size() * 10);
     for (const Result& r : results) out += format_result(r) + '\n';
     std::fwrite(out.data(), 1, out.size(), stdout);
+    commit(fst, cli::kExitOk);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fp24-run: %s\n", e.what());
     return cli::kExitFailed;

@@ -168,5 +168,73 @@ TEST(AtomicFile, WritesThroughASymbolicLink) {
   EXPECT_TRUE(S_ISLNK(st.st_mode)) << "the link stays a link";
 }
 
+// A writer that opens its file by name, as the FST writer does: it unlinks
+// the name and creates the file anew.
+void write_as_library(const std::string& path, const std::string& text) {
+  std::remove(path.c_str());
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+TEST(AtomicFile, ForWriterRenamesTheWritersFileOnCommit) {
+  ScratchDir dir;
+  write_file_atomically(dir.file("t.fst"), "old");
+  chmod(dir.file("t.fst").c_str(), 0640);
+  StagedFile f = StagedFile::for_writer(dir.file("t.fst"));
+  EXPECT_EQ(dir.names().size(), 2u) << "the temporary file is made at once";
+  write_as_library(f.temp(), "waveform");
+  EXPECT_EQ(slurp(dir.file("t.fst")), "old") << "untouched until commit()";
+  f.commit();
+  EXPECT_EQ(slurp(dir.file("t.fst")), "waveform");
+  EXPECT_EQ(mode_of(dir.file("t.fst")) & 0777, 0640u) << "a replaced file keeps its mode";
+  EXPECT_EQ(dir.names(), std::set<std::string>{"t.fst"});
+}
+
+TEST(AtomicFile, ForWriterWithoutCommitLeavesNothing) {
+  ScratchDir dir;
+  {
+    StagedFile f = StagedFile::for_writer(dir.file("t.vcd"), ".vcd");
+    EXPECT_EQ(f.temp().substr(f.temp().size() - 4), ".vcd");
+    write_as_library(f.temp(), "half a waveform");
+  }
+  EXPECT_TRUE(dir.names().empty());
+}
+
+TEST(AtomicFile, ForWriterRefusesWhatTheWriterWouldReplace) {
+  ScratchDir dir;
+  ASSERT_EQ(mkdir(dir.file("d").c_str(), 0755), 0);
+  try {
+    StagedFile::for_writer(dir.file("d"));
+    ADD_FAILURE() << "a directory was taken";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), dir.file("d") + ": is a directory");
+  }
+  rmdir(dir.file("d").c_str());
+  try {
+    StagedFile::for_writer("/dev/null");  // refused before anything is opened
+    ADD_FAILURE() << "a device was taken";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "/dev/null: is not a regular file");
+  }
+  try {
+    StagedFile::for_writer(dir.file("none/t.fst"));
+    ADD_FAILURE() << "a missing directory was taken";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              dir.file("none/t.fst") + ": cannot create a temporary file beside it: No such file or directory");
+  }
+  EXPECT_TRUE(dir.names().empty());
+}
+
+TEST(AtomicFile, SameFileSeesThroughLinksAndDots) {
+  ScratchDir dir;
+  write_file_atomically(dir.file("real"), "x");
+  ASSERT_EQ(symlink("real", dir.file("link").c_str()), 0);
+  EXPECT_TRUE(same_file(dir.file("link"), dir.file("real")));
+  EXPECT_TRUE(same_file(dir.file("link"), dir.file("./real")));
+  EXPECT_FALSE(same_file(dir.file("link"), dir.file("other")));
+  EXPECT_TRUE(same_file(dir.file("new"), dir.file("../") + dir.file("new").substr(5))) << "a file not made yet";
+  EXPECT_FALSE(same_file(dir.file("new"), dir.file("real")));
+}
+
 }  // namespace
 }  // namespace mc1

@@ -45,6 +45,17 @@ if(PROGRAM STREQUAL "fp24-run")
   expect(unknown_named RC 2 ERR "not expected: --bogus" INPUT ${WORK_DIR}/ok.vec ARGS --engine model --bogus)
   expect(no_engine RC 2 ERR "--engine is required" INPUT ${WORK_DIR}/ok.vec)
   expect(bad_engine RC 2 ERR "--engine: fpga not in" INPUT ${WORK_DIR}/ok.vec ARGS --engine fpga)
+  # A waveform its writer cannot take is refused before the run; a good one
+  # appears once the run is over, with no temporary file beside it.
+  expect(trace_directory RC 2 ERR "--trace: ${docs}: is a directory" INPUT ${WORK_DIR}/ok.vec
+         ARGS --engine rtl --trace ${docs})
+  expect(trace_no_dir RC 2 ERR "--trace: none/t.fst: cannot create a temporary file beside it"
+         INPUT ${WORK_DIR}/ok.vec ARGS --engine rtl --trace none/t.fst)
+  expect(trace_ok RC 0 OUT "^400000 00\n$" INPUT ${WORK_DIR}/ok.vec ARGS --engine rtl --trace t.fst)
+  file(GLOB temps ${WORK_DIR}/.t.fst.*)
+  if(NOT EXISTS ${WORK_DIR}/t.fst OR temps)
+    message(SEND_ERROR "fp24-run --trace t.fst: no t.fst, or temporary files left: ${temps}")
+  endif()
 elseif(PROGRAM STREQUAL "fp24-regress")
   set(quick --ops neg --no-rtl --no-oracle --random 0)
   expect(threads_zero RC 2 ERR "--threads: '0' is out of range \\[1, 1024\\]" ARGS ${quick} --threads 0)
@@ -89,6 +100,9 @@ elseif(PROGRAM STREQUAL "apu-run")
   expect(two_programs RC 2 ERR "apu-run: " ARGS halt.apu loop.apu)
   expect(bad_engine RC 2 ERR "--engine: fpga not in" ARGS halt.apu --engine fpga)
   expect(trace_needs_rtl RC 2 ERR "--trace needs --engine rtl" ARGS halt.apu --trace t.fst)
+  expect(trace_directory RC 2 ERR "--trace: ${docs}: is a directory" ARGS halt.apu --engine rtl --trace ${docs})
+  expect(trace_device RC 2 ERR "--trace: /dev/null: is not a regular file"
+         ARGS halt.apu --engine rtl --trace /dev/null)
   # The stall profile as JSON (apu-profile/2): a RAW stall at pc 3 each of 20
   # rounds, one cycle each; the start's fetch and decode and the loop exit's
   # branch miss are `fetch` stalls (docs/apu-isa.md "Timing").
@@ -131,6 +145,14 @@ elseif(PROGRAM STREQUAL "apu-cosim")
   expect(max_cycles_too_big RC 2 ERR "--max-cycles: '18446744073709551616' is out of range"
          ARGS --random 1 --max-cycles 18446744073709551616)
   expect(program_directory RC 2 ERR "PROGRAM: ${docs}: is a directory" ARGS ${docs})
+  expect(trace_no_rtl RC 2 ERR "--trace needs the rtl engine in --engines" ARGS halt.apu --engines iss,iss --trace t.fst)
+  expect(trace_no_dir RC 2 ERR "--trace: none/t.fst: cannot create a temporary file beside it"
+         ARGS halt.apu --trace none/t.fst)
+  expect(trace_rtl_rtl RC 0 OUT "rtl and rtl agree" ARGS halt.apu --engines rtl,rtl --trace t.fst)
+  file(GLOB temps ${WORK_DIR}/.t.fst.*)
+  if(NOT EXISTS ${WORK_DIR}/t.fst OR temps)
+    message(SEND_ERROR "apu-cosim --trace t.fst: no t.fst, or temporary files left: ${temps}")
+  endif()
 elseif(PROGRAM STREQUAL "apu-bench")
   expect(bad_engine RC 2 ERR "--engines: fpga not in" ARGS --engines iss,fpga)
   expect(cycles_too_big RC 2 ERR "--iss-cycles: '99999999999999999999' is out of range"

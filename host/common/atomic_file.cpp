@@ -38,24 +38,36 @@ bool write_and_close(int fd, std::string_view bytes) {
   return ::close(fd) == 0;
 }
 
-// The target with symbolic links resolved, so that the rename replaces the
-// file a link points to rather than the link; `path` itself when it does not
-// exist yet.
-std::string resolve(const std::string& path) {
+std::string real_path(const std::string& path) {
   char* real = ::realpath(path.c_str(), nullptr);
-  if (!real) return path;
+  if (!real) return {};
   std::string out = real;
   std::free(real);
   return out;
 }
 
-// Creates "DIR.NAME.tmp.PID.N" exclusively (N counts up past names in use),
-// with mode 0666 so that open(2) applies the umask as for any new file;
-// returns the descriptor and sets `temp`, or -1 with errno set.
-int create_temp(const std::string& dir, const std::string& name, std::string& temp) {
+// The target with symbolic links resolved, so that the rename replaces the
+// file a link points to rather than the link. A file that does not exist
+// yet: its directory resolved and its name (`path` itself if the directory
+// does not resolve either).
+std::string resolve(const std::string& path) {
+  if (std::string real = real_path(path); !real.empty()) return real;
+  const auto slash = path.find_last_of('/');
+  const std::string dir = real_path(slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash));
+  if (dir.empty()) return path;
+  return (dir == "/" ? "" : dir) + "/" + (slash == std::string::npos ? path : path.substr(slash + 1));
+}
+
+// Creates "DIR.NAME.tmp.PID.N" + suffix exclusively (N counts up past names
+// in use), with mode 0666 so that open(2) applies the umask as for any new
+// file; returns the descriptor and sets `temp`, or -1 with errno set.
+int create_temp(const std::string& target, std::string& temp, const std::string& suffix = "") {
+  const auto slash = target.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "" : target.substr(0, slash + 1);
+  const std::string name = slash == std::string::npos ? target : target.substr(slash + 1);
   static std::atomic<unsigned> counter{0};
   for (int tries = 0; tries < 1000; ++tries) {
-    temp = dir + "." + name + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+    temp = dir + "." + name + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++) + suffix;
     const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0 || errno != EEXIST) return fd;
   }
@@ -74,11 +86,8 @@ StagedFile::StagedFile(const std::string& path, std::string_view bytes) : path_(
     if (!write_and_close(fd, bytes)) fail(path_, "cannot write", errno);
     return;
   }
-  const auto slash = target_.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "" : target_.substr(0, slash + 1);
-  const std::string name = slash == std::string::npos ? target_ : target_.substr(slash + 1);
   std::string temp;
-  const int fd = create_temp(dir, name, temp);
+  const int fd = create_temp(target_, temp);
   if (fd < 0) fail(path_, "cannot create a temporary file beside it", errno);
   // A replaced file keeps its mode.
   if ((exists && ::fchmod(fd, st.st_mode & 07777) != 0) || !write_and_close(fd, bytes)) {
@@ -89,8 +98,33 @@ StagedFile::StagedFile(const std::string& path, std::string_view bytes) : path_(
   temp_ = std::move(temp);
 }
 
+StagedFile::StagedFile(const std::string& path) : path_(path), target_(resolve(path)) {}
+
+StagedFile StagedFile::for_writer(const std::string& path, const std::string& suffix) {
+  StagedFile f(path);
+  struct stat st {};
+  if (::stat(f.target_.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) throw std::runtime_error(path + ": is a directory");
+    if (!S_ISREG(st.st_mode)) throw std::runtime_error(path + ": is not a regular file");
+    f.mode_ = st.st_mode & 07777;
+  }
+  // Created (and closed) here, so that the name is this file's and the
+  // directory is known to take it; the writer then replaces it.
+  std::string temp;
+  const int fd = create_temp(f.target_, temp, suffix);
+  if (fd < 0) fail(path, "cannot create a temporary file beside it", errno);
+  ::close(fd);
+  f.temp_ = std::move(temp);
+  return f;
+}
+
 StagedFile::StagedFile(StagedFile&& other) noexcept
-    : path_(std::move(other.path_)), target_(std::move(other.target_)), temp_(std::exchange(other.temp_, {})) {}
+    : path_(std::move(other.path_)),
+      target_(std::move(other.target_)),
+      temp_(std::exchange(other.temp_, {})),
+      mode_(other.mode_) {}
+
+bool same_file(const std::string& a, const std::string& b) { return resolve(a) == resolve(b); }
 
 StagedFile::~StagedFile() {
   if (!temp_.empty()) ::unlink(temp_.c_str());
@@ -98,6 +132,7 @@ StagedFile::~StagedFile() {
 
 void StagedFile::commit() {
   if (temp_.empty()) return;
+  if (mode_) ::chmod(temp_.c_str(), mode_);  // a replaced file keeps its mode
   if (::rename(temp_.c_str(), target_.c_str()) != 0) {
     const int err = errno;
     ::unlink(temp_.c_str());

@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <sys/types.h>
 
 namespace mc1 {
 
@@ -28,16 +29,31 @@ class StagedFile {
   StagedFile& operator=(const StagedFile&) = delete;
   ~StagedFile();
 
+  // A file that another writer makes by name (a waveform library that opens,
+  // and may first unlink, the file itself): it writes temp(), which ends in
+  // `suffix` (the writer's own ending, for one that appends it: SystemC's
+  // ".vcd"), and commit() renames temp() onto `path` as above. A target that
+  // exists and is not a regular file is refused ("PATH: is not a regular
+  // file"), as the writer would replace it, and so is a directory.
+  static StagedFile for_writer(const std::string& path, const std::string& suffix = "");
+  const std::string& temp() const { return temp_; }
+
   void commit();
   const std::string& path() const { return path_; }
 
  private:
+  explicit StagedFile(const std::string& path);
   std::string path_;    // as the caller named it, for messages
   std::string target_;  // path_ with symbolic links resolved
   std::string temp_;    // the staged file; empty once committed or when written in place
+  mode_t mode_ = 0;     // for_writer: the replaced file's mode (0: none)
 };
 
 // StagedFile(path, bytes).commit().
 void write_file_atomically(const std::string& path, std::string_view bytes);
+
+// Whether `a` and `b` name one file, as a StagedFile's target: symbolic
+// links, "." and ".." resolved, for a file not made yet in its directory.
+bool same_file(const std::string& a, const std::string& b);
 
 }  // namespace mc1

@@ -160,4 +160,13 @@ std::string progress_times(double elapsed_seconds, double fraction_done) {
   return t + "~" + span(left) + " left";
 }
 
+StagedFile writer_output(const std::string& option, const std::string& path, const std::string& suffix) {
+  if (path.empty()) throw UsageError(option + " needs a file name");
+  try {
+    return StagedFile::for_writer(path, suffix);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(option + ": " + e.what());
+  }
+}
+
 }  // namespace mc1::cmdline

@@ -12,6 +12,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "atomic_file.hpp"
+
 namespace mc1::cmdline {
 
 constexpr int kExitOk = 0;
@@ -64,5 +66,12 @@ std::string progress_times(double elapsed_seconds, double fraction_done);
 // Throws UsageError when standard input is a directory (`prog < docs`),
 // which a stream would otherwise read as empty.
 void require_stdin_not_directory();
+
+// An output that a library writes by name (an FST or VCD writer), staged
+// beside `path` before the run (mc1::StagedFile::for_writer): the writer
+// writes temp(), and commit() puts it in place once the writer has closed
+// it; without commit() it is removed. A path it cannot take (a directory, a
+// device, a missing directory, "") is a UsageError naming `option`.
+StagedFile writer_output(const std::string& option, const std::string& path, const std::string& suffix = "");
 
 }  // namespace mc1::cmdline

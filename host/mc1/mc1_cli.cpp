@@ -216,6 +216,40 @@ void Outputs::add(const std::string& path, const std::vector<std::uint8_t>& byte
   add(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
+void Outputs::add(StagedFile&& written) { staged_.push_back(std::move(written)); }
+
+std::string stage_vcd(const Parsed& a, Outputs& out) {
+  if (!a.has("vcd")) return "";
+  StagedFile f = writer_output("--vcd", a.get("vcd"), ".vcd");
+  std::string temp = f.temp();
+  out.add(std::move(f));
+  return temp;
+}
+
+NamedPaths report_outputs(const Parsed& a) {
+  NamedPaths out;
+  for (const char* name : {"out", "stats", "gantt", "vcd"})
+    if (a.has(name)) out.emplace_back(std::string("--") + name, a.get(name));
+  return out;
+}
+
+NamedPaths params_inputs(const Parsed& a) {
+  NamedPaths in;
+  for (const std::string& f : a.all("params")) in.emplace_back("the timing table", f);
+  return in;
+}
+
+void check_distinct(const NamedPaths& inputs, const NamedPaths& outputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const auto& [option, path] = outputs[i];
+    for (std::size_t j = 0; j < i; ++j)
+      if (same_file(path, outputs[j].second))
+        throw CliError(outputs[j].first + " and " + option + " name one file: " + path);
+    for (const auto& [role, input] : inputs)
+      if (same_file(path, input)) throw CliError(option + " " + path + " would replace " + role + " " + input);
+  }
+}
+
 void Outputs::commit() {
   for (StagedFile& f : staged_) f.commit();
   staged_.clear();

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "atomic_file.hpp"
@@ -86,11 +87,28 @@ class Outputs {
  public:
   void add(const std::string& path, std::string_view bytes);
   void add(const std::string& path, const std::vector<std::uint8_t>& bytes);
+  void add(StagedFile&& written);  // a writer's file (writer_output)
   void commit();
 
  private:
   std::vector<StagedFile> staged_;
 };
+// --trace's FST and --vcd's VCD: staged before the run (a CliError for a
+// path they cannot take), written by their writers under a temporary name.
+using cmdline::writer_output;
+// --vcd's file, if given, staged in `out`: the path SystemC is to write
+// during the run, or "".
+std::string stage_vcd(const Parsed& a, Outputs& out);
+// (option or role, path) pairs.
+using NamedPaths = std::vector<std::pair<std::string, std::string>>;
+// The files that the report options (add_report_options) given name, and
+// the --params files as inputs.
+NamedPaths report_outputs(const Parsed& a);
+NamedPaths params_inputs(const Parsed& a);
+// Before a run: a CliError if two outputs name one file, or an output names
+// an input (both named), so that no output is lost or replaces what was read.
+void check_distinct(const NamedPaths& inputs, const NamedPaths& outputs);
+
 // The summary's lines on injected faults and the links the RC found down.
 void print_faults(const FrameReport& r);
 

@@ -53,6 +53,46 @@ expect(out_full 1 "/dev/full: .*No space left on device" diag --nodes 2 --stats 
 if(EXISTS ${WORK_DIR}/d.json)
   message(SEND_ERROR "case out_full: d.json was left behind")
 endif()
+# Outputs that would replace an input or one another, and waveform paths
+# their writers cannot take: exit 2 before the run, nothing written.
+file(COPY ${SCENES}/tiny.json DESTINATION ${WORK_DIR})
+file(READ ${WORK_DIR}/tiny.json scene_before)
+expect(out_is_scene 2 "--out ${WORK_DIR}/tiny.json would replace the scene ${WORK_DIR}/tiny.json"
+       render ${WORK_DIR}/tiny.json --size 16x16 --nodes 2 --quiet --out ${WORK_DIR}/tiny.json)
+file(READ ${WORK_DIR}/tiny.json scene_after)
+if(NOT scene_after STREQUAL scene_before)
+  message(SEND_ERROR "case out_is_scene: the scene was replaced")
+endif()
+expect(out_is_stats 2 "--out and --stats name one file: ${WORK_DIR}/\\./x\\.png"
+       render ${tiny} --out ${WORK_DIR}/x.png --stats ${WORK_DIR}/./x.png)
+expect(gantt_is_params 2 "--gantt ${WORK_DIR}/w4.params would replace the timing table"
+       render ${tiny} --params ${WORK_DIR}/w4.params --gantt ${WORK_DIR}/w4.params)
+expect(vcd_is_stats 2 "mc1 diag: --stats and --vcd name one file" diag --nodes 2 --vcd ${WORK_DIR}/d.vcd
+       --stats ${WORK_DIR}/d.vcd)
+expect(trace_is_dir 2 "--trace: ${WORK_DIR}: is a directory" render ${tiny} --trace ${WORK_DIR})
+expect(vcd_is_device 2 "--vcd: /dev/null: is not a regular file" render ${tiny} --vcd /dev/null)
+expect(trace_no_dir 2 "--trace: ${WORK_DIR}/none/t.fst: cannot create a temporary file beside it"
+       render ${tiny} --trace ${WORK_DIR}/none/t.fst)
+foreach(f x.png d.vcd)
+  if(EXISTS ${WORK_DIR}/${f})
+    message(SEND_ERROR "an output of a refused command was written: ${f}")
+  endif()
+endforeach()
+# A frame that cannot complete: exit 1, and the waveforms its writers began
+# are gone, as the other outputs.
+expect(failed_run_waveforms 1 "the frame cannot complete" render ${tiny} --kill-node 1@1ms --kill-node 2@1ms
+       --vcd ${WORK_DIR}/k.vcd --trace ${WORK_DIR}/k.fst)
+foreach(f k.vcd k.fst k.fst.gtkw)
+  if(EXISTS ${WORK_DIR}/${f})
+    message(SEND_ERROR "case failed_run_waveforms: ${f} was left behind")
+  endif()
+endforeach()
+# A VCD is written where --vcd says, ".vcd" or not.
+expect(vcd_name 0 "" render ${tiny} --vcd ${WORK_DIR}/plain)
+if(NOT EXISTS ${WORK_DIR}/plain OR EXISTS ${WORK_DIR}/plain.vcd)
+  message(SEND_ERROR "case vcd_name: --vcd plain did not write the file plain")
+endif()
+
 file(GLOB leftovers ${WORK_DIR}/.*)
 if(leftovers)
   message(SEND_ERROR "temporary files left behind: ${leftovers}")

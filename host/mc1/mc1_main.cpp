@@ -138,10 +138,14 @@ int cmd_diag(const CLI::App& cmd) {
   const std::vector<apu::Encoded> program =
       a.has("kernel") ? kernel_image(a.get("kernel")) : diag::kernel();
 
-  const FrameReport r = run_frame(cfg, program, diag::nc_main, a.get("vcd"));
-  const Check c = compare(r);
+  cli::NamedPaths inputs = cli::params_inputs(a);
+  if (a.has("kernel")) inputs.emplace_back("the kernel", a.get("kernel"));
+  cli::check_distinct(inputs, cli::report_outputs(a));
+  cli::Outputs out;  // the VCD's writer writes under a temporary name during the run
+  const std::string vcd = cli::stage_vcd(a, out);
 
-  cli::Outputs out;
+  const FrameReport r = run_frame(cfg, program, diag::nc_main, vcd);
+  const Check c = compare(r);
   if (a.has("out")) out.add(a.get("out"), encode_png_rgb8(r.width, r.height, r.rgb.data()));
   if (a.has("stats")) out.add(a.get("stats"), stats_json(r));
   if (a.has("gantt")) out.add(a.get("gantt"), gantt_svg(r));

@@ -233,6 +233,24 @@ int compare_to_reference(const RenderJob& job, const FrameReport& r, const std::
   return 0;
 }
 
+// Before the run: no output names an input or another output; --trace's
+// FST and --vcd's VCD staged in `out` (their writers write the temporary
+// files: cfg.trace_path, and the VCD path returned, "" without --vcd).
+std::string stage_writers(const Parsed& a, const RenderJob& job, SystemConfig& cfg, Outputs& out) {
+  NamedPaths outputs = report_outputs(a);
+  for (const char* name : {"profile", "diff", "trace"})
+    if (a.has(name)) outputs.emplace_back(std::string("--") + name, a.get(name));
+  NamedPaths inputs = params_inputs(a);
+  inputs.emplace_back("the scene", job.scene);
+  check_distinct(inputs, outputs);
+  if (a.has("trace")) {
+    StagedFile fst = writer_output("--trace", a.get("trace"));
+    cfg.trace_path = fst.temp();
+    out.add(std::move(fst));
+  }
+  return stage_vcd(a, out);
+}
+
 }  // namespace
 
 int cmd_render(const CLI::App& cmd) {
@@ -248,7 +266,6 @@ int cmd_render(const CLI::App& cmd) {
   threads_option(a, cfg);
   fault_options(a, cfg);
   if (a.has("trace")) {
-    cfg.trace_path = a.get("trace");
     cfg.trace_node = a.has("trace-node") ? parse_unsigned("--trace-node", a.get("trace-node"), 1, cfg.nodes) : 1;
     if (a.has("trace-from")) cfg.trace_from = parse_time("--trace-from", a.get("trace-from"));
     if (a.has("trace-to")) cfg.trace_to = parse_time("--trace-to", a.get("trace-to"));
@@ -263,16 +280,18 @@ int cmd_render(const CLI::App& cmd) {
   if ((a.has("diff") || a.has("min-psnr")) && !a.has("ref")) throw CliError("--diff and --min-psnr need --ref");
   const double min_psnr = a.has("min-psnr") ? parse_double("--min-psnr", a.get("min-psnr"), 0, 200) : 0;
   const bool quiet = a.has("quiet");
+  // Every output is staged first and renamed into place together, so that a
+  // write that fails leaves none of them; a failed check still leaves them.
+  // The waveforms' writers write under a temporary name during the run.
+  Outputs out;
+  const std::string vcd = stage_writers(a, job, cfg, out);
 
   RenderRun run;
   {
     ProgressBar bar(!quiet && isatty(fileno(stderr)));
-    run = run_render(job, cfg, a.get("vcd"), [&bar](const rc::Progress& p) { bar.update(p); });
+    run = run_render(job, cfg, vcd, [&bar](const rc::Progress& p) { bar.update(p); });
   }
   const FrameReport& r = run.report;
-  // Every output is staged first and renamed into place together, so that a
-  // write that fails leaves none of them; a failed check still leaves them.
-  Outputs out;
   if (a.has("out")) out.add(a.get("out"), encode_png_rgb8(r.width, r.height, r.rgb.data()));
   if (a.has("stats")) out.add(a.get("stats"), stats_json(r));
   if (a.has("gantt")) out.add(a.get("gantt"), gantt_svg(r));
@@ -287,7 +306,7 @@ int cmd_render(const CLI::App& cmd) {
     if (!quiet) std::fputs(profiler.profile().text(profiler.kernels(), 10).c_str(), stdout);
   }
   if (cfg.trace_node)
-    for (const auto& [path, text] : trace_side_files(cfg.trace_path, profiler, cfg.trace_node)) out.add(path, text);
+    for (const auto& [path, text] : trace_side_files(a.get("trace"), profiler, cfg.trace_node)) out.add(path, text);
   int status = 0;
   if (r.fm_pixels_written != std::uint64_t{r.width} * r.height) {
     std::fprintf(stderr, "mc1 render: the frame memory got %llu pixel writes for %u pixels\n",

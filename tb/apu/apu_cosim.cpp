@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,7 +60,7 @@ void add_options(CLI::App& app, Options& o) {
   tools::add_data_option(app, o.data)->needs(program);
   tools::add_max_cycles_option(app, o.max_cycles, "the cycle limit (default 10 M, or the random case's own)");
   app.add_option("--engines", o.engines, "the two engines")->check(engine_pair())->capture_default_str();
-  app.add_option("--trace", o.trace, "write an FST waveform of the RTL engine to FILE")
+  app.add_option("--trace", o.trace, "write an FST waveform of the RTL engine (the first, with rtl,rtl) to FILE")
       ->type_name("FILE")->needs(program);
   CLI::Option* random = app.add_option("--random", o.random, "check N generated programs")
                             ->transform(cli::unsigned_in(1, 1'000'000'000))
@@ -80,6 +81,8 @@ void check_options(Options& o) {
   const auto comma = o.engines.find(',');
   o.engine_a = o.engines.substr(0, comma);
   o.engine_b = o.engines.substr(comma + 1);
+  if (!o.trace.empty() && o.engine_a != "rtl" && o.engine_b != "rtl")
+    throw cli::UsageError("--trace needs the rtl engine in --engines");
 }
 
 struct Engines {
@@ -87,7 +90,7 @@ struct Engines {
   ApuEngine* both[2];
   Engines(const Options& o, const char* trace)
       : a(tools::make_engine(o.engine_a, o.engine_a == "rtl" ? trace : nullptr)),
-        b(tools::make_engine(o.engine_b, o.engine_b == "rtl" ? trace : nullptr)),
+        b(tools::make_engine(o.engine_b, o.engine_b == "rtl" && o.engine_a != "rtl" ? trace : nullptr)),
         both{a.get(), b.get()} {}
 };
 
@@ -119,11 +122,13 @@ bool lockstep_run(const Options& o, Lockstep& ls, std::uint64_t max_cycles,
   return true;
 }
 
-int run_program(const Options& o) {
+// fst: the file the RTL engine writes --trace's waveform to (its staged
+// temporary; "" without --trace).
+int run_program(const Options& o, const std::string& fst) {
   const std::vector<Encoded> words = tools::load_program_file(o.program);
   std::vector<std::vector<std::pair<std::uint16_t, std::uint32_t>>> blocks;
   for (const auto& f : o.data) blocks.push_back(read_data_file(f));
-  Engines e(o, o.trace.empty() ? nullptr : o.trace.c_str());
+  Engines e(o, fst.empty() ? nullptr : fst.c_str());
   std::size_t next = 0;
   auto hand_over_next = [&] {
     for (ApuEngine* eng : e.both) {
@@ -221,7 +226,14 @@ int main(int argc, char** argv) {
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
   try {
     check_options(o);
-    return o.random >= 0 ? run_random(o) : run_program(o);
+    if (o.random >= 0) return run_random(o);
+    // The waveform is staged: the engine writes it under a temporary name,
+    // put in place once the engine has closed it (run_program() returned).
+    std::optional<mc1::StagedFile> fst;
+    if (!o.trace.empty()) fst.emplace(cli::writer_output("--trace", o.trace));
+    const int rc = run_program(o, fst ? fst->temp() : "");
+    if (fst) fst->commit();
+    return rc;
   } catch (const cli::UsageError& e) {
     return cli::usage_error(app, e.what());
   } catch (const std::exception& ex) {

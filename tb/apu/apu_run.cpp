@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -95,11 +96,12 @@ void print_state(const ApuEngine& e) {
   print_regs("A", 1, kNumARegs, 8, 4, [&](int i) { return std::uint32_t{e.areg(i)}; });
 }
 
-// An output file written whole (host/common/atomic_file.hpp); false, said
-// on stderr, when it could not be.
-bool write_output(const std::string& option, const std::string& path, const std::string& text) {
+// Runs `put`, an output's write or commit (host/common/atomic_file.hpp);
+// false, said on stderr, when it throws.
+template <class Put>
+bool output_ok(const std::string& option, Put put) {
   try {
-    mc1::write_file_atomically(path, text);
+    put();
     return true;
   } catch (const std::exception& e) {
     std::cerr << "apu-run: " << option << ": " << e.what() << "\n";
@@ -107,9 +109,16 @@ bool write_output(const std::string& option, const std::string& path, const std:
   }
 }
 
-int run(const Options& o) {
+// An output file written whole; false, said on stderr, when it could not be.
+bool write_output(const std::string& option, const std::string& path, const std::string& text) {
+  return output_ok(option, [&] { mc1::write_file_atomically(path, text); });
+}
+
+// fst: the file the RTL engine writes --trace's waveform to (its staged
+// temporary; "" without --trace).
+int run(const Options& o, const std::string& fst) {
   const std::vector<Encoded> words = tools::load_program_file(o.program);
-  auto engine = tools::make_engine(o.engine, o.trace.empty() ? nullptr : o.trace.c_str());
+  auto engine = tools::make_engine(o.engine, fst.empty() ? nullptr : fst.c_str());
   ApuDriver drv(*engine);
   drv.load_program(words);
   std::vector<std::vector<std::pair<std::uint16_t, std::uint32_t>>> blocks;
@@ -186,7 +195,13 @@ int main(int argc, char** argv) {
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
   try {
     check_options(o);
-    return run(o);
+    // The waveform is staged: the engine writes it under a temporary name,
+    // put in place once the engine has closed it (run() returned).
+    std::optional<mc1::StagedFile> fst;
+    if (!o.trace.empty()) fst.emplace(cli::writer_output("--trace", o.trace));
+    int rc = run(o, fst ? fst->temp() : "");
+    if (fst && !output_ok("--trace", [&] { fst->commit(); })) rc = 1;
+    return rc;
   } catch (const cli::UsageError& e) {
     return cli::usage_error(app, e.what());
   } catch (const std::exception& ex) {
