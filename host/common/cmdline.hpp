@@ -9,6 +9,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -73,5 +75,12 @@ void require_stdin_not_directory();
 // it; without commit() it is removed. A path it cannot take (a directory, a
 // device, a missing directory, "") is a UsageError naming `option`.
 StagedFile writer_output(const std::string& option, const std::string& path, const std::string& suffix = "");
+
+// (option or role, path) pairs.
+using NamedPaths = std::vector<std::pair<std::string, std::string>>;
+// Before a run: a UsageError if two outputs name one file or an output
+// names an input (mc1::same_file; both named in the message), so that no
+// output is lost or replaces what the run reads.
+void check_distinct(const NamedPaths& inputs, const NamedPaths& outputs);
 
 }  // namespace mc1::cmdline

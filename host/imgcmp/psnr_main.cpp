@@ -60,6 +60,11 @@ int main(int argc, char** argv) {
   Options o;
   add_options(app, o);
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
+  try {
+    if (!o.diff_path.empty()) cli::check_distinct({{"the image", o.files[0]}, {"the image", o.files[1]}}, {{"--diff", o.diff_path}});
+  } catch (const cli::UsageError& e) {
+    return cli::usage_error(app, e.what());
+  }
   Image a, b;
   double p = 0;
   Defects d;

@@ -239,17 +239,6 @@ NamedPaths params_inputs(const Parsed& a) {
   return in;
 }
 
-void check_distinct(const NamedPaths& inputs, const NamedPaths& outputs) {
-  for (std::size_t i = 0; i < outputs.size(); ++i) {
-    const auto& [option, path] = outputs[i];
-    for (std::size_t j = 0; j < i; ++j)
-      if (same_file(path, outputs[j].second))
-        throw CliError(outputs[j].first + " and " + option + " name one file: " + path);
-    for (const auto& [role, input] : inputs)
-      if (same_file(path, input)) throw CliError(option + " " + path + " would replace " + role + " " + input);
-  }
-}
-
 void Outputs::commit() {
   for (StagedFile& f : staged_) f.commit();
   staged_.clear();

@@ -99,15 +99,12 @@ using cmdline::writer_output;
 // --vcd's file, if given, staged in `out`: the path SystemC is to write
 // during the run, or "".
 std::string stage_vcd(const Parsed& a, Outputs& out);
-// (option or role, path) pairs.
-using NamedPaths = std::vector<std::pair<std::string, std::string>>;
+using cmdline::NamedPaths;
+using cmdline::check_distinct;
 // The files that the report options (add_report_options) given name, and
 // the --params files as inputs.
 NamedPaths report_outputs(const Parsed& a);
 NamedPaths params_inputs(const Parsed& a);
-// Before a run: a CliError if two outputs name one file, or an output names
-// an input (both named), so that no output is lost or replaces what was read.
-void check_distinct(const NamedPaths& inputs, const NamedPaths& outputs);
 
 // The summary's lines on injected faults and the links the RC found down.
 void print_faults(const FrameReport& r);

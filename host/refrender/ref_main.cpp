@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   mc1::scene::Scene scene;
   try {
     if (!o.size.empty()) parse_size(o);
+    cli::check_distinct({{"the scene", o.scene_path}}, {{"--out", o.out_path}});
     scene = mc1::scene::load_scene(o.scene_path);
   } catch (const cli::UsageError& e) {
     return cli::usage_error(app, e.what());
