@@ -18,6 +18,7 @@
 
 #include "apu_image.hpp"
 #include "apuasm.hpp"
+#include "apuasm_expr.hpp"
 #include "apuasm_macros.hpp"
 #include "disasm.hpp"
 
@@ -580,6 +581,86 @@ TEST(ApuAsmLimits, DirectoriesAreRefused) {
   }
 }
 
+// `parens` parentheses around `minuses` unary minus signs before 1.
+std::string nested(int parens, int minuses) {
+  return std::string(static_cast<size_t>(parens), '(') + std::string(static_cast<size_t>(minuses), '-') + "1" +
+         std::string(static_cast<size_t>(parens), ')');
+}
+
+// The parser recursed once per level and overflowed its stack (exit 139) at
+// some ten thousand levels: nesting is bounded, an error at the operator that
+// goes over, at any depth.
+TEST(ApuAsmLimits, DeepExpressionIsAnErrorNotACrash) {
+  ASSERT_EQ(detail::kMaxExprNesting, 256);
+  EXPECT_EQ(assemble(".equ X, " + nested(256, 0) + "\n").symbols.at("X"), 1);
+  EXPECT_EQ(assemble(".equ X, " + nested(128, 128) + "\n").symbols.at("X"), 1);
+  EXPECT_EQ(assemble(".equ X, " + nested(200, 0) + " + " + nested(0, 201) + "\n").symbols.at("X"), 0);
+  EXPECT_EQ(assemble("li a1, " + nested(0, 256) + "\n").words.size(), 1u);
+  const std::string msg = "error: expression nested deeper than 256 levels of parentheses and unary operators";
+  using Errors = std::vector<std::string>;
+  EXPECT_EQ(errors(".equ X, " + nested(257, 0) + "\n"), Errors{"e.apu:1:265: " + msg});
+  EXPECT_EQ(errors(".equ X, " + nested(60000, 0) + "\n"), Errors{"e.apu:1:265: " + msg});
+  EXPECT_EQ(errors("li a1, " + nested(0, 50000) + "\n"), Errors{"e.apu:1:264: " + msg});
+  EXPECT_EQ(errors(".equ X, " + nested(100, 50000) + "\n"), Errors{"e.apu:1:265: " + msg});
+  std::string tilde_paren;
+  for (int k = 0; k < 200; ++k) tilde_paren += "~(";
+  EXPECT_EQ(errors("li a1, " + tilde_paren + "1" + std::string(200, ')') + "\n"), Errors{"e.apu:1:264: " + msg});
+  EXPECT_EQ(errors("ld f1, [a1+" + nested(300, 0) + "]\n"), Errors{"e.apu:1:268: " + msg});
+}
+
+// /dev/zero was read until memory ran out; a source is read up to
+// kMaxSourceBytes, and has at most kMaxSourceLines lines.
+TEST(ApuAsmLimits, SourceSizeIsBounded) {
+  ASSERT_EQ(kMaxSourceBytes, std::size_t{16} << 20);
+  ASSERT_EQ(kMaxSourceLines, 65536u);
+  const auto what = [](const std::string& path) -> std::string {
+    try {
+      assemble_file(path);
+    } catch (const AsmError& e) {
+      return e.what();
+    }
+    return "assembled";
+  };
+  EXPECT_EQ(what("/dev/zero"), "/dev/zero: error: cannot read file: larger than 16 MiB");
+  TempDir dir;
+  const auto top = dir.write("top.apu", "nop\n.include \"/dev/zero\"\n");
+  EXPECT_EQ(what(top), top + ":2:10: error: cannot read include file '/dev/zero': larger than 16 MiB");
+  const auto over = dir.write("over.apu", std::string(kMaxSourceBytes - 4, ' ') + "halt\n");
+  EXPECT_EQ(what(over), over + ": error: cannot read file: larger than 16 MiB");
+  const auto at = dir.write("at.apu", std::string(kMaxSourceBytes - 5, ' ') + "halt\n");
+  EXPECT_EQ(assemble_file(at).words.size(), 1u);
+  EXPECT_EQ(assemble(std::string(kMaxSourceLines - 1, '\n') + "halt").words.size(), 1u);
+  EXPECT_EQ(errors(std::string(kMaxSourceLines, '\n') + "halt"),
+            std::vector<std::string>{"e.apu: error: more than 65536 lines"});
+}
+
+// `n` macros m1..mn, each invoking the next; mn's body is an error.
+std::string macro_chain(int n) {
+  std::string s;
+  for (int k = n; k >= 1; --k)
+    s += ".macro m" + std::to_string(k) + "\n" + (k == n ? " .bogus" : " m" + std::to_string(k + 1)) + "\n.endm\n";
+  return s + "m1\n";
+}
+
+// A message names the three innermost invocations and the outermost; the
+// chain of 32 repeated one note 32 times.
+TEST(ApuAsmLimits, LongMacroChainsAreElided) {
+  ASSERT_EQ(detail::kShownInnerExpansions, 3);
+  EXPECT_EQ(errors(macro_chain(4)),
+            std::vector<std::string>{"e.apu:2:2: error: unknown directive '.bogus' (in macro 'm4' invoked at e.apu:5:2) "
+                                     "(in macro 'm3' invoked at e.apu:8:2) (in macro 'm2' invoked at e.apu:11:2) "
+                                     "(in macro 'm1' invoked at e.apu:13:1)"});
+  EXPECT_EQ(errors(macro_chain(6)),
+            std::vector<std::string>{"e.apu:2:2: error: unknown directive '.bogus' (in macro 'm6' invoked at e.apu:5:2) "
+                                     "(in macro 'm5' invoked at e.apu:8:2) (in macro 'm4' invoked at e.apu:11:2) "
+                                     "(... 2 more macro invocations ...) (in macro 'm1' invoked at e.apu:19:1)"});
+  const auto e = errors(".macro m\n m\n.endm\nm\n");
+  ASSERT_EQ(e.size(), 1u);
+  EXPECT_EQ(e[0], "e.apu:2:2: error: expanding macro 'm' nests macros deeper than 32 (in macro 'm' invoked at e.apu:2:2) "
+                  "(in macro 'm' invoked at e.apu:2:2) (in macro 'm' invoked at e.apu:2:2) "
+                  "(... 28 more macro invocations ...) (in macro 'm' invoked at e.apu:4:1)");
+}
+
 // ---------------------------------------------------------------------------
 // The program: exit status 0 / 1 (an output not written, none left) / 2
 // (usage or input), the options of docs/apu-asm.md.
@@ -689,6 +770,61 @@ TEST(ApuAsmProgram, UsageAndInputErrorsExitTwo) {
     EXPECT_EQ(r.status, 2) << args;
     EXPECT_EQ(r.err.rfind("apuasm: ", 0), 0u) << args << ": " << r.err;
   }
+}
+
+// A nesting that crashed the program (exit 139) and a source without end
+// are input errors, exit 2, nothing written.
+TEST(ApuAsmProgram, DeepExpressionAndEndlessSourceExitTwo) {
+  TempDir dir;
+  dir.write("deep.apu", ".equ X, " + nested(60000, 0) + "\n");
+  auto r = run_apuasm(dir, "deep.apu");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err,
+            "deep.apu:1:265: error: expression nested deeper than 256 levels of parentheses and unary operators\n");
+  r = run_apuasm(dir, "-o z.bin /dev/zero");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "/dev/zero: error: cannot read file: larger than 16 MiB\n");
+  EXPECT_EQ(names_in(dir.path()), std::set<std::string>{"deep.apu"});
+}
+
+// An output that is an input (by name, "./", "..", a hard or symbolic link),
+// or two outputs that are one file: a usage error before anything is written.
+TEST(ApuAsmProgram, OutputsMustNotReplaceInputsOrEachOther) {
+  TempDir dir;
+  const std::string src = "halt\n";
+  dir.write("k.apu", src);
+  dir.write("x.bin", src);
+  dir.write("sub/x.inc", "nop\n");
+  dir.write("top.apu", ".include \"sub/x.inc\"\nhalt\n");
+  const std::string hard = dir.path() + "/h.apu", soft = dir.path() + "/s.apu";
+  ASSERT_EQ(link((dir.path() + "/k.apu").c_str(), hard.c_str()), 0);
+  ASSERT_EQ(symlink("k.apu", soft.c_str()), 0);
+  const auto before = names_in(dir.path());
+  const std::pair<const char*, const char*> cases[] = {
+      {"k.apu -o k.apu", "-o k.apu would replace the source k.apu"},
+      {"k.apu -l ./k.apu", "-l ./k.apu would replace the source k.apu"},
+      {"k.apu -x sub/../k.apu", "-x sub/../k.apu would replace the source k.apu"},
+      {"k.apu -o h.apu", "-o h.apu would replace the source k.apu"},
+      {"s.apu -l k.apu", "-l k.apu would replace the source s.apu"},
+      {"x.bin", "-o (default) x.bin would replace the source x.bin"},
+      {"k.apu -o y.bin -l y.bin", "-o and -l name one file: y.bin"},
+      {"k.apu -o y.bin -x ./y.bin", "-o and -x name one file: ./y.bin"},
+      {"k.apu -l y.lst -x sub/../y.lst", "-l and -x name one file: sub/../y.lst"},
+      {"k.apu -l k.bin", "-o (default) and -l name one file: k.bin"},
+      {"top.apu -l sub/x.inc -o t.bin", "-l sub/x.inc would replace the include file sub/x.inc"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto r = run_apuasm(dir, args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(r.err, "apuasm: " + std::string(message) + "\n") << args;
+    EXPECT_EQ(names_in(dir.path()), before) << args;
+  }
+  EXPECT_EQ(slurp(dir.path() + "/k.apu"), src);
+  EXPECT_EQ(slurp(dir.path() + "/sub/x.inc"), "nop\n");
+  // A device is written in place: two outputs to /dev/null are no loss.
+  EXPECT_EQ(run_apuasm(dir, "k.apu -o /dev/null -l /dev/null").status, 0);
+  std::remove(hard.c_str());
+  std::remove(soft.c_str());
 }
 
 TEST(ApuAsmProgram, HelpAndVersion) {

@@ -234,6 +234,29 @@ TEST(AtomicFile, SameFileSeesThroughLinksAndDots) {
   EXPECT_FALSE(same_file(dir.file("link"), dir.file("other")));
   EXPECT_TRUE(same_file(dir.file("new"), dir.file("../") + dir.file("new").substr(5))) << "a file not made yet";
   EXPECT_FALSE(same_file(dir.file("new"), dir.file("real")));
+  ASSERT_EQ(link(dir.file("real").c_str(), dir.file("hard").c_str()), 0);
+  EXPECT_TRUE(same_file(dir.file("hard"), dir.file("real"))) << "a hard link";
+  EXPECT_FALSE(same_file("/dev/null", "/dev/./null")) << "a device is written in place, by each output";
+}
+
+TEST(AtomicFile, CheckDistinctFilesNamesBoth) {
+  ScratchDir dir;
+  write_file_atomically(dir.file("s.json"), "{}");
+  const NamedPaths in{{"the scene", dir.file("s.json")}};
+  EXPECT_NO_THROW(check_distinct_files(in, {{"--out", dir.file("a.png")}, {"--stats", dir.file("a.json")}}));
+  EXPECT_NO_THROW(check_distinct_files(in, {{"--out", "/dev/null"}, {"--stats", "/dev/null"}}));
+  try {
+    check_distinct_files(in, {{"--out", dir.file("a.png")}, {"--stats", dir.file("./a.png")}});
+    ADD_FAILURE() << "two outputs on one file";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "--out and --stats name one file: " + dir.file("./a.png"));
+  }
+  try {
+    check_distinct_files(in, {{"--out", dir.file("s.json")}});
+    ADD_FAILURE() << "an output on the input";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "--out " + dir.file("s.json") + " would replace the scene " + dir.file("s.json"));
+  }
 }
 
 }  // namespace

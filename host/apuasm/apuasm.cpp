@@ -61,6 +61,8 @@ struct Stmt {
 class Assembler {
  public:
   Program run(const std::string& source, const std::string& filename) {
+    if (line_count(source) > kMaxSourceLines)
+      throw AsmError({{{filename, 0, 0}, "more than " + std::to_string(kMaxSourceLines) + " lines"}});
     try {
       process(split_lines(source, filename), 0);
       pass2();
@@ -89,7 +91,7 @@ class Assembler {
   }
 
   void error(const SrcLine& l, int col, const std::string& msg, size_t key) {
-    diags_.push_back({{l.loc.file, l.loc.line, col}, l.context ? msg + *l.context : msg});
+    diags_.push_back({{l.loc.file, l.loc.line, col}, msg + context_text(l.context)});
     keys_.push_back(key);
     if (diags_.size() < kMaxErrors) return;
     // Sorted after the others: it says where the assembly gave up.
@@ -244,8 +246,8 @@ class Assembler {
     } catch (const SourceError& e) {
       throw LineError{args.col, "cannot read include file '" + path + "': " + e.what()};
     }
+    take_lines(line_count(text), l, args.col, "including '" + path + "'");  // before making the lines
     auto lines = split_lines(text, path);
-    take_lines(lines.size(), l, args.col, "including '" + path + "'");
     for (auto& x : lines) x.context = l.context;
     process(lines, depth + 1);
   }
@@ -280,9 +282,9 @@ class Assembler {
                                     " argument(s), got " + std::to_string(args.size()));
     take_lines(mac.body.size(), l, rest.col, "expanding macro '" + mac.name + "'");
     const std::string id = std::to_string(expansions_++);
-    const auto ctx = std::make_shared<const std::string>(" (in macro '" + mac.name + "' invoked at " +
-                                                         where({l.loc.file, l.loc.line, rest.col}) + ")" +
-                                                         (l.context ? *l.context : std::string()));
+    const auto ctx = std::make_shared<const Expansion>(
+        Expansion{" (in macro '" + mac.name + "' invoked at " + where({l.loc.file, l.loc.line, rest.col}) + ")",
+                  l.context, l.context ? l.context->depth + 1 : 1});
     std::vector<BodyError> body_errors;
     const auto out = expand_body(mac, args, id, ctx, body_errors);
     for (const auto& b : body_errors) error(out[b.line], b.err.col, b.err.msg);

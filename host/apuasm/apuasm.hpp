@@ -58,10 +58,22 @@ struct Program {
 // megabytes of diagnostics that each carry the whole chain of invocations.
 constexpr std::size_t kMaxErrors = 100;
 
+// A source file (the one assembled, or one it includes) is read up to this
+// size and refused beyond it ("cannot read file: larger than 16 MiB"): the
+// largest kernel is 20 kB, and reading /dev/zero would otherwise never end.
+constexpr std::size_t kMaxSourceBytes = std::size_t{16} << 20;
+// And the text assembled has at most this many lines ("FILE: error: more
+// than 65536 lines"), 64 for each word a program can hold: the assembler
+// keeps some 170 bytes a line: 16 MiB of empty lines took 2.8 GB.
+// An included file's lines count against the limit of expansions instead
+// (kMaxExpandedLines, docs/apu-asm.md "Limits").
+constexpr std::size_t kMaxSourceLines = 65536;
+
 // Assembles `source`; `filename` names it in diagnostics, and .include paths
 // are relative to its directory. Throws AsmError listing every error found
 // (the first kMaxErrors).
 Program assemble(const std::string& source, const std::string& filename = "<input>");
+// Reads the file `path` (at most kMaxSourceBytes) and assembles it.
 Program assemble_file(const std::string& path);
 
 // The listing: "AAAA  hhhhhhhhhhhhhhhh_llllllllllllllll  source" per emitting

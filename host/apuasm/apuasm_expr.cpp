@@ -118,27 +118,38 @@ class ExprParser {
   }
 
   std::int64_t unary() {
-    if (eat("-")) {
-      const int at = col() - 1;
-      return negate(unary(), at);
-    }
-    if (eat("+")) return unary();
-    if (eat("~")) return ~unary();
-    return primary();
+    skip();
+    const char c = k_ < p_.text.size() ? p_.text[k_] : '\0';
+    if (c != '-' && c != '+' && c != '~') return primary();
+    const int at = col();
+    ++k_;
+    nest(at);
+    const auto v = unary();
+    --depth_;
+    if (c == '-') return negate(v, at);
+    return c == '~' ? ~v : v;
   }
   std::int64_t primary() {
     skip();
     if (k_ >= p_.text.size()) throw LineError{col(), "missing operand in expression"};
     const char c = p_.text[k_];
     if (c == '(') {
+      nest(col());
       ++k_;
       const auto v = xor_();
       if (!eat(")")) throw LineError{col(), "expected ')'"};
+      --depth_;
       return v;
     }
     if (std::isdigit(static_cast<unsigned char>(c))) return number();
     if (ident_start(c)) return symbol();
     throw LineError{col(), "unexpected '" + std::string(1, c) + "'"};
+  }
+  // One more level of parentheses or unary operators, opened at `at`.
+  void nest(int at) {
+    if (++depth_ > kMaxExprNesting)
+      throw LineError{at, "expression nested deeper than " + std::to_string(kMaxExprNesting) +
+                              " levels of parentheses and unary operators"};
   }
   std::int64_t symbol() {
     const int at = col();
@@ -183,6 +194,7 @@ class ExprParser {
   Piece p_;
   const Lookup& lookup_;
   size_t k_ = 0;
+  int depth_ = 0;  // open parentheses and unary operators
 };
 
 }  // namespace

@@ -67,6 +67,11 @@ std::string strip_comment(const std::string& s) {
   return s;
 }
 
+size_t line_count(const std::string& text) {
+  const auto newlines = static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+  return newlines + (!text.empty() && text.back() != '\n' ? 1 : 0);
+}
+
 std::vector<SrcLine> split_lines(const std::string& text, const std::string& file) {
   std::vector<SrcLine> out;
   std::istringstream in(text);

@@ -24,12 +24,19 @@ struct LineError {
   std::string msg;
 };
 
+// One macro invocation in the chain a line was expanded from, innermost
+// first; shared by the lines of one expansion.
+struct Expansion {
+  std::string note;                        // " (in macro 'm' invoked at file:line:col)"
+  std::shared_ptr<const Expansion> outer;  // the expansion the invocation is in, or null
+  int depth = 1;                           // the invocations in the chain, this one included
+};
+
 struct SrcLine {
   std::string text;
   Loc loc;  // col 1
-  // Appended to messages: the macro expansion chain, shared by the lines of
-  // one expansion (its length grows with the nesting depth).
-  std::shared_ptr<const std::string> context;
+  // The macro expansion chain, for messages (context_text); null outside a macro.
+  std::shared_ptr<const Expansion> context;
 };
 
 bool ident_start(char c);
@@ -50,6 +57,8 @@ size_t name_end(const std::string& s, size_t from = 0);
 std::string strip_comment(const std::string& s);
 // `text` as numbered lines of `file` (a trailing '\r' dropped).
 std::vector<SrcLine> split_lines(const std::string& text, const std::string& file);
+// How many lines split_lines makes of `text`, counted without making them.
+size_t line_count(const std::string& text);
 
 // "file:line:col", for messages that point at a second place.
 std::string where(const Loc& l);

@@ -62,7 +62,7 @@ std::string substitute(const Macro& mac, const std::vector<Piece>& args, const s
 }  // namespace
 
 std::vector<SrcLine> expand_body(const Macro& mac, const std::vector<Piece>& args, const std::string& id,
-                                 const std::shared_ptr<const std::string>& context, std::vector<BodyError>& errors) {
+                                 const std::shared_ptr<const Expansion>& context, std::vector<BodyError>& errors) {
   std::vector<SrcLine> out;
   for (std::size_t k = 0; k < mac.body.size(); ++k) {
     SrcLine x = mac.body[k];
@@ -73,6 +73,19 @@ std::vector<SrcLine> expand_body(const Macro& mac, const std::vector<Piece>& arg
     out.push_back(std::move(x));
   }
   return out;
+}
+
+std::string context_text(const std::shared_ptr<const Expansion>& c) {
+  if (!c) return {};
+  const bool elide = c->depth > kShownInnerExpansions + 1;
+  std::string out;
+  const Expansion* e = c.get();
+  for (int k = 0; e && (!elide || k < kShownInnerExpansions); ++k, e = e->outer.get()) out += e->note;
+  if (!elide) return out;
+  while (e->outer) e = e->outer.get();
+  const int hidden = c->depth - kShownInnerExpansions - 1;
+  return out + " (... " + std::to_string(hidden) + " more macro invocation" + (hidden == 1 ? "" : "s") + " ...)" +
+         e->note;
 }
 
 }  // namespace mc1::apuasm::detail

@@ -43,6 +43,16 @@ struct BodyError {
 // text, `\@` by `id`, every line tagged with `context`. An unknown `\name`
 // stays as written and is reported in `errors`.
 std::vector<SrcLine> expand_body(const Macro& mac, const std::vector<Piece>& args, const std::string& id,
-                                 const std::shared_ptr<const std::string>& context, std::vector<BodyError>& errors);
+                                 const std::shared_ptr<const Expansion>& context, std::vector<BodyError>& errors);
+
+// Of an expansion chain, messages name the innermost invocations and the
+// outermost one, the one in the source being assembled; the others are
+// counted: a self-invoking macro would otherwise repeat one note 32 times.
+constexpr int kShownInnerExpansions = 3;
+
+// The notes of the chain `c` appended to a message: every note up to
+// kShownInnerExpansions + 1 of them, else the innermost kShownInnerExpansions,
+// " (... N more macro invocations ...)" and the outermost. Empty for null.
+std::string context_text(const std::shared_ptr<const Expansion>& c);
 
 }  // namespace mc1::apuasm::detail

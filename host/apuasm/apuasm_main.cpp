@@ -1,9 +1,11 @@
 // apuasm: the APU assembler and image disassembler (docs/apu-asm.md).
-// Exit status: 0 done; 2 usage or input error (bad option, unreadable or bad
-// source or image, assembly error); 1 an output could not be written, in
-// which case no output of the run is left behind.
+// Exit status: 0 done; 2 usage or input error (bad option, an output that is
+// an input or another output, unreadable or bad source or image, assembly
+// error); 1 an output could not be written, in which case no output of the
+// run is left behind.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,25 @@ std::string default_image(const std::string& source) {
   return (has_ext ? source.substr(0, dot) : source) + ".bin";
 }
 
+// The outputs of an assembly, as (option, path): the image (named by -o or
+// after the source), the listing and the hex text when asked for.
+mc1::NamedPaths outputs(const Options& o) {
+  mc1::NamedPaths out;
+  out.emplace_back(o.image.empty() ? "-o (default)" : "-o", o.image.empty() ? default_image(o.source) : o.image);
+  if (!o.listing.empty()) out.emplace_back("-l", o.listing);
+  if (!o.hex.empty()) out.emplace_back("-x", o.hex);
+  return out;
+}
+
+// The files the assembly read besides the source: every .include'd one.
+mc1::NamedPaths included_files(const mc1::apuasm::Program& p, const std::string& source) {
+  std::set<std::string> seen{source};
+  mc1::NamedPaths out;
+  for (const auto& l : p.listing)
+    if (seen.insert(l.loc.file).second) out.emplace_back("the include file", l.loc.file);
+  return out;
+}
+
 int disassemble(const std::string& image) {
   std::string text;
   try {
@@ -43,7 +64,8 @@ int disassemble(const std::string& image) {
   return 0;
 }
 
-// Every output is staged before any is committed, so a failed one leaves none.
+// Every output is staged before any is committed, so a failed one leaves none;
+// none may replace an included file (throws).
 int assemble(const Options& o) {
   mc1::apuasm::Program program;
   try {
@@ -52,6 +74,7 @@ int assemble(const Options& o) {
     for (const auto& d : e.diagnostics()) std::cerr << d.str() << "\n";
     return kExitInput;
   }
+  mc1::check_distinct_files(included_files(program, o.source), outputs(o));  // main() reports it
   try {
     std::vector<mc1::StagedFile> staged;
     staged.reserve(3);
@@ -68,6 +91,7 @@ int assemble(const Options& o) {
 
 void describe(CLI::App& app, Options& o) {
   app.footer(
+      "No output may be the source, a file it includes or another output.\n"
       "Errors go to standard error as file:line:col: error: message.\n"
       "Exit status: 0 done, 2 usage or input error, 1 an output could not be written (none is left).");
   // The form every MC-1 program prints (host/common/cmdline.hpp), spelled
@@ -104,7 +128,9 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : kExitInput;
   }
   try {
-    return o.disasm.empty() ? assemble(o) : disassemble(o.disasm);
+    if (!o.disasm.empty()) return disassemble(o.disasm);
+    mc1::check_distinct_files({{"the source", o.source}}, outputs(o));  // before anything is read or written
+    return assemble(o);
   } catch (const std::exception& e) {
     std::cerr << "apuasm: " << e.what() << "\n";
     return kExitInput;

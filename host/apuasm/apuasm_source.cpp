@@ -3,11 +3,15 @@
 // apart from an empty source.
 #include "apuasm_source.hpp"
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include "apuasm.hpp"
 
 namespace mc1::apuasm::detail {
 namespace {
@@ -29,6 +33,10 @@ class Fd {
 
 [[noreturn]] void fail_errno() { throw SourceError(std::strerror(errno)); }
 
+[[noreturn]] void fail_too_large() {
+  throw SourceError("larger than " + std::to_string(kMaxSourceBytes >> 20) + " MiB");
+}
+
 }  // namespace
 
 std::string read_source(const std::string& path) {
@@ -38,9 +46,15 @@ std::string read_source(const std::string& path) {
   if (::fstat(fd.get(), &st) != 0) fail_errno();
   if (S_ISDIR(st.st_mode)) throw SourceError("is a directory");
   std::string text;
+  if (S_ISREG(st.st_mode)) {
+    if (static_cast<std::uint64_t>(st.st_size) > kMaxSourceBytes) fail_too_large();
+    text.reserve(static_cast<size_t>(st.st_size));
+  }
   char buf[65536];
-  for (;;) {
-    const ssize_t n = ::read(fd.get(), buf, sizeof buf);
+  // A device or a FIFO may never end: at most one byte over the limit is read.
+  while (text.size() <= kMaxSourceBytes) {
+    const size_t want = std::min(sizeof buf, kMaxSourceBytes + 1 - text.size());
+    const ssize_t n = ::read(fd.get(), buf, want);
     if (n == 0) return text;
     if (n < 0) {
       if (errno == EINTR) continue;
@@ -48,6 +62,7 @@ std::string read_source(const std::string& path) {
     }
     text.append(buf, static_cast<size_t>(n));
   }
+  fail_too_large();
 }
 
 std::string include_path(const std::string& from_file, const std::string& name) {

@@ -7,14 +7,15 @@
 
 namespace mc1::apuasm::detail {
 
-// Why a source file could not be read: "is a directory", or the system's
-// reason ("No such file or directory"). The caller names the file and place.
+// Why a source file could not be read: "is a directory", "larger than 16
+// MiB" (kMaxSourceBytes), or the system's reason ("No such file or directory"). The caller names the file and place.
 class SourceError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-// The bytes of the file `path`; throws SourceError.
+// The bytes of the file `path`, at most kMaxSourceBytes of them (it reads
+// one more to tell); throws SourceError.
 std::string read_source(const std::string& path);
 
 // The file `.include "name"` in `from_file` reads: `name` itself when

@@ -124,7 +124,24 @@ StagedFile::StagedFile(StagedFile&& other) noexcept
       temp_(std::exchange(other.temp_, {})),
       mode_(other.mode_) {}
 
-bool same_file(const std::string& a, const std::string& b) { return resolve(a) == resolve(b); }
+bool same_file(const std::string& a, const std::string& b) {
+  struct stat sa {};
+  struct stat sb {};
+  if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0)
+    return S_ISREG(sa.st_mode) && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  return resolve(a) == resolve(b);
+}
+
+void check_distinct_files(const NamedPaths& inputs, const NamedPaths& outputs) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const auto& [option, path] = outputs[i];
+    for (std::size_t j = 0; j < i; ++j)
+      if (same_file(path, outputs[j].second))
+        throw std::runtime_error(outputs[j].first + " and " + option + " name one file: " + path);
+    for (const auto& [role, input] : inputs)
+      if (same_file(path, input)) throw std::runtime_error(option + " " + path + " would replace " + role + " " + input);
+  }
+}
 
 StagedFile::~StagedFile() {
   if (!temp_.empty()) ::unlink(temp_.c_str());

@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 #include <sys/types.h>
+#include <utility>
+#include <vector>
 
 namespace mc1 {
 
@@ -52,8 +54,19 @@ class StagedFile {
 // StagedFile(path, bytes).commit().
 void write_file_atomically(const std::string& path, std::string_view bytes);
 
-// Whether `a` and `b` name one file, as a StagedFile's target: symbolic
-// links, "." and ".." resolved, for a file not made yet in its directory.
+// Whether `a` and `b` name one regular file: the same device and inode when
+// both exist (hard and symbolic links alike), else the same path with
+// symbolic links, "." and ".." resolved (a file not made yet in its
+// directory). Two names of a device or FIFO (/dev/null) are not: it is
+// written in place, and one output does not replace the other.
 bool same_file(const std::string& a, const std::string& b);
+
+// (option or role, path) pairs.
+using NamedPaths = std::vector<std::pair<std::string, std::string>>;
+// Before a run: throws std::runtime_error if two outputs name one file
+// ("-o and -l name one file: y.bin") or an output names an input ("--out
+// s.json would replace the scene s.json"), so that no output is lost or
+// replaces what the run reads.
+void check_distinct_files(const NamedPaths& inputs, const NamedPaths& outputs);
 
 }  // namespace mc1

@@ -170,13 +170,10 @@ StagedFile writer_output(const std::string& option, const std::string& path, con
 }
 
 void check_distinct(const NamedPaths& inputs, const NamedPaths& outputs) {
-  for (std::size_t i = 0; i < outputs.size(); ++i) {
-    const auto& [option, path] = outputs[i];
-    for (std::size_t j = 0; j < i; ++j)
-      if (same_file(path, outputs[j].second))
-        throw UsageError(outputs[j].first + " and " + option + " name one file: " + path);
-    for (const auto& [role, input] : inputs)
-      if (same_file(path, input)) throw UsageError(option + " " + path + " would replace " + role + " " + input);
+  try {
+    check_distinct_files(inputs, outputs);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(e.what());
   }
 }
 

@@ -76,11 +76,8 @@ void require_stdin_not_directory();
 // device, a missing directory, "") is a UsageError naming `option`.
 StagedFile writer_output(const std::string& option, const std::string& path, const std::string& suffix = "");
 
-// (option or role, path) pairs.
-using NamedPaths = std::vector<std::pair<std::string, std::string>>;
-// Before a run: a UsageError if two outputs name one file or an output
-// names an input (mc1::same_file; both named in the message), so that no
-// output is lost or replaces what the run reads.
+using mc1::NamedPaths;
+// mc1::check_distinct_files, its error a UsageError.
 void check_distinct(const NamedPaths& inputs, const NamedPaths& outputs);
 
 }  // namespace mc1::cmdline
