@@ -29,6 +29,7 @@
 #include "fp24_rtl.hpp"
 #include "fp24_vectors.hpp"
 #include "json.hpp"
+#include "scene.hpp"
 #include "shard_report.hpp"
 
 namespace {
@@ -56,6 +57,10 @@ constexpr const char* kDescription =
 
 constexpr std::uint32_t kChunk = 1u << 16;  // vectors per job
 constexpr std::uint64_t kLongRandom = 1000000000;
+// A --vectors line is a few dozen bytes; these bound what a file that never
+// ends (/dev/zero, a FIFO) can make the run hold before it starts.
+constexpr std::streamsize kMaxVectorLine = 4096;                  // bytes, the newline not counted
+constexpr std::uint64_t kMaxVectorFile = std::uint64_t(1) << 30;  // 1 GiB
 
 struct Options {
   std::vector<Op> ops;
@@ -131,18 +136,46 @@ void add_options(CLI::App& app, Options& o, std::string& ops, std::string& shard
       ->check(cli::input_file());
 }
 
+// A --vectors run has no built-in sets to shape: the options that shape
+// them with it are usage errors naming both ("--vectors excludes --long").
+void add_exclusions(CLI::App& app) {
+  CLI::Option* vectors = app.get_option("--vectors");
+  for (const char* name : {"--long", "--exhaustive-pairs", "--random", "--no-structured", "--seed"})
+    vectors->excludes(app.get_option(name));
+}
+
 // "K/N" with 1 <= K <= N < 2^32.
 void parse_shard(const std::string& text, Options& o) {
   std::tie(o.shard, o.shards) = mc1::shard::parse_shard("--shard", text);
 }
 
+// The lines of a --vectors file, each at most kMaxVectorLine bytes and all
+// together at most kMaxVectorFile; beyond either a VectorError FILE:LINE.
+std::vector<Golden> read_vector_file(std::istream& in, const std::string& file) {
+  std::vector<Golden> lines;
+  std::vector<char> line(kMaxVectorLine + 1);
+  std::uint64_t bytes = 0;
+  long n = 1;
+  for (; in.getline(line.data(), std::streamsize(line.size())); ++n) {
+    const std::size_t length = std::size_t(in.gcount()) - (in.eof() ? 0 : 1);  // without the newline
+    if ((bytes += std::uint64_t(in.gcount())) > kMaxVectorFile)
+      throw VectorError(file + ":" + std::to_string(n) + ": over " + std::to_string(kMaxVectorFile >> 30) +
+                        " GiB read, the limit of a --vectors file");
+    if (std::optional<Golden> g = parse_golden({line.data(), length}, file, n, true)) lines.push_back(*g);
+  }
+  if (in.bad()) throw cli::UsageError("--vectors: " + file + ": read error");
+  if (!in.eof())  // getline stopped at the limit, not at a newline
+    throw VectorError(file + ":" + std::to_string(n) + ": line longer than " + std::to_string(kMaxVectorLine) +
+                      " bytes (not a vector file?)");
+  return lines;
+}
+
 // The --vectors file, every line checked before anything runs; the ops it
 // uses (those of --ops only, if given) become the run's ops.
 void read_user_vectors(Options& o, bool ops_given) {
-  std::ifstream in(o.vectors);
+  std::ifstream in(o.vectors, std::ios::binary);
   if (!in) throw cli::UsageError("--vectors: " + o.vectors + ": cannot open");
-  o.user = read_golden(in, o.vectors, true);
-  if (in.bad()) throw cli::UsageError("--vectors: " + o.vectors + ": read error");
+  o.user = read_vector_file(in, o.vectors);
   std::vector<Op> used;
   for (Op op : o.ops)
     for (const Golden& g : o.user)
@@ -594,24 +627,28 @@ std::string json_report(const Options& o, const Run& run) {
   return j + "  ]\n}\n";
 }
 
-// Report files are opened before the run, so a bad path fails in a second
-// rather than after minutes of work. An empty path means no file.
-std::unique_ptr<std::ofstream> open_report(const std::string& path) {
-  if (path.empty()) return nullptr;
-  auto f = std::make_unique<std::ofstream>(path);
-  if (!*f) throw cli::UsageError(path + ": cannot open for writing");
-  return f;
-}
-
-// A report that cannot be written whole is removed, not left half written.
-bool write_report(std::ofstream* f, const std::string& path, const std::string& text) {
-  if (f == nullptr) return true;
-  *f << text;
-  f->close();
-  if (*f) return true;
-  std::fprintf(stderr, "fp24-regress: %s: write failed\n", path.c_str());
-  std::remove(path.c_str());
-  return false;
+// --merge: what the merge takes on trust from each shard checked first
+// (shard::check_items), then the merge (fp24_regress_merge.cpp).
+int merge(const CLI::App& app, const Options& o) {
+  for (const CLI::Option* other : app.get_options())  // a merge runs nothing: only --json and --text apply
+    if (other->count() && !other->check_name("--merge") && !other->check_name("--json") && !other->check_name("--text"))
+      return cli::usage_error(app, "--merge excludes " + other->get_name() + ": a merge runs nothing");
+  const mc1::shard::ItemRules ops{
+      "ops", "op", [](const std::string& name) { return op_from_name(name).has_value(); },
+      {"vectors", "rtl_vs_model", "model_vs_oracle", "not_correctly_rounded", "unfaithful", "model_vs_golden"},
+      {"rtl_vs_model", "model_vs_oracle", "unfaithful", "model_vs_golden"},  // as Stats::passed
+      "rtl_timing_error"};
+  try {
+    std::vector<mc1::shard::Report> reports;
+    for (const std::string& f : o.merge) reports.push_back(mc1::shard::read_report(f, "fp24-regress/1"));
+    mc1::shard::check_items(reports, ops);
+  } catch (const mc1::scene::SceneError& e) {
+    std::fprintf(stderr, "fp24-regress: --merge: %s\n", e.what());
+    return cli::kExitUsage;
+  } catch (const cli::UsageError& e) {
+    return cli::usage_error(app, std::string("--merge: ") + e.what());
+  }
+  return merge_reports(app, o.merge, o.json, o.text);
 }
 
 }  // namespace
@@ -619,20 +656,21 @@ bool write_report(std::ofstream* f, const std::string& path, const std::string& 
 int main(int argc, char** argv) {
   CLI::App app{kDescription, "fp24-regress"};
   cli::conventions(app,
-                  "Exit status: 0 all match; 1 a mismatch, or a report that could not be written;\n"
-                  "2 usage error (a report file that cannot be opened is one).");
+                  "Exit status: 0 all match; 1 a mismatch, or a report that could not be written\n"
+                  "(what was at its path is left as it was); 2 usage or input error (a report\n"
+                  "path that cannot be written is one, found before the run).");
   Options o;
   std::string ops, shard;
   add_options(app, o, ops, shard);
+  add_exclusions(app);
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
-  if (!o.merge.empty()) return merge_reports(app, o.merge, o.json, o.text);
-  std::unique_ptr<std::ofstream> text_file, json_file;
+  if (!o.merge.empty()) return merge(app, o);
   try {
     o.ops = app.count("--ops") ? parse_ops(ops) : all_ops();
     if (!shard.empty()) parse_shard(shard, o);
     if (!o.vectors.empty()) read_user_vectors(o, app.count("--ops") != 0);
-    text_file = open_report(o.text);
-    json_file = open_report(o.json);
+    mc1::shard::check_writable(o.text);  // before the run, not after minutes of it
+    mc1::shard::check_writable(o.json);
   } catch (const VectorError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return cli::kExitUsage;
@@ -643,7 +681,6 @@ int main(int argc, char** argv) {
   const Run run = run_all(o);
   const std::string text = text_report(o, run);
   std::fputs(text.c_str(), stdout);
-  const bool written = write_report(text_file.get(), o.text, text) &&
-                       write_report(json_file.get(), o.json, json_report(o, run));
+  const bool written = mc1::shard::write_texts({{o.text, text}, {o.json, json_report(o, run)}}, "fp24-regress");
   return passed(o, run) && written ? cli::kExitOk : cli::kExitFailed;
 }

@@ -1,13 +1,23 @@
 #include "shard_report.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
-#include <sstream>
+#include <map>
+#include <set>
+#include <stdexcept>
 
+#include "atomic_file.hpp"
 #include "scene.hpp"
 
 namespace mc1::shard {
+
 
 using json::Type;
 using json::Value;
@@ -36,7 +46,7 @@ std::string serialize(const Value& v) {
     case Type::string: return json::quote(v.string);
     case Type::number: {
       char buf[32];
-      if (v.number == std::floor(v.number) && std::fabs(v.number) < 9007199254740992.0)
+      if (v.number == std::floor(v.number) && std::fabs(v.number) <= kMaxCount)
         std::snprintf(buf, sizeof buf, "%.0f", v.number);
       else
         std::snprintf(buf, sizeof buf, "%.6g", v.number);
@@ -71,6 +81,14 @@ std::string field(const Value& root, const char* key) {
   return v ? serialize(*v) : "";
 }
 
+const Value& count_member(const Report& r, const Value& object, const char* key) {
+  const Value& v = member(r, object, key, Type::number);
+  if (v.type == Type::number && (v.number < 0 || v.number != std::floor(v.number) || v.number > kMaxCount))
+    throw UsageError(where(r, v) + ": \"" + key + "\" is " + serialize(v) +
+                     ", not a count (a whole number in [0, 2^53])");
+  return v;
+}
+
 Value* mutable_member(Value& object, const std::string& key) {
   for (auto& [k, v] : object.members)
     if (k == key) return &v;
@@ -91,12 +109,26 @@ Value string_value(const std::string& text) {
   return v;
 }
 
+namespace {
+
+// All of `file`, up to kMaxReportBytes.
+std::string read_text(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string text;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    text.append(buf, std::size_t(in.gcount()));
+    if (text.size() > kMaxReportBytes)
+      throw UsageError(file + ": over " + std::to_string(kMaxReportBytes >> 20) + " MiB, too large for a shard report");
+  }
+  if (in.bad() || !in.eof()) throw UsageError(file + ": cannot read");
+  return text;
+}
+
+}  // namespace
+
 Report read_report(const std::string& file, const std::string& schema_name) {
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!in) throw UsageError(file + ": cannot read");
-  Report r{file, json::parse(text.str(), file)};
+  Report r{file, json::parse(read_text(file), file)};
   const Value& schema = member(r, r.root, "schema", Type::string);
   if (schema.string != schema_name)
     throw UsageError(where(r, schema) + ": schema '" + schema.string + "', not " + schema_name);
@@ -147,14 +179,87 @@ std::string layout(const Value& root, const std::vector<std::string>& listed) {
   return j + "}\n";
 }
 
+namespace {
+
+// `object`'s "passed" as its counts say it must be.
+void check_passed(const Report& r, const Value& object, bool want) {
+  const Value& passed = member(r, object, "passed", Type::boolean);
+  if (passed.type != Type::boolean || passed.boolean != want)
+    throw UsageError(where(r, passed) + ": \"passed\" is " + serialize(passed) + ", but " +
+                     (want ? "nothing failed" : "a check failed"));
+}
+
+// One item: its counts added to `totals`, its "passed" checked. Whether it passed.
+bool check_item(const Report& r, const Value& item, const ItemRules& rules, std::vector<double>& totals) {
+  bool failed = !rules.error.empty() && member(r, item, rules.error.c_str(), Type::string).type != Type::null;
+  for (std::size_t i = 0; i < rules.counts.size(); ++i) {
+    const std::string& key = rules.counts[i];
+    const Value& n = count_member(r, item, key.c_str());
+    if ((totals[i] += n.number) > kMaxCount)
+      throw UsageError(where(r, n) + ": \"" + key + "\" sums to over 2^53 over the shards");
+    const bool fails = std::find(rules.failing.begin(), rules.failing.end(), key) != rules.failing.end();
+    failed = failed || (fails && n.number > 0);
+  }
+  check_passed(r, item, !failed);
+  return !failed;
+}
+
+}  // namespace
+
+void check_items(const std::vector<Report>& reports, const ItemRules& rules) {
+  std::map<std::string, std::vector<double>> totals;  // by item name, over the reports
+  for (const Report& r : reports) {
+    std::set<std::string> seen;
+    bool passed = true;
+    for (const Value& item : member(r, r.root, rules.list.c_str(), Type::array).items) {
+      const Value& name = member(r, item, rules.name.c_str(), Type::string);
+      if (!rules.known(name.string))
+        throw UsageError(where(r, name) + ": unknown " + rules.name + " " + serialize(name));
+      if (!seen.insert(name.string).second)
+        throw UsageError(where(r, name) + ": " + rules.name + " " + serialize(name) + " listed twice");
+      std::vector<double>& sums = totals[name.string];
+      sums.resize(rules.counts.size());
+      passed = check_item(r, item, rules, sums) && passed;
+    }
+    check_passed(r, r.root, passed);
+  }
+}
+
+void check_writable(const std::string& path) {
+  if (path.empty()) return;
+  std::string why;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+    if (::access(path.c_str(), W_OK) == 0) return;
+    why = std::strerror(errno);
+  } else {
+    try {
+      const StagedFile probe(path, "");  // never committed: its destructor removes it
+      return;
+    } catch (const std::runtime_error& e) {
+      why = e.what();  // "PATH: what failed: reason"
+      if (why.rfind(path + ": ", 0) == 0) why.erase(0, path.size() + 2);
+    }
+  }
+  throw UsageError(path + ": cannot open for writing: " + why);
+}
+
+bool write_texts(const std::vector<std::pair<std::string, std::string>>& files, const char* program) {
+  try {
+    std::vector<StagedFile> staged;
+    staged.reserve(files.size());
+    for (const auto& [path, text] : files)
+      if (!path.empty()) staged.emplace_back(path, text);
+    for (StagedFile& f : staged) f.commit();
+    return true;
+  } catch (const std::runtime_error& e) {
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+    return false;
+  }
+}
+
 bool write_text(const std::string& path, const std::string& text, const char* program) {
-  std::ofstream f(path);
-  f << text;
-  f.close();
-  if (f) return true;
-  std::fprintf(stderr, "%s: %s: write failed\n", program, path.c_str());
-  std::remove(path.c_str());
-  return false;
+  return write_texts({{path, text}}, program);
 }
 
 }  // namespace mc1::shard
