@@ -61,7 +61,8 @@ std::string convert(const std::string& value, bool flags) {
 
 int main(int argc, char** argv) {
   CLI::App app{kDescription, "fp24-conv"};
-  cli::conventions(app, "Exit status: 0 done; 2 usage error (a VALUE that is not a number).");
+  cli::conventions(app, "Exit status: 0 done; 1 standard output could not be written; 2 usage error (a VALUE\n"
+                        "that is not a number).");
   std::vector<std::string> values;
   bool flags = false;
   app.add_option("VALUE", values, "decimal numbers, 0x encodings, or (--flags) flags")->required();
@@ -74,5 +75,5 @@ int main(int argc, char** argv) {
     return cli::usage_error(app, e.what());
   }
   std::fputs(out.c_str(), stdout);
-  return cli::kExitOk;
+  return cli::flush_stdout("fp24-conv", cli::kExitOk);
 }

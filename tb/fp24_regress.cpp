@@ -664,7 +664,7 @@ int main(int argc, char** argv) {
   add_options(app, o, ops, shard);
   add_exclusions(app);
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
-  if (!o.merge.empty()) return merge(app, o);
+  if (!o.merge.empty()) return cli::flush_stdout("fp24-regress", merge(app, o));
   try {
     o.ops = app.count("--ops") ? parse_ops(ops) : all_ops();
     if (!shard.empty()) parse_shard(shard, o);
@@ -682,5 +682,5 @@ int main(int argc, char** argv) {
   const std::string text = text_report(o, run);
   std::fputs(text.c_str(), stdout);
   const bool written = mc1::shard::write_texts({{o.text, text}, {o.json, json_report(o, run)}}, "fp24-regress");
-  return passed(o, run) && written ? cli::kExitOk : cli::kExitFailed;
+  return cli::flush_stdout("fp24-regress", passed(o, run) && written ? cli::kExitOk : cli::kExitFailed);
 }

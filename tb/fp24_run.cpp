@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
   }
   if (fst) o.fst = fst->temp();
   try {
-    if (!o.check.empty()) return commit(fst, check(o, golden));
+    if (!o.check.empty()) return cli::flush_stdout("fp24-run", commit(fst, check(o, golden)));
     const std::vector<Result> results = compute(o, o.engine, vectors);
     std::string out;
     out.reserve(results.size() * 10);

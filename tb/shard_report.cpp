@@ -227,21 +227,11 @@ void check_items(const std::vector<Report>& reports, const ItemRules& rules) {
 
 void check_writable(const std::string& path) {
   if (path.empty()) return;
-  std::string why;
-  struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
-    if (::access(path.c_str(), W_OK) == 0) return;
-    why = std::strerror(errno);
-  } else {
-    try {
-      const StagedFile probe(path, "");  // never committed: its destructor removes it
-      return;
-    } catch (const std::runtime_error& e) {
-      why = e.what();  // "PATH: what failed: reason"
-      if (why.rfind(path + ": ", 0) == 0) why.erase(0, path.size() + 2);
-    }
+  try {
+    mc1::check_writable(path);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(e.what());
   }
-  throw UsageError(path + ": cannot open for writing: " + why);
 }
 
 bool write_texts(const std::vector<std::pair<std::string, std::string>>& files, const char* program) {

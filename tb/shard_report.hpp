@@ -76,11 +76,8 @@ void check_items(const std::vector<Report>& reports, const ItemRules& rules);
 
 // Report files are written whole or not at all (atomic_file.hpp), and what
 // was at their path (a report, a device) stays as it was on any error.
-// check_writable: whether `path` can be written later, found now without
-// touching what is there (a temporary file is staged beside it and dropped;
-// a device or FIFO, which would be written in place, is checked for access
-// only: opening a FIFO would wait for, and end, its reader). A UsageError
-// "PATH: cannot open for writing: reason" if not; an empty path is no file.
+// check_writable: mc1::check_writable, its error a UsageError; an empty path
+// is no file.
 void check_writable(const std::string& path);
 // Writes each (path, text) of `files` (an empty path: none), all staged
 // before any is committed; on an error says so on stderr (as `program`:

@@ -132,6 +132,24 @@ bool same_file(const std::string& a, const std::string& b) {
   return resolve(a) == resolve(b);
 }
 
+void check_writable(const std::string& path) {
+  std::string why;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+    if (::access(path.c_str(), W_OK) == 0) return;
+    why = std::strerror(errno);
+  } else {
+    try {
+      const StagedFile probe(path, "");  // never committed: its destructor removes it
+      return;
+    } catch (const std::runtime_error& e) {
+      why = e.what();  // "PATH: what failed: reason"
+      if (why.rfind(path + ": ", 0) == 0) why.erase(0, path.size() + 2);
+    }
+  }
+  throw std::runtime_error(path + ": cannot open for writing: " + why);
+}
+
 void check_distinct_files(const NamedPaths& inputs, const NamedPaths& outputs) {
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const auto& [option, path] = outputs[i];

@@ -61,6 +61,14 @@ void write_file_atomically(const std::string& path, std::string_view bytes);
 // written in place, and one output does not replace the other.
 bool same_file(const std::string& a, const std::string& b);
 
+// Whether `path` can be written later, found now without touching what is
+// there: a temporary file is staged beside it and dropped; a device or FIFO,
+// which would be written in place, is checked for access only (opening a
+// FIFO would wait for, and end, its reader). Throws std::runtime_error
+// "PATH: cannot open for writing: reason" if not. For a run that writes its
+// outputs at the end: a bad path fails before the work, not after it.
+void check_writable(const std::string& path);
+
 // (option or role, path) pairs.
 using NamedPaths = std::vector<std::pair<std::string, std::string>>;
 // Before a run: throws std::runtime_error if two outputs name one file

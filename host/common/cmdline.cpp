@@ -177,4 +177,23 @@ void check_distinct(const NamedPaths& inputs, const NamedPaths& outputs) {
   }
 }
 
+void check_writable(const NamedPaths& outputs) {
+  for (const auto& [option, path] : outputs) {
+    try {
+      mc1::check_writable(path);
+    } catch (const std::runtime_error& e) {
+      throw UsageError(option + ": " + e.what());
+    }
+  }
+}
+
+int flush_stdout(const std::string& program, int status) {
+  errno = 0;
+  std::cout.flush();
+  const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout;
+  if (!failed) return status;
+  std::fprintf(stderr, "%s: standard output: %s\n", program.c_str(), errno ? std::strerror(errno) : "write error");
+  return kExitFailed;
+}
+
 }  // namespace mc1::cmdline

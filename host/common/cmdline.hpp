@@ -79,5 +79,13 @@ StagedFile writer_output(const std::string& option, const std::string& path, con
 using mc1::NamedPaths;
 // mc1::check_distinct_files, its error a UsageError.
 void check_distinct(const NamedPaths& inputs, const NamedPaths& outputs);
+// mc1::check_writable of each output, its error a UsageError naming the
+// option: before a run that writes its outputs at its end.
+void check_writable(const NamedPaths& outputs);
+
+// The exit status once standard output is flushed: `status`, or
+// kExitFailed, said on stderr as "PROGRAM: standard output: reason", when a
+// write to it failed (`> /dev/full`): a report printed there is the output.
+int flush_stdout(const std::string& program, int status);
 
 }  // namespace mc1::cmdline

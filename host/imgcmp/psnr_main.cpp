@@ -88,5 +88,5 @@ int main(int argc, char** argv) {
   }
   const int largest = d.clusters.empty() ? 0 : d.clusters.front().pixels;
   const bool failed = (app.count("--min") && p < o.min_db) || (app.count("--max-cluster") && largest > o.max_cluster);
-  return failed ? cli::kExitFailed : cli::kExitOk;
+  return cli::flush_stdout("mc1-psnr", failed ? cli::kExitFailed : cli::kExitOk);
 }

@@ -93,6 +93,19 @@ if(NOT EXISTS ${WORK_DIR}/plain OR EXISTS ${WORK_DIR}/plain.vcd)
   message(SEND_ERROR "case vcd_name: --vcd plain did not write the file plain")
 endif()
 
+# An output path that cannot be written is found before the run (the frame
+# would take its whole time first), with nothing left behind.
+expect(out_no_dir 2 "--out: ${WORK_DIR}/none/x.png: cannot open for writing: cannot create a temporary file"
+       render ${SCENES}/whitted.json --size 320x240 --quiet --out ${WORK_DIR}/none/x.png)
+expect(stats_is_dir 2 "mc1 diag: --stats: ${WORK_DIR}: cannot open for writing: is a directory"
+       diag --nodes 2 --stats ${WORK_DIR})
+# What `mc1 params` prints is its output: a standard output that cannot take
+# it is a failure.
+execute_process(COMMAND ${MC1} params OUTPUT_FILE /dev/full ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "^mc1 params: standard output: No space left on device")
+  message(SEND_ERROR "case params_stdout_full: exit ${rc}, ${err}")
+endif()
+
 file(GLOB leftovers ${WORK_DIR}/.*)
 if(leftovers)
   message(SEND_ERROR "temporary files left behind: ${leftovers}")

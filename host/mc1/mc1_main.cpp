@@ -143,6 +143,7 @@ int cmd_diag(const CLI::App& cmd) {
   cli::check_distinct(inputs, cli::report_outputs(a));
   cli::Outputs out;  // the VCD's writer writes under a temporary name during the run
   const std::string vcd = cli::stage_vcd(a, out);
+  cmdline::check_writable(cli::report_outputs(a));  // before the run, not after it
 
   const FrameReport r = run_frame(cfg, program, diag::nc_main, vcd);
   const Check c = compare(r);
@@ -274,7 +275,7 @@ int sc_main(int argc, char** argv) {
   const CLI::App& cmd = *app.get_subcommands().front();
   const std::string name = cmd.get_name();
   try {
-    return run_command(app, cmd);
+    return cmdline::flush_stdout("mc1 " + name, run_command(app, cmd));
   } catch (const CliError& e) {
     std::fprintf(stderr, "mc1 %s: %s\n", name.c_str(), e.what());
     return cmdline::kExitUsage;

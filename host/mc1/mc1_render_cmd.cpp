@@ -233,9 +233,10 @@ int compare_to_reference(const RenderJob& job, const FrameReport& r, const std::
   return 0;
 }
 
-// Before the run: no output names an input or another output; --trace's
-// FST and --vcd's VCD staged in `out` (their writers write the temporary
-// files: cfg.trace_path, and the VCD path returned, "" without --vcd).
+// Before the run: no output names an input or another output, and each can
+// be written; --trace's FST and --vcd's VCD staged in `out` (their writers
+// write the temporary files: cfg.trace_path, and the VCD path returned, ""
+// without --vcd).
 std::string stage_writers(const Parsed& a, const RenderJob& job, SystemConfig& cfg, Outputs& out) {
   NamedPaths outputs = report_outputs(a);
   for (const char* name : {"profile", "diff", "trace"})
@@ -248,7 +249,9 @@ std::string stage_writers(const Parsed& a, const RenderJob& job, SystemConfig& c
     cfg.trace_path = fst.temp();
     out.add(std::move(fst));
   }
-  return stage_vcd(a, out);
+  std::string vcd = stage_vcd(a, out);
+  cmdline::check_writable(outputs);  // before the run, not after it
+  return vcd;
 }
 
 }  // namespace
