@@ -150,6 +150,8 @@ elseif(PROGRAM STREQUAL "apu-cosim")
   expect(max_cycles_too_big RC 2 ERR "--max-cycles: '18446744073709551616' is out of range"
          ARGS --random 1 --max-cycles 18446744073709551616)
   expect(program_directory RC 2 ERR "PROGRAM: ${docs}: is a directory" ARGS ${docs})
+  expect(first_past_end RC 2 ERR "--first 18446744073709551615 with --random 2: the case indices pass 2\\^64 - 1"
+         ARGS --random 2 --first 18446744073709551615 --engines iss,iss)
   expect(trace_no_rtl RC 2 ERR "--trace needs the rtl engine in --engines" ARGS halt.apu --engines iss,iss --trace t.fst)
   expect(trace_no_dir RC 2 ERR "--trace: none/t.fst: cannot create a temporary file beside it"
          ARGS halt.apu --trace none/t.fst)

@@ -179,6 +179,7 @@ void check_distinct(const NamedPaths& inputs, const NamedPaths& outputs) {
 
 void check_writable(const NamedPaths& outputs) {
   for (const auto& [option, path] : outputs) {
+    if (path.empty()) throw UsageError(option + " needs a file name");
     try {
       mc1::check_writable(path);
     } catch (const std::runtime_error& e) {

@@ -236,7 +236,8 @@ void add_commands(CLI::App& app) {
   cmdline::conventions(app);
   app.get_formatter()->label("Usage", "usage");
   app.require_subcommand(1);
-  app.add_subcommand("help", "this text; `mc1 COMMAND --help` for a command's options");
+  app.add_subcommand("help", "this text; `mc1 help COMMAND` or `mc1 COMMAND --help` for a command's options")
+      ->add_option("COMMAND", "a command whose options to show");
   cli::add_render_options(*app.add_subcommand("render", cli::kRenderDescription));
   cli::add_bench_render_options(*app.add_subcommand("bench-render", cli::kBenchRenderDescription));
   cli::add_sweep_options(*app.add_subcommand("sweep", cli::kSweepDescription));
@@ -249,7 +250,15 @@ int run_command(const CLI::App& app, const CLI::App& cmd) {
   const std::string name = cmd.get_name();
   if (name == "help") {
     // app.help() would describe the selected subcommand, `help` itself.
-    std::cout << app.get_formatter()->make_help(&app, app.get_name(), CLI::AppFormatMode::Normal);
+    const CLI::results_t& what = cmd.get_option("COMMAND")->results();
+    if (what.empty()) {
+      std::cout << app.get_formatter()->make_help(&app, app.get_name(), CLI::AppFormatMode::Normal);
+      return cmdline::kExitOk;
+    }
+    const auto named = [&](const CLI::App* sub) { return sub->check_name(what.front()) && sub != &cmd; };
+    const auto subs = app.get_subcommands(named);
+    if (subs.empty()) throw CliError("unknown command '" + what.front() + "'");
+    std::cout << subs.front()->help();
     return cmdline::kExitOk;
   }
   if (name == "diag") return cmd_diag(cmd);

@@ -263,6 +263,7 @@ int cmd_render(const CLI::App& cmd) {
   cfg.nodes = 16;
   apply_params(cmd, cfg.timing);
   const Parsed a(cmd);
+  if (a.has("scene") && !job.scene.empty()) throw CliError("SCENE and --scene are both given: name the scene once");
   if (a.has("scene")) job.scene = a.get("scene");
   if (job.scene.empty()) throw CliError("missing SCENE (see --help)");
   frame_options(a, cfg, job);

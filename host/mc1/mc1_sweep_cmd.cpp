@@ -195,6 +195,8 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
   const std::string dir = a.get("out-dir", ".");
   const bool quiet = a.has("quiet");
   if (a.has("list")) {
+    for (const char* name : {"json", "png"})
+      if (a.has(name)) throw CliError(std::string("--list runs nothing: --") + name + " would write nothing");
     for (std::uint64_t i = first; i < end; ++i) {
       const Point p = point(g, i);
       std::printf("%llu %s frame %u (%.6g deg) %u NCs %s %s\n", static_cast<unsigned long long>(i), p.scene.c_str(),

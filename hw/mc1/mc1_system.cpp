@@ -331,6 +331,9 @@ FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_pa
   const auto t0 = std::chrono::steady_clock::now();
   try {
     sc_run();
+  } catch (const sc_core::sc_report& e) {  // a model's error: its words and time, not SystemC's source line
+    throw std::runtime_error(std::string(e.get_msg_type()) + ": " + e.get_msg() + " (at " + e.get_time().to_string() +
+                             ")" + nc_faults(*sys));
   } catch (const std::exception& e) {
     throw std::runtime_error(e.what() + nc_faults(*sys));
   }

@@ -78,6 +78,9 @@ void add_options(CLI::App& app, Options& o) {
 
 void check_options(Options& o) {
   if (o.random < 0 && o.program.empty()) throw cli::UsageError("no program and no --random");
+  if (o.random > 0 && o.first > UINT64_MAX - static_cast<std::uint64_t>(o.random - 1))
+    throw cli::UsageError("--first " + std::to_string(o.first) + " with --random " + std::to_string(o.random) +
+                          ": the case indices pass 2^64 - 1");
   const auto comma = o.engines.find(',');
   o.engine_a = o.engines.substr(0, comma);
   o.engine_b = o.engines.substr(comma + 1);
