@@ -57,10 +57,6 @@ constexpr const char* kDescription =
 
 constexpr std::uint32_t kChunk = 1u << 16;  // vectors per job
 constexpr std::uint64_t kLongRandom = 1000000000;
-// A --vectors line is a few dozen bytes; these bound what a file that never
-// ends (/dev/zero, a FIFO) can make the run hold before it starts.
-constexpr std::streamsize kMaxVectorLine = 4096;                  // bytes, the newline not counted
-constexpr std::uint64_t kMaxVectorFile = std::uint64_t(1) << 30;  // 1 GiB
 
 struct Options {
   std::vector<Op> ops;
@@ -149,33 +145,13 @@ void parse_shard(const std::string& text, Options& o) {
   std::tie(o.shard, o.shards) = mc1::shard::parse_shard("--shard", text);
 }
 
-// The lines of a --vectors file, each at most kMaxVectorLine bytes and all
-// together at most kMaxVectorFile; beyond either a VectorError FILE:LINE.
-std::vector<Golden> read_vector_file(std::istream& in, const std::string& file) {
-  std::vector<Golden> lines;
-  std::vector<char> line(kMaxVectorLine + 1);
-  std::uint64_t bytes = 0;
-  long n = 1;
-  for (; in.getline(line.data(), std::streamsize(line.size())); ++n) {
-    const std::size_t length = std::size_t(in.gcount()) - (in.eof() ? 0 : 1);  // without the newline
-    if ((bytes += std::uint64_t(in.gcount())) > kMaxVectorFile)
-      throw VectorError(file + ":" + std::to_string(n) + ": over " + std::to_string(kMaxVectorFile >> 30) +
-                        " GiB read, the limit of a --vectors file");
-    if (std::optional<Golden> g = parse_golden({line.data(), length}, file, n, true)) lines.push_back(*g);
-  }
-  if (in.bad()) throw cli::UsageError("--vectors: " + file + ": read error");
-  if (!in.eof())  // getline stopped at the limit, not at a newline
-    throw VectorError(file + ":" + std::to_string(n) + ": line longer than " + std::to_string(kMaxVectorLine) +
-                      " bytes (not a vector file?)");
-  return lines;
-}
-
 // The --vectors file, every line checked before anything runs; the ops it
 // uses (those of --ops only, if given) become the run's ops.
 void read_user_vectors(Options& o, bool ops_given) {
   std::ifstream in(o.vectors, std::ios::binary);
   if (!in) throw cli::UsageError("--vectors: " + o.vectors + ": cannot open");
-  o.user = read_vector_file(in, o.vectors);
+  o.user = read_golden(in, o.vectors, true);  // lines of 4096 bytes, 1 GiB at most (fp24_vectors.hpp)
+  if (in.bad()) throw cli::UsageError("--vectors: " + o.vectors + ": read error");
   std::vector<Op> used;
   for (Op op : o.ops)
     for (const Golden& g : o.user)

@@ -3,10 +3,38 @@
 #include "fp24_vectors.hpp"
 
 #include <cctype>
+#include <cstdint>
 #include <cstdio>
 
 namespace mc1::fp24::tb {
 namespace {
+
+// A vector or golden line is a few dozen bytes; these bound what a stream
+// that never ends (/dev/zero, a FIFO) can make a reader hold before it
+// starts: the limits of fp24-regress --vectors.
+constexpr std::size_t kMaxLineBytes = 4096;                        // the newline not counted
+constexpr std::uint64_t kMaxStreamBytes = std::uint64_t{1} << 30;  // 1 GiB
+
+// Calls each(line, line_no) for every line of `in`, each at most
+// kMaxLineBytes and all together at most kMaxStreamBytes: past either a
+// VectorError SOURCE:LINE, nothing read beyond that line (a line too long
+// is read to its byte past the limit).
+template <class Each>
+void for_each_line(std::istream& in, const std::string& source, Each each) {
+  std::vector<char> line(kMaxLineBytes + 1);
+  std::uint64_t bytes = 0;
+  long line_no = 1;
+  for (; in.getline(line.data(), std::streamsize(line.size())); ++line_no) {
+    const std::size_t length = std::size_t(in.gcount()) - (in.eof() ? 0 : 1);  // without the newline
+    if ((bytes += std::uint64_t(in.gcount())) > kMaxStreamBytes)
+      throw VectorError(source + ":" + std::to_string(line_no) + ": over " + std::to_string(kMaxStreamBytes >> 30) +
+                        " GiB read, the limit of a vector file");
+    each(std::string_view(line.data(), length), line_no);
+  }
+  if (!in.eof() && !in.bad())  // getline stopped at the limit, not at a newline
+    throw VectorError(source + ":" + std::to_string(line_no) + ": line longer than " +
+                      std::to_string(kMaxLineBytes) + " bytes (not a vector file?)");
+}
 
 std::vector<std::string_view> split(std::string_view line) {
   std::vector<std::string_view> tokens;
@@ -122,19 +150,17 @@ std::optional<Golden> parse_golden(std::string_view line, const std::string& sou
 
 std::vector<Golden> read_golden(std::istream& in, const std::string& source, bool expected_optional) {
   std::vector<Golden> vectors;
-  std::string line;
-  for (long line_no = 1; std::getline(in, line); ++line_no) {
+  for_each_line(in, source, [&](std::string_view line, long line_no) {
     if (std::optional<Golden> g = parse_golden(line, source, line_no, expected_optional)) vectors.push_back(*g);
-  }
+  });
   return vectors;
 }
 
 std::vector<Issue> read_vectors(std::istream& in, const std::string& source) {
   std::vector<Issue> vectors;
-  std::string line;
-  for (long line_no = 1; std::getline(in, line); ++line_no) {
+  for_each_line(in, source, [&](std::string_view line, long line_no) {
     if (std::optional<Issue> v = parse_vector(line, source, line_no)) vectors.push_back(*v);
-  }
+  });
   return vectors;
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <vector>
@@ -136,6 +137,29 @@ TEST(ApuDriverFiles, DataFileAddressesAndErrors) {
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(path + ":2: '1000000' is wider than 24 bits"), std::string::npos) << e.what();
+  }
+  std::remove(path.c_str());
+}
+
+// A file that never ends (/dev/zero, a FIFO) is refused after one byte past
+// 16 MiB, not held whole: a sparse file that size stands in for it.
+TEST(ApuDriverFiles, DataFileOver16MiBRefusedAfterOneByteMore) {
+  const std::string path = ::testing::TempDir() + "apu_iss_test_big_data.txt";
+  std::ofstream(path, std::ios::binary | std::ios::trunc).close();
+  std::filesystem::resize_file(path, (std::uintmax_t{16} << 20) + 1);
+  try {
+    read_data_file(path);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": over 16 MiB, too large for a data file");
+  }
+  // 16 MiB itself is read and parsed: its NULs are no hex word.
+  std::filesystem::resize_file(path, std::uintmax_t{16} << 20);
+  try {
+    read_data_file(path);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path + ":1: not a hex word: '", 0), 0u) << std::string(e.what()).substr(0, 200);
   }
   std::remove(path.c_str());
 }

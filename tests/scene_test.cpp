@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <ctime>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "json.hpp"
@@ -65,6 +68,12 @@ std::string repeated(const std::string& primitive, std::size_t count) {
 const std::string kTriangle = "{\"type\": \"triangle\", \"vertices\": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}";
 const std::string kQuad = "{\"type\": \"quad\", \"vertices\": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]}";
 const char* const kFp24Range = "0 or a magnitude in [2.168e-19, 1.8447e19], FP24's range";
+
+// A file of `size` zero bytes that takes no disk space (ftruncate).
+void make_sparse(const std::string& path, std::uintmax_t size) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc).close();
+  std::filesystem::resize_file(path, size);
+}
 
 }  // namespace
 
@@ -366,6 +375,28 @@ TEST(SceneErrors, MeshFile) {
   // A directory opens as a stream and reads as empty ("file ends early").
   EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"bezier_mesh\", \"file\": \"data\"}"))),
             "t.json:9: objects[0].primitives[0].file: \"" + scenes_dir() + "/data\" is a directory (expected a patch file)");
+}
+
+// A file that never ends (/dev/zero, a FIFO) is refused after one byte past
+// the limit, not held whole: sparse files that size stand in for it.
+TEST(SceneLimits, MeshFileOver64MiBRefusedAfterOneByteMore) {
+  const std::string mesh = ::testing::TempDir() + "scene_test_big_mesh.txt";
+  make_sparse(mesh, (std::uintmax_t{64} << 20) + 1);
+  EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"bezier_mesh\", \"file\": \"" + mesh + "\"}"))),
+            "t.json:9: objects[0].primitives[0].file: \"" + mesh + "\" is over 64 MiB, too large for a patch file");
+  std::remove(mesh.c_str());
+}
+
+TEST(SceneLimits, SceneFileOver256MiBRefusedUnread) {
+  const std::string scene = ::testing::TempDir() + "scene_test_big.json";
+  make_sparse(scene, (std::uintmax_t{256} << 20) + 1);
+  try {
+    load_scene(scene);
+    FAIL() << "a scene over the limit was loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), scene + ": over 256 MiB, too large for a scene file");
+  }
+  std::remove(scene.c_str());
 }
 
 TEST(SceneErrors, DirectoryIsNotAScene) {

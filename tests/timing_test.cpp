@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -22,6 +23,12 @@ std::string error_of(const std::function<void()>& f) {
     return e.what();
   }
   return "(no error)";
+}
+
+// A file of `size` zero bytes that takes no disk space (ftruncate).
+void make_sparse(const std::string& path, std::uintmax_t size) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc).close();
+  std::filesystem::resize_file(path, size);
 }
 }  // namespace
 
@@ -104,6 +111,19 @@ TEST(Timing, FileErrorsNameFileLineKeyAndValue) {
   // A failed line leaves the earlier lines applied and the table otherwise intact.
   EXPECT_EQ(t.apu_clock_hz, 4u);
   EXPECT_EQ(t.hdlc_window, 7u);
+}
+
+// A file that never ends (/dev/zero, a FIFO) is refused after one byte past
+// 1 MiB, not held whole: a sparse file that size stands in for it.
+TEST(Timing, FileOverOneMiBRefusedAfterOneByteMore) {
+  const std::string path = ::testing::TempDir() + "timing_test_big.params";
+  make_sparse(path, (std::uintmax_t{1} << 20) + 1);
+  TimingParams t;
+  EXPECT_EQ(error_of([&] { load_params_file(t, path); }), path + ": over 1 MiB, too large for a parameter file");
+  // 1 MiB itself is read and parsed: its one line of NULs is no `key = value`.
+  std::filesystem::resize_file(path, std::uintmax_t{1} << 20);
+  EXPECT_EQ(error_of([&] { load_params_file(t, path); }).rfind(path + ":1: expected 'key = value', got '", 0), 0u);
+  std::remove(path.c_str());
 }
 
 TEST(Timing, ParamArgumentsInOrderWithFiles) {

@@ -64,6 +64,25 @@ glm::dvec3 checker_colour(const Checker& c, const glm::dvec3& p) {
 
 namespace {
 
+// A patch file is a few KB (scenes/data/utah-teapot.txt: 7 KB), a scene some
+// tens (scenes/smooth.json: 29 KB; 65535 primitives at most): these bound
+// what a file that never ends (/dev/zero, a FIFO) makes the loader hold.
+constexpr std::size_t kMaxMeshFileBytes = std::size_t{64} << 20;    // 64 MiB
+constexpr std::size_t kMaxSceneFileBytes = std::size_t{256} << 20;  // 256 MiB
+
+// What `in` holds, read to at most one byte past `limit`: a longer result
+// means a file over the limit, of which no more was read.
+std::string read_at_most(std::istream& in, std::size_t limit) {
+  std::string text;
+  char buf[1 << 16];
+  while (text.size() <= limit) {
+    in.read(buf, std::streamsize(std::min(sizeof buf, limit + 1 - text.size())));
+    text.append(buf, std::size_t(in.gcount()));
+    if (!in) break;
+  }
+  return text;
+}
+
 const char* const kTooManyPrimitives =
     "more than 65535 primitives (a quad counts as two triangles), the NC's limit";
 std::size_t nc_ids(const Primitive& p) { return p.vertex_count == 4 ? 2 : 1; }
@@ -586,7 +605,12 @@ class Loader {
       fail(fv, join(path, "file"), "\"" + full + "\" is a directory (expected a patch file)");
     std::ifstream in(full);
     if (!in) fail(fv, join(path, "file"), "cannot open \"" + full + "\"");
-    std::vector<BicubicNet> patches = read_bezier_file(in, full);
+    const std::string text = read_at_most(in, kMaxMeshFileBytes);
+    if (text.size() > kMaxMeshFileBytes)
+      fail(fv, join(path, "file"), "\"" + full + "\" is over " + std::to_string(kMaxMeshFileBytes >> 20) +
+                                       " MiB, too large for a patch file");
+    std::istringstream lines(text);
+    std::vector<BicubicNet> patches = read_bezier_file(lines, full);
     int lv = level(v, path);
     for (std::size_t i = 0; i < patches.size(); ++i) {
       BicubicNet& net = patches[i];
@@ -623,6 +647,9 @@ Scene load_scene(const std::string& path) {
   if (!in) throw SceneError(path + ": cannot open scene file");
   std::string text;
   std::streamoff size = in.seekg(0, std::ios::end) ? static_cast<std::streamoff>(in.tellg()) : -1;
+  const std::string too_large =
+      path + ": over " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, too large for a scene file";
+  if (size > static_cast<std::streamoff>(kMaxSceneFileBytes)) throw SceneError(too_large);
   if (size >= 0) {
     // One read: a huge scene is then refused by the parse within a moment.
     text.resize(static_cast<std::size_t>(size));
@@ -630,9 +657,8 @@ Scene load_scene(const std::string& path) {
     in.read(text.data(), size);
   } else {  // a pipe
     in.clear();
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    text = ss.str();
+    text = read_at_most(in, kMaxSceneFileBytes);
+    if (text.size() > kMaxSceneFileBytes) throw SceneError(too_large);
   }
   if (in.bad()) throw SceneError(path + ": read error");
   return parse_scene(text, path, dirname(path));

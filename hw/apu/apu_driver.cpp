@@ -19,6 +19,28 @@ std::string hex(unsigned v, int digits) {
   return buf;
 }
 
+// A data file fills a bank at most: 4096 words of 6 hex digits, 28 KB and
+// its comments (docs/apu-tools.md). The limit bounds what a file that never
+// ends (/dev/zero, a FIFO) makes the tools hold.
+constexpr std::size_t kMaxDataFileBytes = std::size_t{16} << 20;  // 16 MiB
+
+// The whole data file, read to at most one byte past kMaxDataFileBytes.
+std::string read_data_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open data file");
+  std::string text;
+  char buf[1 << 16];
+  while (text.size() <= kMaxDataFileBytes) {
+    in.read(buf, std::streamsize(std::min(sizeof buf, kMaxDataFileBytes + 1 - text.size())));
+    text.append(buf, std::size_t(in.gcount()));
+    if (!in) break;
+  }
+  if (text.size() > kMaxDataFileBytes)
+    throw std::runtime_error(path + ": over " + std::to_string(kMaxDataFileBytes >> 20) +
+                             " MiB, too large for a data file");
+  return text;
+}
+
 }  // namespace
 
 ApuDriver::ApuDriver(ApuEngine& engine) : engine_(engine), iss_(dynamic_cast<Iss*>(&engine)) {
@@ -207,8 +229,7 @@ void ApuDriver::fail(ApuError::Kind kind, const std::string& why) const {
 }
 
 std::vector<std::pair<std::uint16_t, std::uint32_t>> read_data_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open data file");
+  std::istringstream in(read_data_text(path));
   std::vector<std::pair<std::uint16_t, std::uint32_t>> out;
   std::string line;
   unsigned long addr = 0;

@@ -1,5 +1,6 @@
 #include "timing_params.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,9 @@ namespace {
 
 constexpr std::uint64_t kPsPerSecond = 1'000'000'000'000ULL;
 constexpr std::uint64_t kBig = 1'000'000'000'000ULL;
+// A parameter file is a few dozen lines (to_text() writes about 3 KB); this
+// bounds what a file that never ends (/dev/zero, a FIFO) makes us hold.
+constexpr std::size_t kMaxParamsFileBytes = std::size_t{1} << 20;  // 1 MiB
 
 using Member = std::uint64_t TimingParams::*;
 struct Entry {
@@ -195,10 +199,18 @@ void load_params_file(TimingParams& p, const std::string& path) {
   if (std::filesystem::is_directory(path)) throw ParamError(path + ": is a directory (expected a parameter file)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ParamError(path + ": cannot open parameter file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  std::string text;
+  char buf[1 << 16];
+  while (text.size() <= kMaxParamsFileBytes) {  // at most one byte past the limit
+    in.read(buf, std::streamsize(std::min(sizeof buf, kMaxParamsFileBytes + 1 - text.size())));
+    text.append(buf, std::size_t(in.gcount()));
+    if (!in) break;
+  }
   if (in.bad()) throw ParamError(path + ": read error");
-  load_params_text(p, ss.str(), path);
+  if (text.size() > kMaxParamsFileBytes)
+    throw ParamError(path + ": over " + std::to_string(kMaxParamsFileBytes >> 20) +
+                     " MiB, too large for a parameter file");
+  load_params_text(p, text, path);
 }
 
 void apply_param_override(TimingParams& p, std::string_view key_value) {
