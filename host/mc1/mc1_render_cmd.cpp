@@ -7,10 +7,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 #include "image.hpp"
 #include "json.hpp"
@@ -121,35 +124,70 @@ std::string ms(Picos t) {
 
 // A progress bar on the terminal: blocks done of the total, simulated time,
 // host time elapsed and an estimate of what is left (from blocks done).
+// The simulation draws it as blocks complete; a ticker thread redraws it
+// each second meanwhile, so that the broadcast and the block lists before
+// the first block, or a slow block, still show the time going by.
 class ProgressBar {
  public:
-  explicit ProgressBar(bool on) : on_(on) {}
+  explicit ProgressBar(bool on) : on_(on) {
+    if (on_) ticker_ = std::thread([this] { tick(); });
+  }
   ~ProgressBar() { done(); }
   void update(const rc::Progress& p) {
     if (!on_) return;
+    const std::lock_guard<std::mutex> lock(m_);
+    last_progress_ = p;
     const auto now = std::chrono::steady_clock::now();
     if (p.blocks_done != p.blocks && drawn_ && now - last_ < std::chrono::milliseconds(100)) return;
-    last_ = now;
-    drawn_ = true;
-    constexpr int kWidth = 30;
-    const int fill = p.blocks ? static_cast<int>(kWidth * static_cast<double>(p.blocks_done) / p.blocks) : kWidth;
-    const double fraction = p.blocks ? static_cast<double>(p.blocks_done) / p.blocks : 1.0;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    std::fprintf(stderr, "\r  [%s%s] %u/%u blocks, %.3f ms simulated, %s   ", std::string(fill, '#').c_str(),
-                 std::string(kWidth - fill, '.').c_str(), p.blocks_done, p.blocks, p.time * 1e-9,
-                 mc1::cmdline::progress_times(elapsed, fraction).c_str());
-    std::fflush(stderr);
+    draw(now);
   }
   void done() {
-    if (on_ && drawn_) std::fputc('\n', stderr);
+    if (!on_) return;
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      stop_ = true;
+    }
+    cv_.notify_all();
+    if (ticker_.joinable()) ticker_.join();
+    if (drawn_) std::fputc('\n', stderr);
     drawn_ = false;
   }
 
  private:
+  void tick() {
+    std::unique_lock<std::mutex> lock(m_);
+    while (!cv_.wait_for(lock, std::chrono::seconds(1), [this] { return stop_; })) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_ >= std::chrono::seconds(1)) draw(now);
+    }
+  }
+  void draw(std::chrono::steady_clock::time_point now) {  // m_ held
+    last_ = now;
+    drawn_ = true;
+    const rc::Progress& p = last_progress_;
+    constexpr int kWidth = 30;
+    const double fraction = p.blocks ? static_cast<double>(p.blocks_done) / p.blocks : 0.0;
+    const int fill = static_cast<int>(kWidth * fraction);
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    if (p.blocks)
+      std::fprintf(stderr, "\r  [%s%s] %u/%u blocks, %.3f ms simulated, %s   ", std::string(fill, '#').c_str(),
+                   std::string(kWidth - fill, '.').c_str(), p.blocks_done, p.blocks, p.time * 1e-9,
+                   mc1::cmdline::progress_times(elapsed, fraction).c_str());
+    else
+      std::fprintf(stderr, "\r  [%s] no block done yet (broadcast, block lists), %.0f s elapsed   ",
+                   std::string(kWidth, '.').c_str(), elapsed);
+    std::fflush(stderr);
+  }
+
   bool on_;
+  std::mutex m_;  // the fields below, and stderr while drawing
+  std::condition_variable cv_;
+  bool stop_ = false;
   bool drawn_ = false;
+  rc::Progress last_progress_;
   std::chrono::steady_clock::time_point last_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::thread ticker_;
 };
 
 void frame_options(const Parsed& a, SystemConfig& cfg, RenderJob& job) {

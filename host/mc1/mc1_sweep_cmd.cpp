@@ -184,6 +184,18 @@ std::string times_so_far(std::chrono::steady_clock::time_point t0, std::uint64_t
   return cmdline::progress_times(elapsed, static_cast<double>(done) / static_cast<double>(total));
 }
 
+// --list: points [first, end) of the grid, a line each; nothing is run.
+int list_points(const Parsed& a, const Grid& g, std::uint64_t first, std::uint64_t end) {
+  for (const char* name : {"json", "png"})
+    if (a.has(name)) throw CliError(std::string("--list runs nothing: --") + name + " would write nothing");
+  for (std::uint64_t i = first; i < end; ++i) {
+    const Point p = point(g, i);
+    std::printf("%llu %s frame %u (%.6g deg) %u NCs %s %s\n", static_cast<unsigned long long>(i), p.scene.c_str(),
+                p.frame, orbit_deg(g, p.frame), p.nodes, rc::schedule_name(p.schedule), block_name(p.block).c_str());
+  }
+  return 0;
+}
+
 int run_sweep(const CLI::App& cmd, const Parsed& a) {
   SystemConfig base = machine_config();
   apply_params(cmd, base.timing);
@@ -194,16 +206,7 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
   const auto [first, end] = shard::shard_range(g.points(), k, n);
   const std::string dir = a.get("out-dir", ".");
   const bool quiet = a.has("quiet");
-  if (a.has("list")) {
-    for (const char* name : {"json", "png"})
-      if (a.has(name)) throw CliError(std::string("--list runs nothing: --") + name + " would write nothing");
-    for (std::uint64_t i = first; i < end; ++i) {
-      const Point p = point(g, i);
-      std::printf("%llu %s frame %u (%.6g deg) %u NCs %s %s\n", static_cast<unsigned long long>(i), p.scene.c_str(),
-                  p.frame, orbit_deg(g, p.frame), p.nodes, rc::schedule_name(p.schedule), block_name(p.block).c_str());
-    }
-    return 0;
-  }
+  if (a.has("list")) return list_points(a, g, first, end);
   const auto t0 = std::chrono::steady_clock::now();
   std::ostringstream points;
   bool passed = true, any = false;

@@ -128,14 +128,18 @@ glm::dvec3 Renderer::pixel(int i, int j, int width, int height) const {
   return trace(eye_ray(scene_.camera, i, j, width, height), 0);
 }
 
-imgcmp::Image Renderer::render(int width, int height) const {
+imgcmp::Image Renderer::render(int width, int height) const { return render(width, height, nullptr); }
+
+imgcmp::Image Renderer::render(int width, int height, const std::function<void(int rows)>& row_done) const {
   imgcmp::Image img(width, height);
-  for (int j = 0; j < height; ++j)
+  for (int j = 0; j < height; ++j) {
     for (int i = 0; i < width; ++i) {
       glm::dvec3 c = pixel(i, j, width, height);
       std::uint8_t* px = img.at(i, j);
       for (int k = 0; k < 3; ++k) px[k] = quantise(c[k]);
     }
+    if (row_done) row_done(j + 1);
+  }
   return img;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include <glm/glm.hpp>
 
@@ -47,6 +48,9 @@ class Renderer {
   // Unclamped colour of pixel (i, j).
   glm::dvec3 pixel(int i, int j, int width, int height) const;
   imgcmp::Image render(int width, int height) const;
+  // The same, calling `row_done(rows)` after each row (a progress display;
+  // it does not change the image).
+  imgcmp::Image render(int width, int height, const std::function<void(int rows)>& row_done) const;
   imgcmp::Image render() const { return render(scene_.camera.width, scene_.camera.height); }
 
   // Surface colour C at p: the checker where textured.
