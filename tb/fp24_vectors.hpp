@@ -27,7 +27,9 @@ class VectorError : public std::runtime_error {
 // `op a [b]` with the op's operand count and in-range hex operands.
 std::optional<Issue> parse_vector(std::string_view line, const std::string& source, long line_no);
 
-// Reads every line of `in` (see parse_vector).
+// Reads every line of `in` (see parse_vector). A line over 4096 bytes, or
+// more than 1 GiB in all, is a VectorError naming source:line, read no
+// further (a stream that never ends, /dev/zero, is not held whole).
 std::vector<Issue> read_vectors(std::istream& in, const std::string& source);
 
 // The five flag bits of docs/fp24.md (NV DZ OF UF NX).
@@ -52,7 +54,7 @@ struct Golden {
 std::optional<Golden> parse_golden(std::string_view line, const std::string& source, long line_no,
                                    bool expected_optional = false);
 
-// Reads every line of `in` (see parse_golden).
+// Reads every line of `in` (see parse_golden), within read_vectors' limits.
 std::vector<Golden> read_golden(std::istream& in, const std::string& source, bool expected_optional = false);
 
 // `op a [b]`, as parse_vector reads it (a: 4 hex digits for float, else 6).
