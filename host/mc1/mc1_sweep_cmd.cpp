@@ -266,12 +266,11 @@ std::vector<shard::Report> read_sweep_reports(const std::vector<std::string>& fi
   for (const std::string& f : files) {
     shard::Report r = shard::read_report(f, "mc1-sweep/1");
     shard::member(r, r.root, "grid", Type::object);
-    shard::member(r, r.root, "points_total", Type::number);
+    shard::count_member(r, r.root, "points_total");
     shard::member(r, r.root, "passed", Type::boolean);
     for (const Value& p : shard::member(r, r.root, "points", Type::array).items) {
-      shard::member(r, p, "index", Type::number);
+      for (const char* count : {"index", "frame", "nodes", "simulated_time_ps"}) shard::count_member(r, p, count);
       shard::member(r, p, "scene", Type::string);
-      shard::member(r, p, "frame", Type::number);
       shard::member(r, p, "complete", Type::boolean);
       shard::member(r, p, "image_fnv1a", Type::string);
     }

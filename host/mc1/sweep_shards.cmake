@@ -75,4 +75,13 @@ must(2 ${MC1} sweep --merge ${WORK_DIR}/sharded/merged.json)
 if(NOT last_err MATCHES "is not K/N")
   message(FATAL_ERROR "a merged report as a shard: ${last_err}")
 endif()
+# A shard whose points say what no run can: refused naming the file and line.
+file(READ ${WORK_DIR}/sharded/shard-1.json shard1)
+string(REGEX REPLACE "\"nodes\": [0-9]+" "\"nodes\": -3" bad "${shard1}")
+file(WRITE ${WORK_DIR}/sharded/bad-1.json "${bad}")
+must(2 ${MC1} sweep --merge ${WORK_DIR}/sharded/bad-1.json ${WORK_DIR}/sharded/shard-2.json
+     ${WORK_DIR}/sharded/shard-3.json)
+if(NOT last_err MATCHES "bad-1.json:[0-9]+: \"nodes\" is -3, not a count")
+  message(FATAL_ERROR "a negative NC count: ${last_err}")
+endif()
 message(STATUS "16 points whole and in 3 shards: the same report and statistics")
