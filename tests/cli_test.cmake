@@ -165,6 +165,10 @@ elseif(PROGRAM STREQUAL "apu-bench")
   expect(cycles_too_big RC 2 ERR "--iss-cycles: '99999999999999999999' is out of range"
          ARGS --iss-cycles 99999999999999999999)
   expect(kernel_directory RC 2 ERR "--kernel: ${docs}: is a directory" ARGS --kernel ${docs})
+  # A kernel that assembles but faults is a failed run, not bad input.
+  file(WRITE ${WORK_DIR}/fault.apu "  li a1, 4095\n  ld f1, [a1+1]\n  halt\n")
+  expect(kernel_faults RC 1 ERR "^apu-bench: APU fault data-address" ARGS --kernel fault.apu --engines iss --iss-cycles 1000)
+  expect(kernel_not_image RC 2 ERR "^apu-bench: .*README.md: not an APU image" ARGS --kernel ${SRC}/README.md --engines iss)
 elseif(PROGRAM STREQUAL "mc1-ref")
   expect(missing_scene RC 2 ERR "SCENE: none.json: No such file" ARGS none.json --out r.png)
   expect(scene_directory RC 2 ERR "SCENE: ${docs}: is a directory" ARGS ${docs} --out r.png)

@@ -81,6 +81,8 @@ double parse_double(const std::string& opt, const std::string& text, double min,
 
 std::pair<unsigned, unsigned> parse_size(const std::string& opt, const std::string& text, bool square_ok) {
   const auto x = text.find('x');
+  if (x != std::string::npos && text.find('x', x + 1) != std::string::npos)
+    throw CliError(opt + ": bad size '" + text + "' (expected WxH, e.g. 256x256)");
   if (x == std::string::npos) {
     if (!square_ok) throw CliError(opt + ": bad size '" + text + "' (expected WxH, e.g. 256x256)");
     const unsigned n = parse_unsigned(opt, text, 1, 4096);

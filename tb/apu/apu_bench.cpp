@@ -181,6 +181,16 @@ void add_options(CLI::App& app, Options& o) {
   app.add_flag("--check", o.check, "exit 1 if the ISS is below 20 M cycles/s or the RTL below 2 M");
 }
 
+// --kernel's program: a file that cannot be read or assembled is bad input
+// (exit 2); a kernel that then faults or runs wrong is a failed run (exit 1).
+std::vector<Encoded> load_kernel(const std::string& path) {
+  try {
+    return tools::load_program_file(path);
+  } catch (const std::exception& e) {
+    throw cli::UsageError(e.what());
+  }
+}
+
 int run(Options o) {
   try {
     const std::vector<Encoded> kernel =
@@ -188,7 +198,7 @@ int run(Options o) {
             ? mc1::apu::parse_image(std::string(reinterpret_cast<const char*>(mc1_xform4_kernel_image),
                                               mc1_xform4_kernel_image_size),
                                   "xform4.bin (embedded)")
-            : tools::load_program_file(o.kernel_path);
+            : load_kernel(o.kernel_path);
     if (o.kernel_path.empty()) o.kernel_path = "xform4.apu (built in)";
     std::vector<Result> results;
     for (const auto& e : o.engines)
@@ -221,9 +231,12 @@ int run(Options o) {
       std::printf("speed ratio %s/%s: %.1f\n", results[0].engine.c_str(), results[1].engine.c_str(),
                   (results[0].cycles / results[0].seconds) / (results[1].cycles / results[1].seconds));
     return ok ? 0 : 1;
-  } catch (const std::exception& ex) {
+  } catch (const cli::UsageError& ex) {
     std::cerr << "apu-bench: " << ex.what() << "\n";
-    return 2;
+    return cli::kExitUsage;
+  } catch (const std::exception& ex) {  // the kernel faulted or stopped short
+    std::cerr << "apu-bench: " << ex.what() << "\n";
+    return cli::kExitFailed;
   }
 }
 
@@ -231,8 +244,8 @@ int run(Options o) {
 
 int main(int argc, char** argv) {
   CLI::App app{kDescription, "apu-bench"};
-  cli::conventions(app, "Exit status: 0 done; 1 a wrong result (always) or, with --check, an engine below its\n"
-                        "target speed; 2 usage or input error.");
+  cli::conventions(app, "Exit status: 0 done; 1 a wrong result or a kernel that faults (always) or, with --check,\n"
+                        "an engine below its target speed; 2 usage or input error.");
   Options o;
   add_options(app, o);
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
