@@ -8,6 +8,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "json.hpp"
@@ -375,6 +376,28 @@ TEST(SceneErrors, MeshFile) {
   // A directory opens as a stream and reads as empty ("file ends early").
   EXPECT_EQ(error_of(scene_text(object_with("{\"type\": \"bezier_mesh\", \"file\": \"data\"}"))),
             "t.json:9: objects[0].primitives[0].file: \"" + scenes_dir() + "/data\" is a directory (expected a patch file)");
+}
+
+// A patch file's errors name the line they are about.
+TEST(SceneErrors, PatchFileLines) {
+  auto error_in = [](const std::string& text) {
+    std::istringstream in(text);
+    try {
+      read_bezier_file(in, "p.txt");
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  std::string indices;
+  for (int i = 0; i < 16; ++i) indices += (i ? " " : "") + std::to_string(i == 5 ? 999 : i);
+  std::string points;
+  for (int i = 0; i < 16; ++i) points += "0 0 " + std::to_string(i) + "\n";
+  EXPECT_EQ(error_in("patches 1\n# the net\n" + indices + "\npoints 16\n" + points),
+            "p.txt:3: control-point index 999 out of range (the file has 16 points)");
+  EXPECT_EQ(error_in("patches 99999999999999999999\n"), "p.txt:1: expected 'patches N' with N in 1..65535");
+  EXPECT_EQ(error_in("patches 65536\n"), "p.txt:1: expected 'patches N' with N in 1..65535");
+  EXPECT_EQ(error_in("patches 1\n" + indices + "\npoints 0\n"), "p.txt:3: expected 'points N' with N in 1..1048560");
 }
 
 // A file that never ends (/dev/zero, a FIFO) is refused after one byte past
