@@ -149,6 +149,14 @@ TEST(Timing, ParamArgumentsInOrderWithFiles) {
             "non-negative integer in frames)");
   EXPECT_EQ(error_of([&] { apply_param_override(t, "hdlc_window"); }),
             "--param hdlc_window: expected key=value");
+  // A digit separator stands between two digits only.
+  apply_param_override(t, "apu_clock_hz=4'000_000");
+  EXPECT_EQ(t.apu_clock_hz, 4'000'000u);
+  for (const char* v : {"_4", "4_", "4''0", "4__0", "'"})
+    EXPECT_EQ(error_of([&] { apply_param_override(t, std::string("hdlc_window=") + v); }),
+              "--param hdlc_window=" + std::string(v) + ": bad value '" + v +
+                  "' for key 'hdlc_window' (expected a non-negative integer in frames)")
+        << v;
   EXPECT_EQ(error_of([&] { apply_param_args(t, {"--param"}); }), "--param: missing argument");
 }
 

@@ -84,15 +84,20 @@ std::string_view trim(std::string_view s) {
   return s.substr(b, s.find_last_not_of(ws) - b + 1);
 }
 
-// Integer with optional '_' or '\'' digit separators; nothing else.
+// Integer with optional '_' or '\'' digit separators, each between two
+// digits (4_000_000, 4'000'000; not _4, 4_, 4__0); nothing else.
 bool parse_u64(std::string_view text, std::uint64_t& out) {
   std::string digits;
+  bool after_separator = false;
   for (char c : text) {
-    if (c == '_' || c == '\'') continue;
+    const bool separator = c == '_' || c == '\'';
+    if (separator && (digits.empty() || after_separator)) return false;
+    after_separator = separator;
+    if (separator) continue;
     if (c < '0' || c > '9') return false;
     digits.push_back(c);
   }
-  if (digits.empty()) return false;
+  if (digits.empty() || after_separator) return false;
   const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), out);
   return r.ec == std::errc() && r.ptr == digits.data() + digits.size();
 }
