@@ -80,6 +80,8 @@ TEST(Timing, FileWithCommentsAndSeparators) {
   EXPECT_EQ(t.image_bus_arbitration_ns, 150u);
   EXPECT_EQ(t.fm_write_ns_per_pixel, 250u);
   EXPECT_EQ(t.hdlc_bits_ps(1), 500'000u);
+  EXPECT_EQ(error_of([&] { load_params_text(t, "hdlc_window = 4\n\nhdlc_window = 6\n", "twice.params"); }),
+            "twice.params:3: 'hdlc_window' given twice in this file (first at line 1)");
 }
 
 TEST(Timing, FileErrorsNameFileLineKeyAndValue) {

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace mc1 {
@@ -179,6 +180,7 @@ void TimingParams::validate() const {
 
 void load_params_text(TimingParams& p, std::string_view text, const std::string& origin) {
   std::size_t line_no = 0;
+  std::map<std::string, std::size_t, std::less<>> seen;  // key -> its line: a key twice in one file is a mistake
   while (!text.empty()) {
     const auto nl = text.find('\n');
     std::string_view line = text.substr(0, nl);
@@ -191,11 +193,15 @@ void load_params_text(TimingParams& p, std::string_view text, const std::string&
     const auto eq = line.find('=');
     if (eq == std::string_view::npos)
       throw ParamError(where + "expected 'key = value', got '" + std::string(line) + "'");
+    const std::string_view key = trim(line.substr(0, eq));
     try {
-      p.set(trim(line.substr(0, eq)), trim(line.substr(eq + 1)));
+      p.set(key, trim(line.substr(eq + 1)));
     } catch (const ParamError& e) {
       throw ParamError(where + e.what());
     }
+    if (const auto [it, fresh] = seen.emplace(key, line_no); !fresh)
+      throw ParamError(where + "'" + std::string(key) + "' given twice in this file (first at line " +
+                       std::to_string(it->second) + ")");
   }
 }
 
