@@ -11,6 +11,7 @@
 #include <string>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "atomic_file.hpp"
@@ -237,6 +238,30 @@ TEST(AtomicFile, SameFileSeesThroughLinksAndDots) {
   ASSERT_EQ(link(dir.file("real").c_str(), dir.file("hard").c_str()), 0);
   EXPECT_TRUE(same_file(dir.file("hard"), dir.file("real"))) << "a hard link";
   EXPECT_FALSE(same_file("/dev/null", "/dev/./null")) << "a device is written in place, by each output";
+}
+
+// A program stopped by a signal leaves none of its temporary files (nor an
+// FST writer's ".hier" beside one); an ignored signal stays ignored.
+TEST(AtomicFile, SignalRemovesStagedFiles) {
+  ScratchDir dir;
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    signal(SIGHUP, SIG_IGN);
+    remove_staged_files_on_signals();
+    StagedFile a(dir.file("a.png"), "half");
+    StagedFile w = StagedFile::for_writer(dir.file("t.fst"));
+    std::ofstream(w.temp() + ".hier") << "hierarchy";
+    raise(SIGHUP);  // ignored: the program goes on
+    if (dir.names().size() != 3) _exit(3);
+    raise(SIGTERM);
+    _exit(4);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "exit " << WEXITSTATUS(status);
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  EXPECT_TRUE(dir.names().empty()) << *dir.names().begin();
 }
 
 TEST(AtomicFile, CheckDistinctFilesNamesBoth) {

@@ -118,6 +118,7 @@ void describe(CLI::App& app, Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mc1::remove_staged_files_on_signals();  // Ctrl-C leaves no temporary file
   CLI::App app("apuasm: assembles APU microcode into a binary image, or disassembles one.", "apuasm");
   Options o;
   describe(app, o);

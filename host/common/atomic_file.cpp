@@ -5,8 +5,10 @@
 
 #include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 #include <fcntl.h>
 #include <stdexcept>
 #include <string>
@@ -74,7 +76,67 @@ int create_temp(const std::string& target, std::string& temp, const std::string&
   return -1;
 }
 
+// The temporary files of the StagedFiles alive, for the signal handler
+// (remove_staged_files_on_signals): fixed slots, so that the handler reads
+// them without a lock or an allocation; a file that finds no free slot is
+// just not removed on a signal.
+constexpr int kSlots = 64;
+struct Slot {
+  std::atomic<bool> used{false};   // taken by a StagedFile
+  std::atomic<bool> ready{false};  // `path` written whole: the handler may use it
+  char path[4096];
+};
+Slot g_slots[kSlots];
+
+int register_temp(const std::string& temp) {
+  if (temp.size() + 6 > sizeof Slot::path) return -1;  // room for ".hier"
+  for (int i = 0; i < kSlots; ++i) {
+    bool expected = false;
+    if (!g_slots[i].used.load(std::memory_order_relaxed) &&
+        g_slots[i].used.compare_exchange_strong(expected, true, std::memory_order_acquire)) {
+      std::memcpy(g_slots[i].path, temp.c_str(), temp.size() + 1);
+      g_slots[i].ready.store(true, std::memory_order_release);
+      return i;
+    }
+  }
+  return -1;
+}
+
+void unregister_temp(int& slot) {
+  if (slot < 0) return;
+  g_slots[slot].ready.store(false, std::memory_order_release);
+  g_slots[slot].used.store(false, std::memory_order_release);
+  slot = -1;
+}
+
+extern "C" void remove_staged_and_reraise(int sig) {
+  for (Slot& s : g_slots) {
+    if (!s.ready.load(std::memory_order_acquire)) continue;
+    ::unlink(s.path);
+    const std::size_t n = std::strlen(s.path);
+    std::memcpy(s.path + n, ".hier", 6);  // an FST writer's hierarchy, beside its file
+    ::unlink(s.path);
+    s.path[n] = '\0';
+  }
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
 }  // namespace
+
+void remove_staged_files_on_signals() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction old {};
+      if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+      struct sigaction act {};
+      act.sa_handler = remove_staged_and_reraise;
+      sigemptyset(&act.sa_mask);
+      ::sigaction(sig, &act, nullptr);
+    }
+  });
+}
 
 StagedFile::StagedFile(const std::string& path, std::string_view bytes) : path_(path), target_(resolve(path)) {
   struct stat st {};
@@ -96,6 +158,7 @@ StagedFile::StagedFile(const std::string& path, std::string_view bytes) : path_(
     fail(path_, "cannot write", err);
   }
   temp_ = std::move(temp);
+  slot_ = register_temp(temp_);
 }
 
 StagedFile::StagedFile(const std::string& path) : path_(path), target_(resolve(path)) {}
@@ -115,6 +178,7 @@ StagedFile StagedFile::for_writer(const std::string& path, const std::string& su
   if (fd < 0) fail(path, "cannot create a temporary file beside it", errno);
   ::close(fd);
   f.temp_ = std::move(temp);
+  f.slot_ = register_temp(f.temp_);
   return f;
 }
 
@@ -122,7 +186,8 @@ StagedFile::StagedFile(StagedFile&& other) noexcept
     : path_(std::move(other.path_)),
       target_(std::move(other.target_)),
       temp_(std::exchange(other.temp_, {})),
-      mode_(other.mode_) {}
+      mode_(other.mode_),
+      slot_(std::exchange(other.slot_, -1)) {}
 
 bool same_file(const std::string& a, const std::string& b) {
   struct stat sa {};
@@ -163,18 +228,18 @@ void check_distinct_files(const NamedPaths& inputs, const NamedPaths& outputs) {
 
 StagedFile::~StagedFile() {
   if (!temp_.empty()) ::unlink(temp_.c_str());
+  unregister_temp(slot_);
 }
 
 void StagedFile::commit() {
   if (temp_.empty()) return;
   if (mode_) ::chmod(temp_.c_str(), mode_);  // a replaced file keeps its mode
-  if (::rename(temp_.c_str(), target_.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(temp_.c_str());
-    temp_.clear();
-    fail(path_, "cannot rename the temporary file onto it", err);
-  }
+  const bool renamed = ::rename(temp_.c_str(), target_.c_str()) == 0;
+  const int err = errno;
+  if (!renamed) ::unlink(temp_.c_str());
   temp_.clear();
+  unregister_temp(slot_);
+  if (!renamed) fail(path_, "cannot rename the temporary file onto it", err);
 }
 
 void write_file_atomically(const std::string& path, std::string_view bytes) { StagedFile(path, bytes).commit(); }

@@ -49,10 +49,18 @@ class StagedFile {
   std::string target_;  // path_ with symbolic links resolved
   std::string temp_;    // the staged file; empty once committed or when written in place
   mode_t mode_ = 0;     // for_writer: the replaced file's mode (0: none)
+  int slot_ = -1;       // the signal handler's entry for temp_ (remove_staged_files_on_signals)
 };
 
 // StagedFile(path, bytes).commit().
 void write_file_atomically(const std::string& path, std::string_view bytes);
+
+// For a program (never a library: a host such as Python keeps its own
+// handlers): SIGINT, SIGTERM and SIGHUP first remove the temporary files of
+// the StagedFiles alive (and, for a writer's, the ".hier" file an FST writer
+// keeps beside it), then end the program as the signal would have. A signal
+// the program ignores stays ignored. Calling it again does nothing.
+void remove_staged_files_on_signals();
 
 // Whether `a` and `b` name one regular file: the same device and inode when
 // both exist (hard and symbolic links alike), else the same path with

@@ -78,6 +78,7 @@ void conventions(CLI::App& app, const std::string& exit_statuses) {
 }
 
 std::optional<int> parse(CLI::App& app, int argc, char** argv) {
+  remove_staged_files_on_signals();  // a program: Ctrl-C leaves no temporary file
   try {
     app.parse(argc, argv);
     return std::nullopt;

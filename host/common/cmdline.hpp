@@ -39,7 +39,7 @@ void conventions(CLI::App& app,
 
 // Parses the command line. Returns the exit status when the program is
 // done already (0 after --help or --version, 2 after a usage error, printed),
-// nullopt when it should run.
+// nullopt when it should run. Installs mc1::remove_staged_files_on_signals.
 std::optional<int> parse(CLI::App& app, int argc, char** argv);
 
 // Prints "PROGRAM: message" and the --help hint on stderr; returns 2.
