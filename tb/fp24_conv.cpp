@@ -2,6 +2,7 @@
 //   fp24-conv 1.5 0.1 1e30     decimal -> FP24 hex, with the flags rounding raises
 //   fp24-conv 0x3f8000         FP24 hex -> decimal and fields
 //   fp24-conv --flags 0x11 NV,NX
+#include <cctype>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -57,6 +58,41 @@ std::string convert(const std::string& value, bool flags) {
   return value + ": " + hex6(r->value) + " flags " + flags_text(r->flags) + ", reads back " + decimal(r->value);
 }
 
+// A VALUE such as -inf or -nan starts with '-' but is no number to CLI11,
+// which would read it as short options (-i -n -f). When one is given, the
+// command line is parsed as: the options, "--", then every VALUE in its
+// order ("--" stays where the user put one).
+std::vector<std::string> with_values_last(int argc, char** argv) {
+  const auto negative_special = [](std::string v) {
+    for (char& c : v) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return v == "-inf" || v == "-infinity" || v == "-nan";
+  };
+  std::vector<std::string> options, values;
+  bool special = false, rest = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (rest || a == "--") {
+      if (rest) values.push_back(a);
+      rest = true;
+      continue;
+    }
+    special = special || negative_special(a);
+    (a.size() > 1 && a[0] == '-' && !negative_special(a) && !std::isdigit(static_cast<unsigned char>(a[1])) &&
+             a[1] != '.'
+         ? options
+         : values)
+        .push_back(a);
+  }
+  std::vector<std::string> out{argv[0]};
+  if (!special) out.assign(argv, argv + argc);
+  else {
+    out.insert(out.end(), options.begin(), options.end());
+    out.push_back("--");
+    out.insert(out.end(), values.begin(), values.end());
+  }
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -67,7 +103,10 @@ int main(int argc, char** argv) {
   bool flags = false;
   app.add_option("VALUE", values, "decimal numbers, 0x encodings, or (--flags) flags")->required();
   app.add_flag("--flags", flags, "read each VALUE as a flags field");
-  if (auto rc = cli::parse(app, argc, argv)) return *rc;
+  std::vector<std::string> args = with_values_last(argc, argv);
+  std::vector<char*> arg_ptrs;
+  for (std::string& a : args) arg_ptrs.push_back(a.data());
+  if (auto rc = cli::parse(app, static_cast<int>(arg_ptrs.size()), arg_ptrs.data())) return *rc;
   std::string out;
   try {
     for (const std::string& v : values) out += convert(v, flags) + "\n";

@@ -71,6 +71,8 @@ elseif(PROGRAM STREQUAL "fp24-conv")
   expect(not_number RC 2 ERR "^fp24-conv: VALUE 'x': not a decimal number" ARGS x)
   expect(hex_too_wide RC 2 ERR "VALUE: '0x1000000' is out of range" ARGS 0x1000000)
   expect(bad_flags RC 2 ERR "VALUE 'XX': not flags" ARGS --flags XX)
+  # -inf and -nan are values, not options, wherever they stand.
+  expect(negative_inf RC 0 OUT "^1.5: 3f8000[^\n]*\n-inf: ff0000 flags 00 \\(-\\), reads back -inf\n$" ARGS 1.5 -inf)
   # What it prints is its output: a standard output that cannot take it is a failure.
   execute_process(COMMAND ${P} 1.5 OUTPUT_FILE /dev/full ERROR_VARIABLE err RESULT_VARIABLE rc)
   if(NOT rc EQUAL 1 OR NOT err MATCHES "^fp24-conv: standard output: No space left on device")
