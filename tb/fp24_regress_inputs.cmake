@@ -8,17 +8,13 @@
 # shards), whose op is unknown or listed twice, or whose "passed" is not
 # what its counts say (a shard that failed must fail the merge).
 #   cmake -DREGRESS=fp24-regress -DMC1=mc1 -DWORK_DIR=dir -P fp24_regress_inputs.cmake
+include(${CMAKE_CURRENT_LIST_DIR}/fp24_cli_run.cmake)
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR})
 
 # run(NAME RC ERR-regex PROGRAM ARGS...) in WORK_DIR.
 function(run name want_rc err_re)
-  execute_process(COMMAND ${ARGN} WORKING_DIRECTORY ${WORK_DIR}
-    OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
-  if(NOT rc EQUAL want_rc OR NOT err MATCHES "${err_re}")
-    message(SEND_ERROR "${name}: exit ${rc} (wanted ${want_rc})\nstdout: ${out}\nstderr: ${err}\n"
-                       "wanted stderr ~ '${err_re}'")
-  endif()
+  run_in_work(${name} ${want_rc} "${err_re}" ${ARGN})
 endfunction()
 
 file(WRITE ${WORK_DIR}/g.golden "neg 3f0000\nadd 3f0000 3f0000 400000 00\n")

@@ -6,17 +6,13 @@
 # run, which leaves the other report's old file as it was. No device nodes:
 # a write fails under `ulimit -f 0` (EFBIG, SIGXFSZ ignored) or on a directory.
 #   cmake -DREGRESS=fp24-regress -DWORK_DIR=dir -P fp24_regress_outputs.cmake
+include(${CMAKE_CURRENT_LIST_DIR}/fp24_cli_run.cmake)
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR})
 
 # run(NAME RC ERR-regex ARGS...): fp24-regress ARGS in WORK_DIR.
 function(run name want_rc err_re)
-  execute_process(COMMAND ${REGRESS} ${ARGN} WORKING_DIRECTORY ${WORK_DIR}
-    OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
-  if(NOT rc EQUAL want_rc OR NOT err MATCHES "${err_re}")
-    message(SEND_ERROR "${name}: exit ${rc} (wanted ${want_rc})\nstdout: ${out}\nstderr: ${err}\n"
-                       "wanted stderr ~ '${err_re}'")
-  endif()
+  run_in_work(${name} ${want_rc} "${err_re}" ${REGRESS} ${ARGN})
 endfunction()
 
 # run_no_space(NAME RC ERR-regex ARGS...): the same with regular files
