@@ -143,8 +143,6 @@ std::string summary(const Value& merged, std::size_t shards) {
 // The merged report in the layout fp24-regress writes: one op a line.
 std::string layout(const Value& merged) { return shard::layout(merged, {"ops"}); }
 
-bool write(const std::string& path, const std::string& text) { return shard::write_text(path, text, "fp24-regress"); }
-
 }  // namespace
 
 int merge_reports(const CLI::App& app, const std::vector<std::string>& files, const std::string& json_path,
@@ -164,11 +162,10 @@ int merge_reports(const CLI::App& app, const std::vector<std::string>& files, co
   }
   const std::string text = summary(merged, shards);
   const std::string json = layout(merged);
-  bool written = true;
   if (json_path.empty()) std::fputs(json.c_str(), stdout);
-  else written = write(json_path, json);
   std::fputs(text.c_str(), json_path.empty() ? stderr : stdout);
-  if (!text_path.empty()) written = write(text_path, text) && written;
+  // Both report files staged before either is committed (empty paths: none).
+  const bool written = shard::write_texts({{json_path, json}, {text_path, text}}, "fp24-regress");
   return merged.find("passed")->boolean && written ? cli::kExitOk : cli::kExitFailed;
 }
 

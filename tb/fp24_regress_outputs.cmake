@@ -91,6 +91,11 @@ run_no_space(merge_no_space 1 "fp24-regress: old.json: cannot write: File too la
 expect_old(merge_no_space old.json old.txt)
 run(merge_missing_dir 1 "fp24-regress: nodir/m.json: cannot create a temporary file beside it"
     --merge s-1.json s-2.json --json nodir/m.json)
+# One report that cannot be written leaves the other unwritten too.
+old_reports()
+run(merge_one_fails 1 "fp24-regress: nodir/m.txt: cannot create a temporary file beside it"
+    --merge s-1.json s-2.json --json old.json --text nodir/m.txt)
+expect_old(merge_one_fails old.json old.txt)
 run(merge_writes 0 "" --merge s-1.json s-2.json --json old.json --text old.txt)
 file(READ ${WORK_DIR}/old.txt text)
 if(NOT text MATCHES "merged 2 shards.*PASS\n$")

@@ -1,13 +1,8 @@
 #include "shard_report.hpp"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <map>
 #include <set>
@@ -17,7 +12,6 @@
 #include "scene.hpp"
 
 namespace mc1::shard {
-
 
 using json::Type;
 using json::Value;
@@ -246,10 +240,6 @@ bool write_texts(const std::vector<std::pair<std::string, std::string>>& files, 
     std::fprintf(stderr, "%s: %s\n", program, e.what());
     return false;
   }
-}
-
-bool write_text(const std::string& path, const std::string& text, const char* program) {
-  return write_texts({{path, text}}, program);
 }
 
 }  // namespace mc1::shard

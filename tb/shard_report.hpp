@@ -83,6 +83,5 @@ void check_writable(const std::string& path);
 // before any is committed; on an error says so on stderr (as `program`:
 // "PROGRAM: PATH: what failed: reason") and returns false.
 bool write_texts(const std::vector<std::pair<std::string, std::string>>& files, const char* program);
-bool write_text(const std::string& path, const std::string& text, const char* program);
 
 }  // namespace mc1::shard
