@@ -425,7 +425,7 @@ module apu_core
   assign addr_fault  = (is_ld || is_st) && (mem_addr[15:DADDR_W] != '0);
   // The word at 1023 may not continue at 1024, nor CALL from there (its
   // return address would be 1024).
-  assign pc_overflow    = pc_next[PC_W] || ((w.s_op == apu_pkg::S_CALL) && (pc == '1));
+  assign pc_overflow    = pc_next[PC_W] || ((w.s_op == apu_pkg::S_CALL) && (pc == {PC_W{1'b1}}));
   assign call_overflow  = (w.s_op == apu_pkg::S_CALL) && cs_full;
   assign call_underflow = (w.s_op == apu_pkg::S_RET) && cs_empty;
 

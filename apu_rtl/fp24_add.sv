@@ -41,7 +41,7 @@ module fp24_add #(
   localparam int SEXP_W = EXP_W + 2;           // unbounded exponent, two's complement
   localparam int INT_W  = 16;                  // FLOAT/FIX integer width
   localparam int BIAS_I = (1 << (EXP_W - 1)) - 1;
-  localparam logic [EXP_W-1:0]  EXP_ONES = '1;
+  localparam logic [EXP_W-1:0]  EXP_ONES = {EXP_W{1'b1}};
   // The sum's bit SUM_W-2 weighs 2^(e - bias) of the larger operand; the
   // stage-2 exponent is (that exponent + 1) - leading zeros of the sum.
   // FLOAT puts its integer at bit 0 (weight 2^0) of the same sum.
@@ -154,7 +154,7 @@ module fp24_add #(
       // trailing-zero count of both operands was a priority chain each).
       lost_n    = exp_diff - EXP_W'(GRS_W);
       lost_mask = (exp_diff <= EXP_W'(GRS_W)) ? '0
-                : (lost_n >= EXP_W'(SIG_W)) ? '1
+                : (lost_n >= EXP_W'(SIG_W)) ? {SIG_W{1'b1}}
                 : ~({SIG_W{1'b1}} << lost_n[SHIFT_W-1:0]);
       sticky    = (far_sig & lost_mask) != '0;
       // Jamming the lost bits into the LSB keeps the rounding exact: the true

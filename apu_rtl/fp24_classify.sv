@@ -20,7 +20,7 @@ module fp24_classify #(
     output logic                  inf,
     output logic                  nan
 );
-  localparam logic [EXP_W-1:0] EXP_ONES = '1;
+  localparam logic [EXP_W-1:0] EXP_ONES = {EXP_W{1'b1}};
 
   always_comb begin
     {sign, exp, frac, zero, inf, nan} = 'x;

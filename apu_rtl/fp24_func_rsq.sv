@@ -30,7 +30,7 @@ module fp24_func_rsq #(
   localparam int SEXP_W = EXP_W + 2;
   localparam int T_W    = Q_W + fp24_func_pkg::SEED_F + 1;
   localparam int SEED_W = fp24_func_pkg::SEED_A_W + fp24_func_pkg::SEED_B_W;
-  localparam logic [EXP_W-1:0]  EXP_ONES = '1;
+  localparam logic [EXP_W-1:0]  EXP_ONES = {EXP_W{1'b1}};
   localparam logic [SEXP_W-1:0] BIAS     = SEXP_W'((1 << (EXP_W - 1)) - 1);
   localparam logic [W-1:0]      NAN      = {1'b0, EXP_ONES, 1'b1, {(FRAC_W - 1) {1'b0}}};
 

@@ -42,7 +42,7 @@ module fp24_func_trig #(
   localparam int SEXP_W = EXP_W + 2;
   localparam int WIN_W  = fp24_func_pkg::TRIG_WIN_W;  // 90
   localparam int V_W    = WIN_W + FRAC_W + 1;        // 107
-  localparam logic [EXP_W-1:0]  EXP_ONES = '1;
+  localparam logic [EXP_W-1:0]  EXP_ONES = {EXP_W{1'b1}};
   localparam logic [SEXP_W-1:0] BIAS     = SEXP_W'((1 << (EXP_W - 1)) - 1);
   localparam logic [W-1:0]      NAN      = {1'b0, EXP_ONES, 1'b1, {(FRAC_W - 1) {1'b0}}};
   localparam logic [W-1:0]      ONE      = {2'b00, {(EXP_W - 1) {1'b1}}, {FRAC_W{1'b0}}};

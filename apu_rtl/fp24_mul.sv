@@ -23,7 +23,7 @@ module fp24_mul #(
   localparam int SIG_W  = FRAC_W + 1;   // significand 1.f
   localparam int PROD_W = 2 * SIG_W;    // exact product, in [1, 4) scaled
   localparam int SEXP_W = EXP_W + 2;    // holds e_a + e_b - bias + 2 unbounded
-  localparam logic [EXP_W-1:0]  EXP_ONES = '1;
+  localparam logic [EXP_W-1:0]  EXP_ONES = {EXP_W{1'b1}};
   localparam logic [SEXP_W-1:0] BIAS     = SEXP_W'((1 << (EXP_W - 1)) - 1);
   localparam logic [EXP_W+FRAC_W:0] CANON_NAN = {1'b0, EXP_ONES, 1'b1, {(FRAC_W - 1) {1'b0}}};
 
