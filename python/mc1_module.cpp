@@ -18,6 +18,7 @@
 #include "apu_iss.hpp"
 #include "apu_profile.hpp"
 #include "apu_rtl_engine.hpp"
+#include "atomic_file.hpp"
 #include "apuasm.hpp"
 #include "fp24.hpp"
 #include "fp24_convert.hpp"
@@ -28,26 +29,72 @@ using namespace mc1;
 
 namespace {
 
-using U32Array = py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>;
-
 std::string hex(std::uint64_t v) {
   std::ostringstream s;
   s << "0x" << std::hex << v;
   return s.str();
 }
 
-// A 1-D array of encodings below 2^bits, named `what` in errors.
-std::vector<std::uint32_t> operands(const U32Array& a, const char* what, int bits) {
-  if (a.ndim() != 1) throw py::value_error(std::string(what) + ": a 1-D array is wanted");
-  std::vector<std::uint32_t> v(a.data(), a.data() + a.size());
-  for (std::size_t i = 0; i < v.size(); ++i)
-    if (v[i] >> bits)
-      throw py::value_error(std::string(what) + "[" + std::to_string(i) + "] = " + hex(v[i]) + " is wider than " +
-                            std::to_string(bits) + " bits");
-  return v;
+// Encodings in from Python: any integer array (or sequence, or scalar) whose
+// every element is in [0, 2^bits), named `what` in errors. Nothing is
+// wrapped or truncated on the way: a float array, or an int64 2^32 + x, is
+// an error, not x.
+struct Encodings {
+  std::vector<std::uint32_t> values;
+  std::vector<py::ssize_t> shape;  // the input's (empty: a scalar)
+};
+
+Encodings encodings(const py::handle& in, const std::string& what, int bits) {
+  const py::array a = py::array::ensure(in);
+  if (!a) throw py::type_error(what + ": an integer array is wanted");
+  const char kind = a.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    throw py::type_error(what + ": an integer array is wanted, not " + std::string(py::str(a.dtype())) +
+                         " (values are never truncated or wrapped)");
+  Encodings e;
+  e.shape.assign(a.shape(), a.shape() + a.ndim());
+  // Exact either way: int64 holds every signed value, uint64 every unsigned one.
+  const py::array wide = kind == 'i' ? py::array(py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>(a))
+                                     : py::array(py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>(a));
+  e.values.resize(static_cast<std::size_t>(a.size()));
+  for (std::size_t i = 0; i < e.values.size(); ++i) {
+    const bool negative = kind == 'i' && static_cast<const std::int64_t*>(wide.data())[i] < 0;
+    const std::uint64_t v = static_cast<const std::uint64_t*>(wide.data())[i];
+    if (negative || (v >> bits))
+      throw py::value_error(what + "[" + std::to_string(i) + "] = " +
+                            (negative ? std::to_string(static_cast<std::int64_t>(v)) : hex(v)) +
+                            (negative ? " is negative" : " is wider than " + std::to_string(bits) + " bits"));
+    e.values[i] = static_cast<std::uint32_t>(v);
+  }
+  return e;
 }
 
-py::tuple fp24_run(const std::string& name, const U32Array& a_in, std::optional<U32Array> b_in,
+// A 1-D array of encodings below 2^bits, named `what` in errors.
+std::vector<std::uint32_t> operands(const py::handle& a, const char* what, int bits) {
+  Encodings e = encodings(a, what, bits);
+  if (e.shape.size() != 1) throw py::value_error(std::string(what) + ": a 1-D array is wanted");
+  return std::move(e.values);
+}
+
+// A path as the C library will read it: Python allows NUL in a str, open()
+// would stop at it (as Python's own open() refuses it).
+const std::string& path_arg(const std::string& path, const char* what) {
+  if (path.find('\0') != std::string::npos) throw py::value_error(std::string(what) + ": embedded null character");
+  if (path.empty()) throw py::value_error(std::string(what) + ": an empty file name");
+  return path;
+}
+
+// FP24 encodings -> float, element-wise, any shape; a scalar gives a float.
+py::object to_float(const py::handle& bits) {
+  const Encodings e = encodings(bits, "bits", 24);
+  if (e.shape.empty()) return py::float_(fp24::fp24_to_double(e.values.at(0)));
+  py::array_t<double> out(e.shape);
+  double* o = out.mutable_data();
+  for (std::size_t i = 0; i < e.values.size(); ++i) o[i] = fp24::fp24_to_double(e.values[i]);
+  return std::move(out);
+}
+
+py::tuple fp24_run(const std::string& name, const py::handle& a_in, const py::object& b_in,
                    const std::string& engine) {
   const std::optional<fp24::Op> op = fp24::op_from_name(name);
   if (!op) throw py::value_error("unknown FP24 op '" + name + "'");
@@ -55,11 +102,11 @@ py::tuple fp24_run(const std::string& name, const U32Array& a_in, std::optional<
   const std::vector<std::uint32_t> a = operands(a_in, "a", *op == fp24::Op::Float ? 16 : 24);
   std::vector<std::uint32_t> b;
   if (info.operands == 2) {
-    if (!b_in) throw py::value_error("op '" + name + "' takes two operands: b is missing");
-    b = operands(*b_in, "b", 24);
+    if (b_in.is_none()) throw py::value_error("op '" + name + "' takes two operands: b is missing");
+    b = operands(b_in, "b", 24);
     if (b.size() != a.size())
       throw py::value_error("a has " + std::to_string(a.size()) + " elements, b " + std::to_string(b.size()));
-  } else if (b_in) {
+  } else if (!b_in.is_none()) {
     throw py::value_error("op '" + name + "' takes one operand: b must be None");
   }
   std::vector<fp24::Result> out(a.size());
@@ -101,7 +148,11 @@ std::vector<apu::Encoded> words_from(const py::array_t<std::uint64_t, py::array:
   return w;
 }
 
-// The APU as firmware drives it: an engine, its driver and, on request, a profile.
+// The APU as firmware drives it: an engine, its driver and, on request, a
+// profile. A trace is staged as the programs stage theirs (mc1::StagedFile::
+// for_writer: a device, a directory or a missing directory refused here,
+// before the run; the FST written beside the target under a temporary
+// name) and put in place by close(), or when the Apu is collected.
 class Apu {
  public:
   Apu(const std::string& engine, const std::string& trace) : name_(engine) {
@@ -109,46 +160,75 @@ class Apu {
       if (!trace.empty()) throw py::value_error("trace needs engine='rtl'");
       engine_ = std::make_unique<apu::Iss>();
     } else if (engine == "rtl") {
-      engine_ = std::make_unique<apu::RtlEngine>(trace.empty() ? nullptr : trace.c_str());
+      if (!trace.empty()) trace_.emplace(staged_trace(path_arg(trace, "trace")));
+      engine_ = std::make_unique<apu::RtlEngine>(trace_ ? trace_->temp().c_str() : nullptr);
     } else {
       throw py::value_error("unknown engine '" + engine + "' (iss or rtl)");
     }
     driver_ = std::make_unique<apu::ApuDriver>(*engine_);
   }
+  ~Apu() {
+    try {
+      close();
+    } catch (const std::exception& e) {
+      PyErr_WarnEx(PyExc_RuntimeWarning, e.what(), 1);  // a destructor may not raise
+    }
+  }
+
+  // Ends the APU: its waveform is closed and put in place (an OSError if it
+  // cannot be); every call after this raises ValueError. `keep_trace` false:
+  // the waveform is dropped (a with-block left by an exception).
+  void close(bool keep_trace = true) {
+    if (!engine_) return;
+    profile_.reset();
+    driver_.reset();
+    engine_.reset();  // closes the FST writer
+    std::optional<StagedFile> trace = std::move(trace_);
+    trace_.reset();
+    if (trace && keep_trace) {
+      try {
+        trace->commit();
+      } catch (const std::runtime_error& e) {
+        throw_os_error(e);
+      }
+    }
+  }
+  bool closed() const { return !engine_; }
 
   void load_program(const py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>& words, int base) {
     const std::vector<apu::Encoded> w = words_from(words);
     if (base < 0 || base + w.size() > static_cast<std::size_t>(apu::kProgramWords))
       throw py::value_error("program of " + std::to_string(w.size()) + " words at " + std::to_string(base) +
                             " does not fit the " + std::to_string(apu::kProgramWords) + "-word bank");
-    driver_->load_program(w, static_cast<std::uint16_t>(base));
+    driver().load_program(w, static_cast<std::uint16_t>(base));
   }
-  void load_data(int addr, const U32Array& values) {
+  void load_data(int addr, const py::handle& values) {
     const std::vector<std::uint32_t> v = operands(values, "values", 24);
     check_range(addr, v.size());
-    driver_->load_data(static_cast<std::uint16_t>(addr), v);
+    driver().load_data(static_cast<std::uint16_t>(addr), v);
   }
   py::array_t<std::uint32_t> read_data(int addr, std::size_t n) const {
     check_range(addr, n);
-    const std::vector<std::uint32_t> v = driver_->read_results(static_cast<std::uint16_t>(addr), n);
+    const std::vector<std::uint32_t> v = driver().read_results(static_cast<std::uint16_t>(addr), n);
     return py::array_t<std::uint32_t>(v.size(), v.data());
   }
   void enable_profile() {
     profile_ = std::make_unique<apu::Profile>(
-        [d = driver_.get()](int bank, std::uint16_t pc) { return d->program_word(bank, pc); });
-    driver_->set_observer([p = profile_.get()](const apu::CycleRecord& r) { p->add(r); });
+        [d = &driver()](int bank, std::uint16_t pc) { return d->program_word(bank, pc); });
+    driver().set_observer([p = profile_.get()](const apu::CycleRecord& r) { p->add(r); });
   }
   // Until HALT: the cycles, as ApuDriver::run_until_done; a fault or the
   // limit raises RuntimeError with the driver's message (cycle, pc, word).
   // `mpu`, if given, is called every `interval` cycles: the firmware's
   // polling loop (hand over the next block when data_ready is clear, ...).
   std::uint64_t run(std::uint64_t max_cycles, std::optional<py::function> mpu, std::uint64_t interval) {
-    if (!mpu) return driver_->run_until_done(max_cycles);
+    if (!mpu) return driver().run_until_done(max_cycles);
     if (interval == 0) throw py::value_error("interval must be at least 1");
-    return driver_->run_until_done(max_cycles, [&mpu] { (*mpu)(); }, interval);
+    return driver().run_until_done(max_cycles, [&mpu] { (*mpu)(); }, interval);
   }
 
   py::dict profile() const {
+    driver();
     if (!profile_) throw py::value_error("no profile: call enable_profile() before run()");
     const apu::Profile& p = *profile_;
     py::dict d, stalls;
@@ -169,12 +249,20 @@ class Apu {
     return d;
   }
   std::string profile_report(int top) const {
+    if (top < 0) throw py::value_error("top " + std::to_string(top) + ": a count of sites, 0 or more");
+    driver();
     if (!profile_) throw py::value_error("no profile: call enable_profile() before run()");
     return profile_->report(top);
   }
 
-  apu::ApuDriver& driver() { return *driver_; }
-  const apu::ApuEngine& engine() const { return *engine_; }
+  apu::ApuDriver& driver() const {
+    if (!driver_) throw py::value_error("the Apu is closed");
+    return *driver_;
+  }
+  const apu::ApuEngine& engine() const {
+    driver();
+    return *engine_;
+  }
   const std::string& name() const { return name_; }
 
  private:
@@ -183,7 +271,19 @@ class Apu {
       throw py::value_error(std::to_string(n) + " data words at " + std::to_string(addr) + " go past the " +
                             std::to_string(apu::kDataWords) + "-word bank");
   }
+  [[noreturn]] static void throw_os_error(const std::exception& e) {
+    PyErr_SetString(PyExc_OSError, e.what());
+    throw py::error_already_set();
+  }
+  static StagedFile staged_trace(const std::string& path) {
+    try {
+      return StagedFile::for_writer(path);
+    } catch (const std::runtime_error& e) {
+      throw_os_error(e);
+    }
+  }
   std::string name_;
+  std::optional<StagedFile> trace_;  // declared before engine_: the FST is closed before its file goes
   std::unique_ptr<apu::ApuEngine> engine_;
   std::unique_ptr<apu::ApuDriver> driver_;
   std::unique_ptr<apu::Profile> profile_;
@@ -201,7 +301,7 @@ void bind_fp24(py::module_& m) {
   }, "the op names run() takes");
   m.def("from_float", py::vectorize(&fp24::fp24_from_double), py::arg("x"),
         "float -> FP24 encoding: nearest, ties to even; overflow to inf; tiny to a signed zero");
-  m.def("to_float", py::vectorize(&fp24::fp24_to_double), py::arg("bits"),
+  m.def("to_float", &to_float, py::arg("bits"),
         "FP24 encoding -> float (exact)");
   for (auto [name, flag] : {std::pair{"NX", fp24::kNX}, {"UF", fp24::kUF}, {"OF", fp24::kOF}, {"DZ", fp24::kDZ},
                             {"NV", fp24::kNV}})
@@ -218,9 +318,12 @@ void bind_asm(py::module_& m) {
   }, py::arg("source"), py::arg("filename") = "<input>",
      "assemble(source, filename) -> (words (n, 2) uint64 of (lo, hi), symbols dict); raises ValueError\n"
      "with every 'file:line:col: error: ...' line");
-  m.def("assemble_file", [](const std::string& path) { return words_array(apuasm::assemble_file(path).words); },
+  m.def("assemble_file", [](const std::string& path) {
+    return words_array(apuasm::assemble_file(path_arg(path, "path")).words);
+  },
         py::arg("path"));
-  m.def("load_image", [](const std::string& path) { return words_array(apu::load_image(path)); }, py::arg("path"),
+  m.def("load_image", [](const std::string& path) { return words_array(apu::load_image(path_arg(path, "path"))); },
+        py::arg("path"),
         "an APU1 image file (apuasm -o) -> words");
   m.def("image_bytes", [](const py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>& w) {
     return py::bytes(apu::image_bytes(words_from(w)));
@@ -248,12 +351,24 @@ void bind_apu(py::module_& m) {
       .def(py::init<const std::string&, const std::string&>(), py::arg("engine") = "iss", py::arg("trace") = "",
            "Apu(engine='iss'|'rtl', trace='') ; trace: an FST waveform path (rtl)")
       .def_property_readonly("engine", &Apu::name)
+      .def("close", [](Apu& a) { a.close(); },
+           "ends the APU: its trace (rtl) is closed and put in place; OSError if it cannot be written")
+      .def_property_readonly("closed", &Apu::closed)
+      .def("__enter__", [](Apu& a) -> Apu& { return a; }, py::return_value_policy::reference)
+      .def("__exit__", [](Apu& a, const py::object& type, const py::object&, const py::object&) {
+        a.close(type.is_none());  // a block left by an exception drops its waveform
+      })
       .def("load_program", &Apu::load_program, py::arg("words"), py::arg("base") = 0,
            "into the MPU's program bank")
       .def("load_data", &Apu::load_data, py::arg("addr"), py::arg("values"), "into the MPU's data bank")
       .def("hand_over_program", [](Apu& a) { a.driver().hand_over_program(); })
       .def("hand_over_data", [](Apu& a) { a.driver().hand_over_data(); })
-      .def("start", [](Apu& a, int pc) { a.driver().start(static_cast<std::uint16_t>(pc)); }, py::arg("pc") = 0)
+      .def("start", [](Apu& a, int pc) {
+        if (pc < 0 || pc >= apu::kProgramWords)
+          throw py::value_error("pc " + std::to_string(pc) + " is outside the " + std::to_string(apu::kProgramWords) +
+                                "-word program bank");
+        a.driver().start(static_cast<std::uint16_t>(pc));
+      }, py::arg("pc") = 0)
       .def("enable_profile", &Apu::enable_profile, "profile every cycle of the runs that follow")
       .def("run", &Apu::run, py::arg("max_cycles") = 100'000'000, py::arg("mpu") = py::none(),
            py::arg("interval") = 16,

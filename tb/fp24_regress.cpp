@@ -18,6 +18,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <system_error>
 #include <tuple>
 #include <vector>
 
@@ -470,7 +471,14 @@ Run run_all(const Options& o) {
   };
   const auto start = Clock::now();
   std::vector<std::thread> threads;
-  for (unsigned t = 0; t < o.threads; ++t) threads.emplace_back(work);
+  try {
+    for (unsigned t = 0; t < o.threads; ++t) threads.emplace_back(work);
+  } catch (const std::system_error& e) {
+    next = jobs.jobs;  // the threads started take no more jobs and end
+    for (std::thread& t : threads) t.join();
+    throw std::runtime_error("--threads " + std::to_string(o.threads) + ": the host started " +
+                             std::to_string(threads.size()) + " threads and no more (" + e.what() + ")");
+  }
   const bool tty = isatty(STDERR_FILENO) != 0;
   while (running > 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
@@ -654,7 +662,13 @@ int main(int argc, char** argv) {
     return cli::usage_error(app, e.what());
   }
   if (o.long_run) o.random = std::max(o.random, kLongRandom);
-  const Run run = run_all(o);
+  Run run;
+  try {
+    run = run_all(o);
+  } catch (const std::runtime_error& e) {  // a thread the host would not start
+    std::fprintf(stderr, "fp24-regress: %s\n", e.what());
+    return cli::kExitFailed;
+  }
   const std::string text = text_report(o, run);
   std::fputs(text.c_str(), stdout);
   const bool written = mc1::shard::write_texts({{o.text, text}, {o.json, json_report(o, run)}}, "fp24-regress");

@@ -76,8 +76,9 @@ ALLOWED = {
     # Fuzz harnesses: the libraries they drive, the FP24 vector reader of tb.
     "fuzz": HW_ALL | RTL | {"firmware", "tb"} | HOST_LIBS,
     "tools": None,
-    # The Python module: the FP24 model and units, the APU on both engines, the assembler.
-    "python": HW_BASE | RTL | {"tb", "host/apuasm"},
+    # The Python module: the FP24 model and units, the APU on both engines, the
+    # assembler, staged output files.
+    "python": HW_BASE | RTL | {"tb", "host/apuasm", "host/common"},
     # Consumers of the installed package (they include <mc1/...>, not the tree).
     "examples": None,
     "": None,

@@ -1,6 +1,9 @@
 #include "apu_pool.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <system_error>
 
 namespace mc1::nc {
 namespace {
@@ -75,11 +78,24 @@ void ApuJob::cancel() {
   pool_.progress_cv_.wait(lock, [&] { return !held_; });
 }
 
+// A thread the host will not start (a process or cgroup limit) ends the
+// pool's construction cleanly: the workers already started are stopped and
+// joined (a joinable std::thread destroyed would end the program), and the
+// error says which thread failed.
 ApuPool::ApuPool(unsigned threads) : threads_(threads < 1 ? 1 : threads) {
-  for (unsigned i = 1; i < threads_; ++i) workers_.emplace_back([this] { worker(); });
+  try {
+    for (unsigned i = 1; i < threads_; ++i) workers_.emplace_back([this] { worker(); });
+  } catch (const std::system_error& e) {
+    const std::size_t started = workers_.size();
+    stop_workers();
+    throw std::runtime_error("cannot start host thread " + std::to_string(started + 2) + " of " +
+                             std::to_string(threads_) + " (--threads): " + e.what());
+  }
 }
 
-ApuPool::~ApuPool() {
+ApuPool::~ApuPool() { stop_workers(); }
+
+void ApuPool::stop_workers() {
   {
     Lock lock(m_);
     stopping_ = true;
@@ -87,6 +103,7 @@ ApuPool::~ApuPool() {
   }
   work_cv_.notify_all();
   for (std::thread& t : workers_) t.join();
+  workers_.clear();
 }
 
 unsigned ApuPool::default_threads() {

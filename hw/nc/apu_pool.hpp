@@ -79,7 +79,8 @@ class ApuPool {
   // `threads` host threads clock the APUs: the simulation's own and
   // threads - 1 workers. threads <= 1: no worker, a job is clocked to its
   // end inside post(). 0 is not a count (the caller's default is
-  // default_threads()).
+  // default_threads()). A thread the host refuses to start: the workers
+  // started are joined and std::runtime_error names the thread.
   explicit ApuPool(unsigned threads);
   ~ApuPool();
   ApuPool(const ApuPool&) = delete;
@@ -105,6 +106,7 @@ class ApuPool {
   void push_ready(const std::shared_ptr<ApuJob>& job);
   std::shared_ptr<ApuJob> pop_ready();
   void worker();
+  void stop_workers();  // ends and joins every worker
 
   unsigned threads_;
   std::vector<std::thread> workers_;

@@ -4,6 +4,8 @@ Run by CTest (python_mc1) with PYTHONPATH=build/python and MC1_SOURCE_DIR
 set to the source tree (for the known vectors and the shade kernel).
 """
 import os
+import stat
+import tempfile
 import unittest
 
 import numpy as np
@@ -204,6 +206,103 @@ class ApuRuns(unittest.TestCase):
             apu.freg(64)
         with self.assertRaisesRegex(ValueError, "go past the 4096-word bank"):
             apu.load_data(4095, np.zeros(2, dtype=np.uint32))
+
+
+class NothingWrappedOrTruncated(unittest.TestCase):
+    """Values reach the model exactly as given, or raise (issue 39)."""
+
+    def test_operands_are_integers_in_range(self):
+        with self.assertRaisesRegex(ValueError, r"a\[0\] = 0x1003f0000 is wider than 24 bits"):
+            mc1.fp24.run("neg", np.array([(1 << 32) + ONE], dtype=np.int64))
+        with self.assertRaisesRegex(ValueError, r"b\[0\] = -1 is negative"):
+            mc1.fp24.run("add", [ONE], np.array([-1], dtype=np.int32))
+        with self.assertRaisesRegex(TypeError, "an integer array is wanted, not float64"):
+            mc1.fp24.run("neg", np.array([1.5]))
+        with self.assertRaisesRegex(TypeError, "an integer array is wanted"):
+            mc1.fp24.run("neg", ["x"])
+        values, flags = mc1.fp24.run("add", [ONE], np.array([ONE], dtype=np.uint64))
+        self.assertEqual((values[0], flags[0]), (0x400000, 0))
+
+    def test_to_float_takes_24_bits_and_keeps_the_shape(self):
+        with self.assertRaisesRegex(ValueError, "is wider than 24 bits"):
+            mc1.fp24.to_float((1 << 24) | ONE)
+        with self.assertRaisesRegex(TypeError, "integer"):
+            mc1.fp24.to_float(1.0)
+        self.assertEqual(mc1.fp24.to_float(ONE), 1.0)
+        self.assertIsInstance(mc1.fp24.to_float(ONE), float)
+        grid = mc1.fp24.to_float(np.full((2, 3), 0x400000, dtype=np.uint32))
+        self.assertEqual(grid.shape, (2, 3))
+        self.assertTrue((grid == 2.0).all())
+
+    def test_apu_arguments_in_range(self):
+        apu = Apu("iss")
+        with self.assertRaisesRegex(ValueError, "pc 5000 is outside the 1024-word program bank"):
+            apu.start(5000)
+        with self.assertRaisesRegex(ValueError, "top -5"):
+            apu.profile_report(-5)
+        with self.assertRaisesRegex(ValueError, "is wider than 24 bits"):
+            apu.load_data(0, np.array([1 << 32], dtype=np.int64))
+        with self.assertRaisesRegex(ValueError, "embedded null character"):
+            mc1.asm.assemble_file(os.path.join(SRC, "firmware", "kernels", "xform4.apu") + "\0x")
+        with self.assertRaisesRegex(ValueError, "embedded null character"):
+            mc1.apu.Apu("rtl", trace="x.fst\0y")
+
+
+def run_one_add(apu):
+    words, _ = mc1.asm.assemble("add f1, f0, f0\nhalt\n")
+    apu.load_program(words)
+    apu.hand_over_program()
+    apu.start()
+    return apu.run(1000)
+
+
+class Traces(unittest.TestCase):
+    """Apu(trace=...) writes as the programs do: staged, never over a device (issue 39)."""
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.addCleanup(self.dir.cleanup)
+
+    def path(self, name):
+        return os.path.join(self.dir.name, name)
+
+    def test_a_trace_appears_whole_on_close(self):
+        fst = self.path("run.fst")
+        apu = Apu("rtl", trace=fst)
+        self.assertFalse(os.path.exists(fst))  # staged until the run ends
+        run_one_add(apu)
+        apu.close()
+        self.assertTrue(apu.closed)
+        self.assertGreater(os.path.getsize(fst), 100)
+        self.assertEqual(sorted(os.listdir(self.dir.name)), ["run.fst"])
+        with self.assertRaisesRegex(ValueError, "the Apu is closed"):
+            apu.run(10)
+
+    def test_a_with_block_left_by_an_error_leaves_no_trace(self):
+        fst = self.path("run.fst")
+        with self.assertRaises(ApuError):
+            with Apu("rtl", trace=fst) as apu:
+                words, _ = mc1.asm.assemble("loop: jmp loop\n")
+                apu.load_program(words)
+                apu.hand_over_program()
+                apu.start()
+                apu.run(100)
+        self.assertEqual(os.listdir(self.dir.name), [])
+        with Apu("rtl", trace=fst) as apu:
+            run_one_add(apu)
+        self.assertTrue(os.path.exists(fst))
+
+    def test_paths_that_cannot_take_a_trace_are_refused_before_the_run(self):
+        fifo = self.path("fifo")
+        os.mkfifo(fifo)
+        with self.assertRaisesRegex(OSError, "fifo: is not a regular file"):
+            Apu("rtl", trace=fifo)
+        self.assertTrue(stat.S_ISFIFO(os.stat(fifo).st_mode))  # not replaced by a file
+        with self.assertRaisesRegex(OSError, "is a directory"):
+            Apu("rtl", trace=self.dir.name)
+        with self.assertRaisesRegex(OSError, "cannot create a temporary file"):
+            Apu("rtl", trace=self.path("missing/run.fst"))
+        self.assertEqual(os.listdir(self.dir.name), ["fifo"])
 
 
 if __name__ == "__main__":

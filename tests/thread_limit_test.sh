@@ -1,0 +1,33 @@
+#!/bin/sh
+# A host thread that cannot be created ends a run cleanly (issue 39): run
+# as an unprivileged user under a process limit (RLIMIT_NPROC, which root
+# ignores), `mc1 render --threads 8` and `fp24-regress --threads 8` must
+# exit 1 naming the thread, not hang (ApuPool) or abort (std::system_error).
+# Needs root (to become nobody) and setpriv/prlimit; skipped (77) without.
+#   thread_limit_test.sh MC1 FP24_REGRESS SCENE
+set -u
+mc1=$1 regress=$2 scene=$3
+[ "$(id -u)" -eq 0 ] || { echo "thread_limit_test: not root: skipped"; exit 77; }
+command -v setpriv >/dev/null && command -v prlimit >/dev/null || { echo "thread_limit_test: no setpriv/prlimit: skipped"; exit 77; }
+dir=$(mktemp -d) || exit 1
+trap 'rm -rf "$dir"' EXIT
+chmod 777 "$dir"
+cp "$scene" "$dir/scene.json" && chmod 644 "$dir/scene.json"
+fail() { echo "thread_limit_test: $*" >&2; exit 1; }
+
+# as nobody, at most 3 processes and threads: the fourth thread fails.
+limited() { timeout 120 setpriv --reuid=65534 --regid=65534 --clear-groups prlimit --nproc=3 "$@"; }
+
+limited "$mc1" render "$dir/scene.json" --threads 8 --out "$dir/x.png" >"$dir/out" 2>&1
+rc=$?
+[ "$rc" -ne 124 ] || fail "mc1 render hung when a thread could not start"
+[ "$rc" -eq 1 ] || fail "mc1 render: exit $rc, wanted 1: $(cat "$dir/out")"
+grep -q "cannot start host thread [0-9]* of 8" "$dir/out" || fail "mc1 render: no message naming the thread: $(cat "$dir/out")"
+[ ! -e "$dir/x.png" ] || fail "mc1 render: a frame was written"
+
+limited "$regress" --ops float --no-oracle --threads 8 >"$dir/out" 2>&1
+rc=$?
+[ "$rc" -ne 124 ] || fail "fp24-regress hung when a thread could not start"
+[ "$rc" -eq 1 ] || fail "fp24-regress: exit $rc, wanted 1: $(cat "$dir/out")"
+grep -q "the host started [0-9]* threads and no more" "$dir/out" || fail "fp24-regress: no message naming the threads: $(cat "$dir/out")"
+echo "thread_limit_test: mc1 render and fp24-regress end cleanly when a thread cannot start"
