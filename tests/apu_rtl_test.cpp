@@ -129,7 +129,9 @@ TEST(ApuRtl, WaveformHasTheDocumentedSignals) {
   std::remove(path.c_str());
 }
 
-TEST(ApuRtl, Throughput) {
+// A benchmark (the suite name *Bench): not in the default run, but in
+// `ctest -R apu_rtl_test_bench` (labels bench and long, tests/CMakeLists.txt).
+TEST(ApuRtlBench, Throughput) {
   // A two-word loop keeping all three units and the D slot busy every cycle.
   RtlEngine apu;
   EngineProgram r(apu, {li(1, 1) | lif(1, 0x3F00), li(2, 40) | lif(2, 0x4000),

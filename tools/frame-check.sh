@@ -1,23 +1,14 @@
 #!/bin/sh
-# Renders every standard scene at 96x64 on 1 and 16 NCs (and the self-test
-# frame) with one mc1 binary, writing into OUTDIR the PNG bytes and the stats
-# JSON without its host-time figures. Two runs (a binary from before a
-# refactor, one after) are compared with `diff -r`: a refactor changes neither
-# a pixel nor a simulated picosecond.
-#   tools/frame-check.sh OUTDIR [MC1]        (MC1 defaults to build/bin/mc1)
+# The golden frames (docs/renderer.md "Golden frames"): every standard scene
+# at 96x64 on 1 and 16 NCs, the self-test frame and the RTL engine's frames,
+# made by this build's mc1 and compared bit for bit (PNG SHA-256, every
+# simulated time and count of the statistics) with tests/golden/. A refactor
+# changes neither a pixel nor a simulated picosecond; a change that does on
+# purpose rewrites the goldens with tools/bless-frames.sh. The same tests run
+# in the default suite (ctest -L golden).
+#   tools/frame-check.sh [BUILD_DIR]        (default build/)
 set -eu
-out=$1
-mc1=${2:-build/bin/mc1}
 here=$(cd "$(dirname "$0")/.." && pwd)
-mkdir -p "$out"
-for scene in "$here"/scenes/*.json; do
-  name=$(basename "$scene" .json)
-  for n in 1 16; do
-    "$mc1" render "$scene" --size 96x64 --nodes "$n" --quiet \
-      --out "$out/$name-$n.png" --stats "$out/$name-$n.json" --gantt "$out/$name-$n.svg"
-    grep -v -i -e host -e "\"scene\"" "$out/$name-$n.json" > "$out/$name-$n.sim.json" && rm "$out/$name-$n.json"
-  done
-done
-"$mc1" diag --nodes 16 --stats "$out/diag-16.json" >/dev/null
-grep -v -i 'host' "$out/diag-16.json" > "$out/diag-16.sim.json" && rm "$out/diag-16.json"
-echo "frame-check: $(ls "$out" | wc -l) files in $out"
+build=$(cd "${1:-$here/build}" && pwd)
+cmake --build "$build" --target mc1
+cd "$build" && exec ctest -L golden --output-on-failure -j "$(nproc)"
