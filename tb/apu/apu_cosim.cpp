@@ -24,15 +24,18 @@ constexpr const char* kDescription =
     "apu-cosim: two APU engines in lockstep, stopping at the first cycle they disagree on.\n"
     "  apu-cosim PROGRAM [--data FILE]... [--max-cycles N] [--engines A,B] [--trace F.fst]\n"
     "  apu-cosim --random N [--seed S] [--first I] [--keep-going] [--max-cycles N] [--engines A,B]\n"
-    "Runs two APU engines (iss, rtl; default iss,rtl) cycle by cycle and stops at the first\n"
+    "Runs two APU engines (iss, rtl, icarus; default iss,rtl) cycle by cycle and stops at the first\n"
     "difference in pc, issue, stall reason, bank select, commit, run state or fault, printing\n"
     "cycle, pc, the disassembled word and both values. Several --data files form a stream:\n"
     "the next is handed over when the APU has taken the last. --random checks N generated programs\n"
     "(with their MPU hand-over schedule) from seed S, cases I..I+N-1; --keep-going reports\n"
-    "every failing case instead of stopping at the first.";
+    "every failing case instead of stopping at the first. icarus is apu_core under Icarus Verilog\n"
+    "(a vvp child: the build's apu_icarus_core.vvp, or --icarus-vvp FILE / $MC1_ICARUS_VVP, e.g.\n"
+    "the bench compiled with a gate-level netlist); an assertion it prints, an X on a port the\n"
+    "cycle uses or the bench ending fails the run like a divergence, with cycle and pc.";
 
 struct Options {
-  std::string program, trace, engines = "iss,rtl";
+  std::string program, trace, engines = "iss,rtl", icarus_vvp;
   std::vector<std::string> data;
   std::string engine_a = "iss", engine_b = "rtl";
   std::uint64_t max_cycles = 0;  // 0: the default (10 M, or the random case's own)
@@ -49,7 +52,7 @@ CLI::Validator engine_pair() {
         const auto& names = tools::engine_names();
         auto known = [&](const std::string& e) { return std::find(names.begin(), names.end(), e) != names.end(); };
         if (comma == std::string::npos || !known(text.substr(0, comma)) || !known(text.substr(comma + 1)))
-          return "wants A,B with A and B each iss or rtl (e.g. iss,rtl), not '" + text + "'";
+          return "wants A,B with A and B each iss, rtl or icarus (e.g. iss,rtl), not '" + text + "'";
         return "";
       },
       "A,B");
@@ -60,6 +63,10 @@ void add_options(CLI::App& app, Options& o) {
   tools::add_data_option(app, o.data)->needs(program);
   tools::add_max_cycles_option(app, o.max_cycles, "the cycle limit (default 10 M, or the random case's own)");
   app.add_option("--engines", o.engines, "the two engines")->check(engine_pair())->capture_default_str();
+  app.add_option("--icarus-vvp", o.icarus_vvp,
+                 "the icarus engine's vvp file (tb/apu/apu_icarus_lockstep_tb.sv compiled with an apu_core;\n"
+                 "default $MC1_ICARUS_VVP, else the build's)")
+      ->type_name("FILE")->check(cli::input_file());
   app.add_option("--trace", o.trace, "write an FST waveform of the RTL engine (the first, with rtl,rtl) to FILE")
       ->type_name("FILE")->needs(program);
   CLI::Option* random = app.add_option("--random", o.random, "check N generated programs")
@@ -86,22 +93,53 @@ void check_options(Options& o) {
   o.engine_b = o.engines.substr(comma + 1);
   if (!o.trace.empty() && o.engine_a != "rtl" && o.engine_b != "rtl")
     throw cli::UsageError("--trace needs the rtl engine in --engines");
+  if (!o.icarus_vvp.empty() && o.engine_a != "icarus" && o.engine_b != "icarus")
+    throw cli::UsageError("--icarus-vvp needs the icarus engine in --engines");
 }
 
 struct Engines {
   std::unique_ptr<ApuEngine> a, b;
   ApuEngine* both[2];
   Engines(const Options& o, const char* trace)
-      : a(tools::make_engine(o.engine_a, o.engine_a == "rtl" ? trace : nullptr)),
-        b(tools::make_engine(o.engine_b, o.engine_b == "rtl" && o.engine_a != "rtl" ? trace : nullptr)),
+      : a(tools::make_engine(o.engine_a, o.engine_a == "rtl" ? trace : nullptr, o.icarus_vvp)),
+        b(tools::make_engine(o.engine_b, o.engine_b == "rtl" && o.engine_a != "rtl" ? trace : nullptr,
+                             o.icarus_vvp)),
         both{a.get(), b.get()} {}
 };
 
+bool lockstep_cycles(const Options& o, Lockstep& ls, std::uint64_t max_cycles,
+                     const std::function<void()>& mpu, std::uint64_t& cycles, std::uint64_t stalls[kStallKinds]);
+
+// An engine that failed (the icarus engine: an assertion, an X, the bench
+// ending), reported as a divergence is: cycle, pc, the word (from the ISS,
+// if one of the two is), what.
+void report_failure(const Options& o, const Engines& e, const IcarusError& err) {
+  const std::string name = dynamic_cast<const IcarusEngine*>(e.a.get()) ? o.engine_a : o.engine_b;
+  std::cout << "apu-cosim: " << name << " failed";
+  if (err.in_cycle) {
+    const Iss* iss = dynamic_cast<const Iss*>(e.a.get());
+    if (!iss) iss = dynamic_cast<const Iss*>(e.b.get());
+    std::cout << " at cycle " << err.cycle << ", pc " << hex_text(err.pc, 3) << " (bank " << int{err.psel}
+              << "): " << (iss ? disassemble(iss->program_word(err.psel, err.pc)) : std::string("(word unknown)"));
+  }
+  std::cout << "\n  " << err.what() << "\n";
+}
+
 // Clocks both until both stop (plus the settle cycles of the HALT word's
 // own results), the MPU acting before every cycle. Returns false on a
-// divergence, after printing it.
-bool lockstep_run(const Options& o, Lockstep& ls, std::uint64_t max_cycles,
+// divergence or an engine's failure, after printing it.
+bool lockstep_run(const Options& o, const Engines& e, Lockstep& ls, std::uint64_t max_cycles,
                   const std::function<void()>& mpu, std::uint64_t& cycles, std::uint64_t stalls[kStallKinds]) {
+  try {
+    return lockstep_cycles(o, ls, max_cycles, mpu, cycles, stalls);
+  } catch (const IcarusError& err) {
+    report_failure(o, e, err);
+    return false;
+  }
+}
+
+bool lockstep_cycles(const Options& o, Lockstep& ls, std::uint64_t max_cycles,
+                     const std::function<void()>& mpu, std::uint64_t& cycles, std::uint64_t stalls[kStallKinds]) {
   int settle = ApuDriver::kSettleCycles;
   for (cycles = 0; cycles < max_cycles; ++cycles) {
     if (!ls.running() && settle-- == 0) break;
@@ -151,7 +189,7 @@ int run_program(const Options& o, const std::string& fst) {
   const auto mpu = [&] {
     if (next < blocks.size() && !e.a->data_ready()) hand_over_next();
   };
-  const bool ok = lockstep_run(o, ls, o.max_cycles ? o.max_cycles : 10'000'000, mpu, cycles, stalls);
+  const bool ok = lockstep_run(o, e, ls, o.max_cycles ? o.max_cycles : 10'000'000, mpu, cycles, stalls);
   if (!ok) return 1;
   std::cout << "apu-cosim: " << o.engine_a << " and " << o.engine_b << " agree on " << cycles << " cycles; "
             << run_state_name(e.a->state());
@@ -171,7 +209,7 @@ int run_random(const Options& o) {
     mpu.boot(e.both, 2);
     Lockstep ls(*e.a, *e.b);
     std::uint64_t cycles = 0;
-    const bool ok = lockstep_run(o, ls, o.max_cycles ? o.max_cycles : c.max_cycles,
+    const bool ok = lockstep_run(o, e, ls, o.max_cycles ? o.max_cycles : c.max_cycles,
                                  [&] { mpu.before_cycle(e.both, 2); }, cycles, stalls);
     const auto rerun = [&] {
       std::cout << "  case " << index << " of seed " << o.seed << ": " << c.describe() << "\n"
@@ -226,17 +264,23 @@ int main(int argc, char** argv) {
   cli::conventions(app, "Exit status: 0 all agree; 1 divergence; 2 usage or input error.");
   Options o;
   add_options(app, o);
+  cli::Files files;  // the file options, checked together after parsing
+  files.input(app.get_option("PROGRAM"), "the program");
+  files.input(app.get_option("--data"), "the data file");
+  files.output(app.get_option("--trace"));
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
   try {
     check_options(o);
-    if (o.random >= 0) return run_random(o);
+    files.check();
+    if (o.random >= 0) return cli::flush_stdout("apu-cosim", run_random(o));
     // The waveform is staged: the engine writes it under a temporary name,
-    // put in place once the engine has closed it (run_program() returned).
+    // put in place once the engine has closed it (run_program() returned),
+    // and only when the engines agreed (a failed run leaves no waveform).
     std::optional<mc1::StagedFile> fst;
     if (!o.trace.empty()) fst.emplace(cli::writer_output("--trace", o.trace));
     const int rc = run_program(o, fst ? fst->temp() : "");
-    if (fst) fst->commit();
-    return rc;
+    if (fst && rc == 0) fst->commit();
+    return cli::flush_stdout("apu-cosim", rc);
   } catch (const cli::UsageError& e) {
     return cli::usage_error(app, e.what());
   } catch (const std::exception& ex) {

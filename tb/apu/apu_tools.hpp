@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "apu_engine.hpp"
+#include "apu_icarus_engine.hpp"
 #include "apu_iss.hpp"
 #include "apu_rtl_engine.hpp"
 #include "apu_image.hpp"
@@ -20,7 +21,7 @@
 namespace mc1::apu::tools {
 
 inline const std::vector<std::string>& engine_names() {
-  static const std::vector<std::string> names = {"iss", "rtl"};
+  static const std::vector<std::string> names = {"iss", "rtl", "icarus"};
   return names;
 }
 
@@ -42,11 +43,20 @@ inline CLI::Option* add_max_cycles_option(CLI::App& app, std::uint64_t& cycles, 
   return app.add_option("--max-cycles", cycles, what)->transform(cmdline::unsigned_in(1, UINT64_MAX));
 }
 
-// "iss" or "rtl"; `trace` (an FST path) only means something to the RTL.
-inline std::unique_ptr<ApuEngine> make_engine(const std::string& name, const char* trace = nullptr) {
+// "iss", "rtl" or "icarus" (the core under Icarus Verilog, a vvp child:
+// apu_icarus_engine.hpp); `trace` (an FST path) only means something to the
+// RTL, `icarus_vvp` (the bench's vvp file; empty: $MC1_ICARUS_VVP, else the
+// build's) to Icarus.
+inline std::unique_ptr<ApuEngine> make_engine(const std::string& name, const char* trace = nullptr,
+                                              const std::string& icarus_vvp = "") {
   if (name == "iss") return std::make_unique<Iss>();
   if (name == "rtl") return std::make_unique<RtlEngine>(trace);
-  throw std::runtime_error("unknown engine '" + name + "' (iss or rtl)");
+  if (name == "icarus") {
+    IcarusEngine::Options o;
+    o.vvp_file = icarus_vvp;
+    return std::make_unique<IcarusEngine>(o);
+  }
+  throw std::runtime_error("unknown engine '" + name + "' (iss, rtl or icarus)");
 }
 
 inline bool ends_with(const std::string& s, const char* suffix) {
