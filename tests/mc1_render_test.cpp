@@ -2,12 +2,13 @@
 // the frame's messages, the same PNG bit for bit for 1, 4, 16 and 64 NCs,
 // every schedule and both APU engines; a killed NC's blocks go to the others
 // and the frame is unchanged; HDLC bit errors leave it unchanged; each
-// schedule hands the blocks out as documented; the frame is within 35 dB
-// PSNR of the reference renderer on every standard scene (a difference
-// image is written when it is not).
+// schedule hands the blocks out as documented; the frame is within a few dB
+// of its measured PSNR against the reference renderer on every standard scene
+// (a difference image is written when it is not).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <string>
@@ -708,13 +709,18 @@ TEST_F(Mc1Render, StatisticsAndChart) {
   EXPECT_GT(idle, 1u);  // the legend's swatch and at least one row
 }
 
-// Every standard scene, small, against the double-precision reference.
-TEST_F(Mc1Render, WithinPsnr35OfTheReferenceOnEveryStandardScene) {
+// Every standard scene, small, against the double-precision reference: each
+// at its measured PSNR less about 3 dB (issue 40; measured on 4 NCs in
+// blocks of 16: tiny 79.99, whitted 80.51, room 73.24, smooth 75.74, teapot
+// 75.74, csg 51.69, lathe 79.26, tilted 80.51 dB).
+TEST_F(Mc1Render, NearTheReferenceOnEveryStandardScene) {
   const struct {
     const char* scene;
     unsigned w, h;
-  } cases[] = {{"tiny", 32, 32}, {"whitted", 48, 36}, {"room", 48, 36}, {"smooth", 32, 24}, {"teapot", 32, 24},
-               {"csg", 48, 36},  {"lathe", 48, 36}, {"../tests/scenes/tilted", 48, 36}};
+    double floor_db;
+  } cases[] = {{"tiny", 32, 32, 76},   {"whitted", 48, 36, 77}, {"room", 48, 36, 70},
+               {"smooth", 32, 24, 72}, {"teapot", 32, 24, 72},  {"csg", 48, 36, 48},
+               {"lathe", 48, 36, 76},  {"../tests/scenes/tilted", 48, 36, 77}};
   for (const auto& c : cases) {
     SCOPED_TRACE(c.scene);
     const FrameReport r = render_frame(config(4, rc::Schedule::Lpt, 16), c.scene, c.w, c.h).report;
@@ -723,14 +729,16 @@ TEST_F(Mc1Render, WithinPsnr35OfTheReferenceOnEveryStandardScene) {
     imgcmp::Image got(static_cast<int>(c.w), static_cast<int>(c.h));
     got.rgb = r.rgb;
     const double p = imgcmp::psnr(got, ref);
-    if (p < 35.0) {
-      const std::string stem = std::string("mc1_render_") + c.scene;
+    std::printf("%s %ux%u: PSNR %.2f dB (floor %.0f)\n", c.scene, c.w, c.h, p, c.floor_db);
+    if (p < c.floor_db) {
+      std::string stem = std::string("mc1_render_") + c.scene;
+      std::replace(stem.begin(), stem.end(), '/', '_');
       imgcmp::write_png(stem + "_frame.png", got);
       imgcmp::write_png(stem + "_ref.png", ref);
       imgcmp::write_png(stem + "_diff.png", imgcmp::difference(got, ref, 8));
-      ADD_FAILURE() << c.scene << " at " << c.w << "x" << c.h << ": PSNR " << p
-                    << " dB against the reference (at least 35); largest difference " << imgcmp::max_abs_diff(got, ref)
-                    << "; wrote " << stem << "_{frame,ref,diff}.png in the test's directory";
+      ADD_FAILURE() << c.scene << " at " << c.w << "x" << c.h << ": PSNR " << p << " dB against the reference (at least "
+                    << c.floor_db << "); largest difference " << imgcmp::max_abs_diff(got, ref) << "; wrote " << stem
+                    << "_{frame,ref,diff}.png in the test's directory";
     }
   }
 }

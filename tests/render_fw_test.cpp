@@ -355,7 +355,7 @@ TEST(RenderFrame, WhittedSceneMatchesTheReferenceRenderer) {
   int far = 0;
   for (std::size_t k = 0; k < img.rgb.size(); ++k) far += std::abs(int(img.rgb[k]) - int(want.rgb[k])) > 24;
   std::printf("whitted 48x36: PSNR %.2f dB, %d samples off by more than 24\n", db, far);
-  EXPECT_GT(db, 35.0);
+  EXPECT_GE(db, 77.0);  // measured 80.51 dB, less about 3 (issue 40)
   const auto& st = rig.fw.stats();
   for (int k = 0; k < kSteps; ++k)
     std::printf("  %-28s APU %10llu cycles  %4llu runs  %5llu batches  %8llu words\n",
@@ -397,10 +397,11 @@ scene::Scene load_standard_scene(Rig& rig, const std::string& name, int w, int h
 }
 
 // A standard scene (docs/scene-format.md) at width x height, co-simulated
-// block by block on the ISS, against the double-precision reference renderer.
-// The issue's bound: PSNR >= 35 dB. On a failure the frame, the reference and
-// their difference (x8) go to the working directory (the build tree).
-double standard_scene_psnr(const std::string& name, int width, int height) {
+// block by block on the ISS, against the double-precision reference renderer
+// at least `floor_db` of PSNR. Below it (or with MC1_RENDER_DUMP) the frame,
+// the reference and their difference (x8) go to the working directory (the
+// build tree).
+void expect_near_reference(const std::string& name, int width, int height, double floor_db) {
   Rig rig;
   const scene::Scene sc = load_standard_scene(rig, name, width, height);
   const imgcmp::Image img = render_frame(rig.fw, width, height);
@@ -409,26 +410,30 @@ double standard_scene_psnr(const std::string& name, int width, int height) {
   std::printf("%s %dx%d: PSNR %.2f dB, max diff %d\n", name.c_str(), width, height, db,
               imgcmp::max_abs_diff(img, want));
   const std::string stem = "render_fw_" + name + "_" + std::to_string(width) + "x" + std::to_string(height);
-  if (db < 35.0 || std::getenv("MC1_RENDER_DUMP")) {
+  if (db < floor_db || std::getenv("MC1_RENDER_DUMP")) {
     imgcmp::write_png(stem + "_fw.png", img);
     imgcmp::write_png(stem + "_ref.png", want);
     imgcmp::write_png(stem + "_diff.png", imgcmp::difference(img, want, 8));
     std::printf("  wrote %s_{fw,ref,diff}.png\n", stem.c_str());
   }
-  return db;
+  EXPECT_GE(db, floor_db) << name << " " << width << "x" << height << ": PSNR against the reference";
 }
 
-// Measured (docs/renderer.md): whitted 64x48 67.3 dB, room 64x48 47.0 dB,
-// smooth 64x48 50.0 dB, teapot 32x24 64.5 dB, teapot 64x48 48.0 dB.
-TEST(RenderScenes, WhittedWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("whitted", 64, 48), 35.0); }
-TEST(RenderScenes, RoomWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("room", 64, 48), 35.0); }
-TEST(RenderScenes, SmoothWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("smooth", 64, 48), 35.0); }
-TEST(RenderScenes, TeapotWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("teapot", 32, 24), 35.0); }
-TEST(RenderScenes, TeapotAt64x48Within35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("teapot", 64, 48), 35.0); }
+// Each scene's floor is its measured PSNR less about 3 dB (issue 40: a
+// floor far below what is measured lets a wrong rounding pass; truncating
+// the pixels instead of rounding them drops whitted to 50.5 dB and room to
+// 51.4). Measured (docs/renderer.md "Tests"), 64x48 unless named: whitted
+// 67.40, room 73.97, smooth 50.00, teapot 32x24 75.74, teapot 76.31, csg
+// 55.41, lathe 78.75 dB.
+TEST(RenderScenes, WhittedNearTheReference) { expect_near_reference("whitted", 64, 48, 64.0); }
+TEST(RenderScenes, RoomNearTheReference) { expect_near_reference("room", 64, 48, 70.0); }
+TEST(RenderScenes, SmoothNearTheReference) { expect_near_reference("smooth", 64, 48, 47.0); }
+TEST(RenderScenes, TeapotNearTheReference) { expect_near_reference("teapot", 32, 24, 72.0); }
+TEST(RenderScenes, TeapotAt64x48NearTheReference) { expect_near_reference("teapot", 64, 48, 73.0); }
 
 // Section 7's scenes (docs/renderer.md "CSG and solids of revolution").
-TEST(RenderScenes, CsgWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("csg", 64, 48), 35.0); }
-TEST(RenderScenes, LatheWithin35dBOfTheReference) { EXPECT_GE(standard_scene_psnr("lathe", 64, 48), 35.0); }
+TEST(RenderScenes, CsgNearTheReference) { expect_near_reference("csg", 64, 48, 52.0); }
+TEST(RenderScenes, LatheNearTheReference) { expect_near_reference("lathe", 64, 48, 75.0); }
 
 // CSG on eye and shadow rays: csg.json at 64x48 as one block, s1 with the
 // solid rule (r_inside's CSG_OUT regions hide hits outside them), then s2
@@ -1058,12 +1063,12 @@ TEST(RenderSolids, UnionSolidsMatchTheReferenceRenderer) {
               "APU %llu cycles\n",
               w, h, db, imgcmp::max_abs_diff(img, want), far, (unsigned long long)st.hidden_hits,
               (unsigned long long)st.total().apu_cycles);
-  if (db < 35.0 || std::getenv("MC1_RENDER_DUMP")) {
+  if (db < 75.0 || std::getenv("MC1_RENDER_DUMP")) {
     imgcmp::write_png("render_fw_solids_fw.png", img);
     imgcmp::write_png("render_fw_solids_ref.png", want);
     imgcmp::write_png("render_fw_solids_diff.png", imgcmp::difference(img, want, 8));
   }
-  EXPECT_GE(db, 35.0);
+  EXPECT_GE(db, 75.0);  // measured 78.75 dB, less about 3 (issue 40)
   EXPECT_GT(st.hidden_hits, 100u);  // the rule was at work (eye rays into the tube, refracted rays)
 }
 
