@@ -440,6 +440,23 @@ TEST(SceneLimits, PrimitiveIdsQuadsCountTwice) {
             "triangles), the NC's limit");
 }
 
+// The NC's data bank holds 8 lights and 16 materials: the loader refuses
+// the ninth light (lights[8]) and the seventeenth material where they stand (both
+// renderers take the same scenes; mc1 render used to fail with exit 1 and
+// no line, mc1-ref to accept it).
+TEST(SceneLimits, LightsAndMaterialsOfTheDataBank) {
+  std::string lights = "\"lights\": [";
+  for (int i = 0; i < 9; ++i) lights += std::string(i ? ",\n" : "\n") + "{\"position\": [0, 5, 5]}";
+  std::string text = scene_text(kSphere);
+  text.replace(text.find("\"lights\": ["), std::string("\"lights\": [").size(), lights + ",\n");
+  EXPECT_EQ(error_of(text), "t.json:12: lights[8]: more than 8 lights, the NC's limit");
+  std::string materials;
+  for (int i = 0; i < 15; ++i) materials += "},\n{\"name\": \"m" + std::to_string(i) + "\", \"colour\": [1, 1, 1]";
+  EXPECT_EQ(error_of(scene_text(kSphere, "", materials)), "(accepted)");
+  materials += "},\n{\"name\": \"too_many\", \"colour\": [1, 1, 1]";
+  EXPECT_EQ(error_of(scene_text(kSphere, "", materials)), "t.json:21: materials[16]: more than 16 materials, the NC's limit");
+}
+
 // Refused at the first entry past the limit, before the rest is read.
 TEST(SceneLimits, AMillionTrianglesRefusedAtTheFirstPastTheLimit) {
   std::string text = scene_text(object_with(repeated(kTriangle, 1000000)));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render_layout.hpp"
+#include "scene.hpp"
 
 namespace mc1::scene {
 struct Scene;
@@ -22,6 +23,8 @@ using Vec3w = std::array<Word, 3>;
 // The sizes of the data bank's areas (r_layout.inc).
 constexpr int kMaxLights = layout::L_SLOTS;
 constexpr int kMaxMaterials = layout::M_SLOTS;
+static_assert(std::size_t{kMaxLights} == scene::kMaxLights && std::size_t{kMaxMaterials} == scene::kMaxMaterials,
+              "the scene loader's limits are the data bank's slots");
 constexpr int kPrimSlots = layout::P_SLOTS;
 constexpr int kRaysPerBatch = layout::R_SLOTS;
 constexpr std::uint32_t kNoHit = layout::NO_HIT;

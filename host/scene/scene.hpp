@@ -143,6 +143,12 @@ struct RenderSettings {
 // as two triangles: at most this many ids per scene, quads counting twice.
 // The loader refuses a scene beyond it (docs/scene-format.md).
 constexpr std::size_t kMaxPrimitiveIds = 65535;
+// The NC's data bank holds this many lights and materials (r_layout.inc's
+// L_SLOTS and M_SLOTS; firmware/render/scene_image.hpp asserts they agree):
+// the loader refuses a scene beyond them, naming the first one too many, so
+// that both renderers take the same scenes.
+constexpr std::size_t kMaxLights = 8;
+constexpr std::size_t kMaxMaterials = 16;
 
 struct Scene {
   std::string source;  // file the scene was loaded from

@@ -636,7 +636,9 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   // holds one: a scene past the limit is refused before it is held whole.
   const std::vector<json::ItemLimit> limits = {
       {{"objects", "[]", "primitives"}, kMaxPrimitiveIds, kTooManyPrimitives},
-      {{"objects"}, kMaxPrimitiveIds, "more than 65535 objects (each holds a primitive), the NC's limit"}};
+      {{"objects"}, kMaxPrimitiveIds, "more than 65535 objects (each holds a primitive), the NC's limit"},
+      {{"lights"}, kMaxLights, "more than " + std::to_string(kMaxLights) + " lights, the NC's limit"},
+      {{"materials"}, kMaxMaterials, "more than " + std::to_string(kMaxMaterials) + " materials, the NC's limit"}};
   Value root = json::parse(text, name, limits);
   return Loader(name, base_dir).scene(root);
 }
