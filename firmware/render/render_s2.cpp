@@ -1,7 +1,10 @@
 // s2 of fig. 3, shadows: fig. 6's shadow lists (r_slist on the view boxes,
 // once per frame), narrowed per group of hits, and the shadow rays toward
 // every light cast against them (r_cast), R_SHADOW's bits.
+#include <limits>
 #include <map>
+#include <stdexcept>
+#include <string>
 
 #include "render_internal.hpp"
 
@@ -16,28 +19,36 @@ void RenderFirmware::build_shadow_lists() {
   constexpr Step step = Step::Shadows;
   const int nobj = static_cast<int>(view_.objects.size());
   const int nlights = static_cast<int>(view_.lights.size());
-  struct Item {
-    std::array<std::uint32_t, S_IN> w{};
-    int a = 0, l = 0, b = 0;
+  std::vector<int> holding;  // the objects that hold a primitive, in order
+  for (int o = 0; o < nobj; ++o)
+    if (view_.objects[o].prim_count != 0) holding.push_back(o);
+  // Item k is the pair (A, L, B) = (holding[k / per_a], k / per_l % nlights,
+  // holding[k % per_l]): made when r_slist takes it, so that the MPU holds
+  // one pair at a time, not all N^2 L of them.
+  const std::int64_t per_l = static_cast<std::int64_t>(holding.size());
+  const std::int64_t per_a = per_l * nlights;
+  const std::int64_t count = per_a * per_l;
+  if (count > std::numeric_limits<int>::max())
+    throw std::length_error("render: " + std::to_string(count) + " shadow-list pairs (" + std::to_string(per_l) +
+                            " objects squared, times " + std::to_string(nlights) + " lights): more than one stream takes");
+  auto pair = [&](int k) {
+    return std::array<int, 3>{holding[k / per_a], static_cast<int>(k / per_l % nlights), holding[k % per_l]};
   };
-  std::vector<Item> items;
-  for (int a = 0; a < nobj; ++a)
-    for (int l = 0; l < nlights; ++l)
-      for (int b = 0; b < nobj; ++b) {
-        if (view_.objects[a].prim_count == 0 || view_.objects[b].prim_count == 0) continue;
-        Item it{{}, a, l, b};
-        std::copy(view_.objects[a].box.begin(), view_.objects[a].box.end(), it.w.begin() + S_A);
-        std::copy(view_.lights[l].begin() + L_POS, view_.lights[l].begin() + L_POS + 3, it.w.begin() + S_L);
-        std::copy(view_.objects[b].box.begin(), view_.objects[b].box.end(), it.w.begin() + S_B);
-        items.push_back(it);
-      }
   shadow_objects_.assign(static_cast<std::size_t>(nobj) * nlights, {});
-  ItemStream s{static_cast<int>(items.size()), S_PER_BATCH, S_ITEMS, S_SIZE, true};
-  s.put = [&](int i, std::uint16_t addr) { write(addr, items[i].w.data(), S_IN, step); };
-  s.get = [&](int i, std::uint16_t addr) {
-    const Item& it = items[i];
-    if (read(static_cast<std::uint16_t>(addr + S_OUT), 1, step)[0])
-      shadow_objects_[static_cast<std::size_t>(it.a) * nlights + it.l].push_back(it.b);
+  ItemStream s{static_cast<int>(count), S_PER_BATCH, S_ITEMS, S_SIZE, true};
+  s.put = [&](int k, std::uint16_t addr) {
+    const auto [a, l, b] = pair(k);
+    std::array<std::uint32_t, S_IN> w{};
+    std::copy(view_.objects[a].box.begin(), view_.objects[a].box.end(), w.begin() + S_A);
+    std::copy(view_.lights[l].begin() + L_POS, view_.lights[l].begin() + L_POS + 3, w.begin() + S_L);
+    std::copy(view_.objects[b].box.begin(), view_.objects[b].box.end(), w.begin() + S_B);
+    write(addr, w.data(), S_IN, step);
+  };
+  s.get = [&](int k, std::uint16_t addr) {
+    if (read(static_cast<std::uint16_t>(addr + S_OUT), 1, step)[0]) {
+      const auto [a, l, b] = pair(k);
+      shadow_objects_[static_cast<std::size_t>(a) * nlights + l].push_back(b);
+    }
   };
   stream_items("r_slist", step, s);
 }
