@@ -12,8 +12,10 @@
 # 5. a core with a planted bug (XOR computed as OR): apu-cosim reports the
 #    first divergence as for any engine (cycle, pc, word, both values: the
 #    XOR's A register commit, in the cycle after its issue) and the command
-#    that reruns the case.
-# 3 to 5 are copies of apu_rtl/ with apu_core.sv changed, compiled by
+#    that reruns the case;
+# 6. dbg_unit_mismatch set (planted: at the first XOR issued), which a
+#    netlist reports though it has no assertions: exit 1, cycle and pc.
+# 3 to 6 are copies of apu_rtl/ with apu_core.sv changed, compiled by
 # tb/apu_icarus.cmake's script form into their own vvp files.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
@@ -95,3 +97,11 @@ cosim(divergence 1 ARGS --random 30 --seed 1 --engines iss,icarus --icarus-vvp $
       MATCH "apu-cosim: divergence at cycle [0-9]+, pc 0x[0-9a-f]+ \\(bank [01]\\): [^\n]+"
             "  commit [0-9]+: iss A[0-9]+=0x[0-9a-f]+  vs  icarus A[0-9]+=0x[0-9a-f]+"
             "rerun: apu-cosim --random 1 --seed 1 --first [0-9]+ --engines iss,icarus")
+
+# 6. dbg_unit_mismatch set at the first XOR issued.
+planted(mismatch "unit_mismatch_q <= unit_mismatch_q || unit_mismatch;"
+        "unit_mismatch_q <= unit_mismatch_q || unit_mismatch || (issue && w.i_op == apu_pkg::I_XOR);  // planted")
+cosim(unit_mismatch 1 ARGS --random 30 --seed 1 --engines iss,icarus --icarus-vvp ${WORK}/mismatch.vvp
+      MATCH "apu-cosim: icarus failed at cycle [0-9]+, pc 0x[0-9a-f]+ \\(bank [01]\\): [^\n]*xor"
+            "icarus engine: dbg_unit_mismatch after cycle [0-9]+, pc 0x[0-9a-f]+: a unit's result came out of step"
+            "rerun: apu-cosim --random 1")

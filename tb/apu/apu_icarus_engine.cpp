@@ -484,6 +484,15 @@ void IcarusEngine::Impl::parse_status(const Fields& fl, std::size_t t, const std
   }
   s.unit_mismatch = need(fl, t + 11, 16, 0, 1, "dbg_unit_mismatch", w);
   status_valid = true;
+  // Sticky in the core: set by the first cycle in which a unit's result
+  // valid and the interlock's tag pipe disagree (a netlist has no
+  // assertions, but has this port).
+  if (s.unit_mismatch) {
+    p->fail();
+    throw IcarusError("icarus engine: dbg_unit_mismatch " + w +
+                          ": a unit's result came out of step with the interlock's tags",
+                      cycle, last_pc, last_psel);
+  }
 }
 
 std::string IcarusEngine::default_vvp_file() {
@@ -659,9 +668,9 @@ void IcarusEngine::step(CycleRecord& rec) {
   if (m.need(fl, 17, 16, 0, 1, "dbg_flags_en", w))
     rec.commits.push_back({Commit::Kind::Flags, 0, m.need(fl, 18, 16, 0, 5, "dbg_flags_val", w)});
 
-  ++m.cycle;
   m.clocked();
   m.parse_status(fl, 19, "after cycle " + std::to_string(rec.cycle) + ", pc " + hex(rec.pc, 3));
+  ++m.cycle;
 }
 
 namespace {
