@@ -17,7 +17,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <deque>
-#include <map>
 #include <mutex>
 #include <utility>
 
@@ -64,7 +63,6 @@ struct Status {
   std::array<std::uint32_t, kFCommitPorts> fc_val{};
   bool unit_mismatch = false;
 };
-
 
 // ---- the child process --------------------------------------------------------
 

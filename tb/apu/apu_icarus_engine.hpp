@@ -41,8 +41,8 @@ namespace mc1::apu {
 class IcarusError : public std::runtime_error {
  public:
   explicit IcarusError(const std::string& what) : std::runtime_error(what) {}
-  IcarusError(const std::string& what, std::uint64_t cycle, std::uint16_t pc, std::uint8_t psel)
-      : std::runtime_error(what), in_cycle(true), cycle(cycle), pc(pc), psel(psel) {}
+  IcarusError(const std::string& what, std::uint64_t at_cycle, std::uint16_t at_pc, std::uint8_t at_psel)
+      : std::runtime_error(what), in_cycle(true), cycle(at_cycle), pc(at_pc), psel(at_psel) {}
   bool in_cycle = false;
   std::uint64_t cycle = 0;
   std::uint16_t pc = 0;
