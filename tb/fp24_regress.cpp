@@ -98,7 +98,8 @@ std::vector<Op> parse_ops(const std::string& list) {
   return ops;
 }
 
-void add_options(CLI::App& app, Options& o, std::string& ops, std::string& shard_text) {
+// The file options are declared in `files` (cmdline::Files), checked after parsing.
+void add_options(CLI::App& app, Options& o, std::string& ops, std::string& shard_text, cli::Files& files) {
   app.add_option("--ops", ops, "comma-separated ops to run (default: all 12)")->type_name("LIST");
   app.add_flag("--no-rtl{false}", o.rtl, "skip the verilated RTL");
   app.add_flag("--no-oracle{false}", o.oracle, "skip the MPFR oracle");
@@ -118,19 +119,21 @@ void add_options(CLI::App& app, Options& o, std::string& ops, std::string& shard
   app.add_option("--shard", shard_text, "run slice K of N (1 <= K <= N); the N slices together\n"
                                         "cover the unsharded run exactly once")
       ->type_name("K/N");
-  app.add_option("--merge", o.merge, "merge the --json reports of shards 1..N of one run (nothing is run)")
-      ->type_name("REPORT.json...")
-      ->check(cli::input_file());
+  files.input(app.add_option("--merge", o.merge, "merge the --json reports of shards 1..N of one run (nothing is run)")
+                  ->type_name("REPORT.json...")
+                  ->check(cli::input_file()),
+              "the report");
   app.add_option("--threads", o.threads, "worker threads (default: all cores)")
       ->transform(cli::unsigned_in(1, 1024));
   app.add_option("--show", o.show, "failing vectors listed per op and kind")
       ->transform(cli::unsigned_in(0, 1000000))
       ->capture_default_str();
-  app.add_option("--text", o.text, "also write the text report to FILE")->type_name("FILE");
-  app.add_option("--json", o.json, "write the report as JSON to FILE")->type_name("FILE");
-  app.add_option("--vectors", o.vectors, "run the vectors (or golden lines) of FILE instead of the built-in sets")
-      ->type_name("FILE")
-      ->check(cli::input_file());
+  files.output(app.add_option("--text", o.text, "also write the text report to FILE")->type_name("FILE"));
+  files.output(app.add_option("--json", o.json, "write the report as JSON to FILE")->type_name("FILE"));
+  files.input(app.add_option("--vectors", o.vectors, "run the vectors (or golden lines) of FILE instead of the built-in sets")
+                  ->type_name("FILE")
+                  ->check(cli::input_file()),
+              "the vectors");
 }
 
 // A --vectors run has no built-in sets to shape: the options that shape
@@ -645,16 +648,20 @@ int main(int argc, char** argv) {
                   "path that cannot be written is one, found before the run).");
   Options o;
   std::string ops, shard;
-  add_options(app, o, ops, shard);
+  cli::Files files;
+  add_options(app, o, ops, shard, files);
   add_exclusions(app);
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
+  try {
+    files.check();  // no report on an input or the other report; each writable before the run
+  } catch (const cli::UsageError& e) {
+    return cli::usage_error(app, e.what());
+  }
   if (!o.merge.empty()) return cli::flush_stdout("fp24-regress", merge(app, o));
   try {
     o.ops = app.count("--ops") ? parse_ops(ops) : all_ops();
     if (!shard.empty()) parse_shard(shard, o);
     if (!o.vectors.empty()) read_user_vectors(o, app.count("--ops") != 0);
-    mc1::shard::check_writable(o.text);  // before the run, not after minutes of it
-    mc1::shard::check_writable(o.json);
   } catch (const VectorError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return cli::kExitUsage;

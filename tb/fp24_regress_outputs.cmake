@@ -75,13 +75,41 @@ if(NOT text MATCHES "^fp24-regress: g.golden, 2 vectors.*PASS\n$" OR NOT schema 
   message(SEND_ERROR "run_writes: old.txt '${text}', old.json schema '${schema}' ${bad}")
 endif()
 
-# --merge: a report that cannot be written is exit 1 and leaves what was at
-# its path (an empty directory used to be removed).
+# No report replaces an input or the other report (cmdline::Files), through
+# symbolic and hard links: a usage error before the run, the input as it was.
+file(READ ${WORK_DIR}/g.golden golden)
+run(json_is_vectors 2 "--json g.golden would replace the vectors g.golden" ${run} --json g.golden)
+run(text_is_vectors 2 "--text ./g.golden would replace the vectors g.golden" ${run} --text ./g.golden)
+file(REMOVE ${WORK_DIR}/g-link.golden ${WORK_DIR}/g-hard.golden)
+file(CREATE_LINK g.golden ${WORK_DIR}/g-link.golden SYMBOLIC)
+file(CREATE_LINK ${WORK_DIR}/g.golden ${WORK_DIR}/g-hard.golden)
+run(json_is_vectors_link 2 "--json g.golden would replace the vectors g-link.golden" --vectors g-link.golden --json g.golden)
+run(text_is_vectors_hard_link 2 "--text g-hard.golden would replace the vectors g.golden" ${run} --text g-hard.golden)
+run(text_is_json 2 "--text and --json name one file: r.json" ${run} --text r.json --json r.json)
+file(READ ${WORK_DIR}/g.golden golden_after)
+if(NOT golden_after STREQUAL golden)
+  message(SEND_ERROR "an output replaced the vectors g.golden: '${golden_after}'")
+endif()
+
+# --merge: a report that cannot be written is found before the merge (exit
+# 2) and leaves what was at its path (an empty directory used to be removed).
 foreach(k 1 2)
   run(shard${k} 0 "" ${run} --shard ${k}/2 --json s-${k}.json)
 endforeach()
+# A merged report on a shard's report, directly or through a link.
+file(READ ${WORK_DIR}/s-1.json shard1)
+file(REMOVE ${WORK_DIR}/s-link.json)
+file(CREATE_LINK s-1.json ${WORK_DIR}/s-link.json SYMBOLIC)
+run(merge_json_is_report 2 "--json s-1.json would replace the report s-1.json" --merge s-1.json s-2.json --json s-1.json)
+run(merge_text_is_report_link 2 "--text s-link.json would replace the report s-1.json"
+    --merge s-1.json s-2.json --text s-link.json)
+file(READ ${WORK_DIR}/s-1.json shard1_after)
+if(NOT shard1_after STREQUAL shard1)
+  message(SEND_ERROR "fp24-regress --merge replaced the shard's report s-1.json")
+endif()
 file(MAKE_DIRECTORY ${WORK_DIR}/merged_dir)
-run(merge_directory 1 "fp24-regress: merged_dir: is a directory" --merge s-1.json s-2.json --json merged_dir)
+run(merge_directory 2 "fp24-regress: --json: merged_dir: cannot open for writing: is a directory"
+    --merge s-1.json s-2.json --json merged_dir)
 if(NOT IS_DIRECTORY ${WORK_DIR}/merged_dir)
   message(SEND_ERROR "merge_directory: the directory merged_dir was removed")
 endif()
@@ -89,11 +117,11 @@ old_reports()
 run_no_space(merge_no_space 1 "fp24-regress: old.json: cannot write: File too large"
              --merge s-1.json s-2.json --json old.json --text old.txt)
 expect_old(merge_no_space old.json old.txt)
-run(merge_missing_dir 1 "fp24-regress: nodir/m.json: cannot create a temporary file beside it"
+run(merge_missing_dir 2 "fp24-regress: --json: nodir/m.json: cannot open for writing: cannot create a temporary file beside it"
     --merge s-1.json s-2.json --json nodir/m.json)
 # One report that cannot be written leaves the other unwritten too.
 old_reports()
-run(merge_one_fails 1 "fp24-regress: nodir/m.txt: cannot create a temporary file beside it"
+run(merge_one_fails 2 "fp24-regress: --text: nodir/m.txt: cannot open for writing"
     --merge s-1.json s-2.json --json old.json --text nodir/m.txt)
 expect_old(merge_one_fails old.json old.txt)
 run(merge_writes 0 "" --merge s-1.json s-2.json --json old.json --text old.txt)

@@ -52,16 +52,18 @@ struct Options {
   std::string check;  // a golden file, "-" for standard input
 };
 
-void add_options(CLI::App& app, Options& o) {
+// Every file option is declared in `files` (cmdline::Files), checked after parsing.
+void add_options(CLI::App& app, Options& o, cli::Files& files) {
   app.add_option("--engine", o.engine,
                  "model: the bit-accurate C++ model (hw/apu); rtl: the verilated RTL\n"
                  "(apu_rtl/fp24_units.sv; the three units run concurrently, each taking\n"
                  "its ops in input order); oracle: the MPFR oracle (tb/fp24_oracle.cpp)")
       ->check(CLI::IsMember({"model", "rtl", "oracle", "all"}));
-  app.add_option("--trace", o.trace, "rtl only: write an FST waveform of fp24_units to FILE")->type_name("FILE");
-  app.add_option("--check", o.check, "check the golden file FILE (- for standard input) on --engine\n"
+  files.output(app.add_option("--trace", o.trace, "rtl only: write an FST waveform of fp24_units to FILE")
+                   ->type_name("FILE"));
+  files.input(app.add_option("--check", o.check, "check the golden file FILE (- for standard input) on --engine\n"
                                      "(model, rtl, oracle or all; default all)")
-      ->type_name("FILE|-");
+      ->type_name("FILE|-"), "the golden file");
 }
 
 // The options that do not fit together, as a usage message; empty if fine.
@@ -139,9 +141,10 @@ int check(const Options& o, const std::vector<Golden>& golden) {
   return summary.mismatches() == 0 ? cli::kExitOk : cli::kExitFailed;
 }
 
-// The staged waveform put in place (a failure throws); returns `status`.
+// The staged waveform put in place (a failure throws) when the run passed:
+// a failed check leaves no waveform. Returns `status`.
 int commit(std::optional<mc1::StagedFile>& fst, int status) {
-  if (fst) fst->commit();
+  if (fst && status == cli::kExitOk) fst->commit();
   return status;
 }
 
@@ -152,9 +155,16 @@ int main(int argc, char** argv) {
   cli::conventions(app, "Exit status: 0 done (--check: every vector agrees); 1 a --check mismatch or an\n"
                         "RTL timing-contract violation; 2 usage or input error.");
   Options o;
-  add_options(app, o);
+  cli::Files files;
+  add_options(app, o, files);
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
   if (const std::string why = conflicts(o); !why.empty()) return cli::usage_error(app, why);
+  if (o.check.empty() || o.check == "-") files.reads_stdin();
+  try {
+    files.check();  // no output on an input; each writable
+  } catch (const cli::UsageError& e) {
+    return cli::usage_error(app, e.what());
+  }
   std::ios::sync_with_stdio(false);
   std::vector<Issue> vectors;
   std::vector<Golden> golden;
@@ -177,16 +187,16 @@ int main(int argc, char** argv) {
   }
   if (fst) o.fst = fst->temp();
   try {
-    if (!o.check.empty()) return cli::flush_stdout("fp24-run", commit(fst, check(o, golden)));
+    // What it prints is its output: the waveform stays only if that went out too.
+    if (!o.check.empty()) return commit(fst, cli::flush_stdout("fp24-run", check(o, golden)));
     const std::vector<Result> results = compute(o, o.engine, vectors);
     std::string out;
     out.reserve(results.size() * 10);
     for (const Result& r : results) out += format_result(r) + '\n';
     std::fwrite(out.data(), 1, out.size(), stdout);
-    commit(fst, cli::kExitOk);
+    return commit(fst, cli::flush_stdout("fp24-run", cli::kExitOk));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fp24-run: %s\n", e.what());
     return cli::kExitFailed;
   }
-  return std::fflush(stdout) == 0 ? cli::kExitOk : cli::kExitFailed;
 }

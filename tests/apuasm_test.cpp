@@ -810,7 +810,7 @@ TEST(ApuAsmProgram, OutputsMustNotReplaceInputsOrEachOther) {
       {"k.apu -o y.bin -l y.bin", "-o and -l name one file: y.bin"},
       {"k.apu -o y.bin -x ./y.bin", "-o and -x name one file: ./y.bin"},
       {"k.apu -l y.lst -x sub/../y.lst", "-l and -x name one file: sub/../y.lst"},
-      {"k.apu -l k.bin", "-o (default) and -l name one file: k.bin"},
+      {"k.apu -l k.bin", "-l and -o (default) name one file: k.bin"},
       {"top.apu -l sub/x.inc -o t.bin", "-l sub/x.inc would replace the include file sub/x.inc"},
   };
   for (const auto& [args, message] : cases) {

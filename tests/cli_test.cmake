@@ -31,6 +31,39 @@ function(expect case)
   endif()
 endfunction()
 
+# expect_same(CASE FILE TEXT): FILE (in WORK_DIR) still holds TEXT.
+function(expect_same case file text)
+  file(READ ${WORK_DIR}/${file} now)
+  if(NOT now STREQUAL text)
+    message(SEND_ERROR "${PROGRAM} ${case}: ${file} was replaced: '${now}'")
+  endif()
+endfunction()
+
+# expect_absent(CASE FILE...): none of FILE (in WORK_DIR) exists, and no
+# staged temporary file is left in WORK_DIR.
+function(expect_absent case)
+  foreach(f ${ARGN})
+    if(EXISTS ${WORK_DIR}/${f})
+      message(SEND_ERROR "${PROGRAM} ${case}: ${f} was written")
+    endif()
+  endforeach()
+  file(GLOB temps ${WORK_DIR}/.*.tmp.*)
+  if(temps)
+    message(SEND_ERROR "${PROGRAM} ${case}: temporary files left: ${temps}")
+  endif()
+endfunction()
+
+# expect_stdout_full(CASE ARGS...): with standard output on /dev/full (read
+# only: it is never a file argument), exit 1 and "PROGRAM: standard output:
+# No space left on device" on stderr.
+function(expect_stdout_full case)
+  execute_process(COMMAND ${P} ${ARGN} WORKING_DIRECTORY ${WORK_DIR} OUTPUT_FILE /dev/full ERROR_VARIABLE err
+    RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 1 OR NOT err MATCHES "${PROGRAM}: standard output: No space left on device")
+    message(SEND_ERROR "${PROGRAM} ${case} (${ARGN}) > /dev/full: exit ${rc}, wanted 1; stderr: ${err}")
+  endif()
+endfunction()
+
 # Every program: --help, --version, an unknown option.
 string(REPLACE "." "\\." version_re "${VERSION}")
 expect(help RC 0 OUT "Usage: ${PROGRAM}" ARGS --help)
@@ -47,14 +80,47 @@ if(PROGRAM STREQUAL "fp24-run")
   expect(bad_engine RC 2 ERR "--engine: fpga not in" INPUT ${WORK_DIR}/ok.vec ARGS --engine fpga)
   # A waveform its writer cannot take is refused before the run; a good one
   # appears once the run is over, with no temporary file beside it.
-  expect(trace_directory RC 2 ERR "--trace: ${docs}: is a directory" INPUT ${WORK_DIR}/ok.vec
+  expect(trace_directory RC 2 ERR "--trace: ${docs}: cannot open for writing: is a directory" INPUT ${WORK_DIR}/ok.vec
          ARGS --engine rtl --trace ${docs})
-  expect(trace_no_dir RC 2 ERR "--trace: none/t.fst: cannot create a temporary file beside it"
+  expect(trace_no_dir RC 2 ERR "--trace: none/t.fst: cannot open for writing: cannot create a temporary file beside it"
          INPUT ${WORK_DIR}/ok.vec ARGS --engine rtl --trace none/t.fst)
   expect(trace_ok RC 0 OUT "^400000 00\n$" INPUT ${WORK_DIR}/ok.vec ARGS --engine rtl --trace t.fst)
   file(GLOB temps ${WORK_DIR}/.t.fst.*)
   if(NOT EXISTS ${WORK_DIR}/t.fst OR temps)
     message(SEND_ERROR "fp24-run --trace t.fst: no t.fst, or temporary files left: ${temps}")
+  endif()
+  # No output replaces an input (cmdline::Files), standard input redirected
+  # from a file included; a failed check leaves no waveform; what it prints
+  # is its output.
+  set(golden "add 3f0000 3f0000 400000 00\n")
+  file(WRITE ${WORK_DIR}/g.golden "${golden}")
+  expect(trace_is_golden RC 2 ERR "--trace g.golden would replace the golden file g.golden"
+         ARGS --check g.golden --engine rtl --trace g.golden)
+  expect_same(trace_is_golden g.golden "${golden}")
+  file(REMOVE ${WORK_DIR}/g-link.golden)
+  file(CREATE_LINK g.golden ${WORK_DIR}/g-link.golden SYMBOLIC)
+  expect(trace_is_golden_link RC 2 ERR "--trace g-link.golden would replace the golden file g.golden"
+         ARGS --check g.golden --engine rtl --trace g-link.golden)
+  expect_same(trace_is_golden_link g.golden "${golden}")
+  expect(trace_is_stdin RC 2 ERR "--trace g.golden would replace standard input" INPUT ${WORK_DIR}/g.golden
+         ARGS --check - --engine rtl --trace g.golden)
+  expect_same(trace_is_stdin g.golden "${golden}")
+  file(WRITE ${WORK_DIR}/v.vec "add 3f0000 3f0000\n")
+  expect(trace_is_vectors RC 2 ERR "--trace v.vec would replace standard input" INPUT ${WORK_DIR}/v.vec
+         ARGS --engine rtl --trace v.vec)
+  expect_same(trace_is_vectors v.vec "add 3f0000 3f0000\n")
+  file(WRITE ${WORK_DIR}/wrong.golden "add 3f0000 3f0000 400001 00\n")
+  expect(check_fails_no_trace RC 1 OUT "1 mismatches: FAIL" ARGS --check wrong.golden --engine rtl --trace w.fst)
+  expect_absent(check_fails_no_trace w.fst)
+  expect(check_passes_trace RC 0 OUT "0 mismatches: PASS" ARGS --check g.golden --engine rtl --trace p.fst)
+  if(NOT EXISTS ${WORK_DIR}/p.fst)
+    message(SEND_ERROR "fp24-run --check g.golden --trace p.fst: no p.fst")
+  endif()
+  expect_stdout_full(stdout_full_check --check g.golden --engine model)
+  execute_process(COMMAND ${P} --engine model INPUT_FILE ${WORK_DIR}/ok.vec OUTPUT_FILE /dev/full
+    ERROR_VARIABLE err RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 1 OR NOT err MATCHES "^fp24-run: standard output: No space left on device")
+    message(SEND_ERROR "fp24-run --engine model > /dev/full: exit ${rc}, stderr '${err}'")
   endif()
 elseif(PROGRAM STREQUAL "fp24-regress")
   set(quick --ops neg --no-rtl --no-oracle --random 0)
@@ -81,11 +147,18 @@ elseif(PROGRAM STREQUAL "fp24-conv")
 elseif(PROGRAM STREQUAL "fp24-bench")
   expect(seconds_nan RC 2 ERR "--seconds: 'nan' is out of range" ARGS --seconds nan)
   expect(seconds_text RC 2 ERR "--seconds: '1s' is not a number" ARGS --seconds 1s)
+  expect_stdout_full(stdout_full --seconds 0.001 --no-rtl)
 elseif(PROGRAM STREQUAL "apuasm")
   file(WRITE ${WORK_DIR}/halt.apu "  halt\n")
   expect(assembles RC 0 ARGS halt.apu -o halt.bin)
   expect(missing RC 2 ERR "none.apu: error: cannot read file" ARGS none.apu -o none.bin)
   expect(nothing RC 2 ERR "^apuasm: " ARGS)
+  expect(image_is_source RC 2 ERR "-o halt.apu would replace the source halt.apu" ARGS halt.apu -o halt.apu)
+  expect_same(image_is_source halt.apu "  halt\n")
+  expect(listing_is_image RC 2 ERR "-o and -l name one file: ./h.bin" ARGS halt.apu -o h.bin -l ./h.bin)
+  file(WRITE ${WORK_DIR}/inc.apu "  .include \"halt.apu\"\n")
+  expect(hex_is_include RC 2 ERR "-x halt.apu would replace the include file" ARGS inc.apu -x halt.apu)
+  expect_same(hex_is_include halt.apu "  halt\n")
 elseif(PROGRAM STREQUAL "apu-run")
   file(WRITE ${WORK_DIR}/halt.apu "  halt\n")
   file(WRITE ${WORK_DIR}/loop.apu "loop: jmp loop\n")
@@ -107,7 +180,7 @@ elseif(PROGRAM STREQUAL "apu-run")
   expect(two_programs RC 2 ERR "apu-run: " ARGS halt.apu loop.apu)
   expect(bad_engine RC 2 ERR "--engine: fpga not in" ARGS halt.apu --engine fpga)
   expect(trace_needs_rtl RC 2 ERR "--trace needs --engine rtl" ARGS halt.apu --trace t.fst)
-  expect(trace_directory RC 2 ERR "--trace: ${docs}: is a directory" ARGS halt.apu --engine rtl --trace ${docs})
+  expect(trace_directory RC 2 ERR "--trace: ${docs}: cannot open for writing: is a directory" ARGS halt.apu --engine rtl --trace ${docs})
   expect(trace_device RC 2 ERR "--trace: /dev/null: is not a regular file"
          ARGS halt.apu --engine rtl --trace /dev/null)
   # The stall profile as JSON (apu-profile/2): a RAW stall at pc 3 each of 20
@@ -139,6 +212,38 @@ elseif(PROGRAM STREQUAL "apu-run")
   if(NOT kernel_ids MATCHES "\n0000 -\n0001 stall.apu\n$")
     message(SEND_ERROR "apu-run --trace: s.fst.kernel.txt: ${kernel_ids}")
   endif()
+  # No output replaces an input or another output, side files of the trace
+  # included, through symbolic and hard links (cmdline::Files); refused
+  # before the run.
+  file(WRITE ${WORK_DIR}/src.apu "  halt\n")
+  file(REMOVE ${WORK_DIR}/src-sym.apu ${WORK_DIR}/src-hard.apu)
+  file(CREATE_LINK src.apu ${WORK_DIR}/src-sym.apu SYMBOLIC)
+  file(CREATE_LINK ${WORK_DIR}/src.apu ${WORK_DIR}/src-hard.apu)
+  expect(trace_is_program RC 2 ERR "--trace src.apu would replace the program src.apu"
+         ARGS src.apu --engine rtl --trace src.apu)
+  expect(profile_json_is_program RC 2 ERR "--profile-json src-sym.apu would replace the program src.apu"
+         ARGS src.apu --profile-json src-sym.apu)
+  expect(profile_json_is_hard_link RC 2 ERR "--profile-json src-hard.apu would replace the program src.apu"
+         ARGS src.apu --profile-json src-hard.apu)
+  expect_same(outputs_on_program src.apu "  halt\n")
+  file(WRITE ${WORK_DIR}/d.hex "@0 3f0000\n")
+  expect(profile_json_is_data RC 2 ERR "--profile-json d.hex would replace the data file d.hex"
+         ARGS src.apu --data d.hex --profile-json d.hex)
+  expect_same(profile_json_is_data d.hex "@0 3f0000\n")
+  foreach(side .gtkw .kpc.txt .kernel.txt)
+    expect(profile_json_is_trace${side} RC 2 ERR "--trace's side file and --profile-json name one file: x.fst${side}"
+           ARGS src.apu --engine rtl --trace x.fst --profile-json x.fst${side})
+  endforeach()
+  expect(profile_json_twice RC 2 ERR "--profile-json" ARGS src.apu --profile-json a.json --profile-json b.json)
+  expect(profile_json_no_dir RC 2 ERR "--profile-json: none/p.json: cannot open for writing" ARGS src.apu --profile-json none/p.json)
+  # A failed run (cycle limit, fault) leaves no waveform, side file or profile.
+  expect(failed_run_no_outputs RC 1 OUT "cycle limit"
+         ARGS loop.apu --engine rtl --max-cycles 100 --trace f.fst --profile-json f.json)
+  expect_absent(failed_run_no_outputs f.fst f.fst.gtkw f.fst.kpc.txt f.fst.kernel.txt f.json)
+  file(WRITE ${WORK_DIR}/fault.apu "  li a1, 4095\n  ld f1, [a1+1]\n  halt\n")
+  expect(fault_no_outputs RC 1 ARGS fault.apu --engine rtl --trace g.fst --profile-json g.json)
+  expect_absent(fault_no_outputs g.fst g.fst.gtkw g.fst.kpc.txt g.fst.kernel.txt g.json)
+  expect_stdout_full(stdout_full halt.apu)
 elseif(PROGRAM STREQUAL "apu-cosim")
   file(WRITE ${WORK_DIR}/halt.apu "  halt\n")
   expect(random_ok RC 0 OUT "3 random programs \\(seed 4\\), iss and iss agree"
@@ -155,13 +260,20 @@ elseif(PROGRAM STREQUAL "apu-cosim")
   expect(first_past_end RC 2 ERR "--first 18446744073709551615 with --random 2: the case indices pass 2\\^64 - 1"
          ARGS --random 2 --first 18446744073709551615 --engines iss,iss)
   expect(trace_no_rtl RC 2 ERR "--trace needs the rtl engine in --engines" ARGS halt.apu --engines iss,iss --trace t.fst)
-  expect(trace_no_dir RC 2 ERR "--trace: none/t.fst: cannot create a temporary file beside it"
+  expect(trace_no_dir RC 2 ERR "--trace: none/t.fst: cannot open for writing: cannot create a temporary file beside it"
          ARGS halt.apu --trace none/t.fst)
   expect(trace_rtl_rtl RC 0 OUT "rtl and rtl agree" ARGS halt.apu --engines rtl,rtl --trace t.fst)
   file(GLOB temps ${WORK_DIR}/.t.fst.*)
   if(NOT EXISTS ${WORK_DIR}/t.fst OR temps)
     message(SEND_ERROR "apu-cosim --trace t.fst: no t.fst, or temporary files left: ${temps}")
   endif()
+  expect(trace_is_program RC 2 ERR "--trace halt.apu would replace the program halt.apu" ARGS halt.apu --trace halt.apu)
+  expect_same(trace_is_program halt.apu "  halt\n")
+  file(WRITE ${WORK_DIR}/d.hex "@0 3f0000\n")
+  expect(trace_is_data RC 2 ERR "--trace ./d.hex would replace the data file d.hex" ARGS halt.apu --data d.hex --trace ./d.hex)
+  expect_same(trace_is_data d.hex "@0 3f0000\n")
+  expect_stdout_full(stdout_full halt.apu --engines iss,iss)
+  expect_stdout_full(stdout_full_random --random 2 --engines iss,iss)
 elseif(PROGRAM STREQUAL "apu-bench")
   expect(bad_engine RC 2 ERR "--engines: fpga not in" ARGS --engines iss,fpga)
   expect(cycles_too_big RC 2 ERR "--iss-cycles: '99999999999999999999' is out of range"
@@ -171,6 +283,7 @@ elseif(PROGRAM STREQUAL "apu-bench")
   file(WRITE ${WORK_DIR}/fault.apu "  li a1, 4095\n  ld f1, [a1+1]\n  halt\n")
   expect(kernel_faults RC 1 ERR "^apu-bench: APU fault data-address" ARGS --kernel fault.apu --engines iss --iss-cycles 1000)
   expect(kernel_not_image RC 2 ERR "^apu-bench: .*README.md: not an APU image" ARGS --kernel ${SRC}/README.md --engines iss)
+  expect_stdout_full(stdout_full --engines iss --iss-cycles 1000)
 elseif(PROGRAM STREQUAL "mc1-ref")
   expect(missing_scene RC 2 ERR "SCENE: none.json: No such file" ARGS none.json --out r.png)
   expect(scene_directory RC 2 ERR "SCENE: ${docs}: is a directory" ARGS ${docs} --out r.png)
@@ -188,6 +301,13 @@ elseif(PROGRAM STREQUAL "mc1-ref")
   if(NOT scene_after STREQUAL scene_before)
     message(SEND_ERROR "mc1-ref --out tiny.json replaced the scene")
   endif()
+  file(REMOVE ${WORK_DIR}/tiny-hard.json)
+  file(CREATE_LINK ${WORK_DIR}/tiny.json ${WORK_DIR}/tiny-hard.json)
+  expect(out_is_scene_hard_link RC 2 ERR "--out tiny-hard.json would replace the scene tiny.json"
+         ARGS tiny.json --out tiny-hard.json)
+  expect_same(out_is_scene_hard_link tiny.json "${scene_before}")
+  # An --out that cannot be written is found before the render, not after it.
+  expect(out_no_dir RC 2 ERR "--out: none/r.png: cannot open for writing" ARGS tiny.json --out none/r.png)
 elseif(PROGRAM STREQUAL "mc1-psnr")
   # Two PNGs made by mc1-ref (the tests run it first: FIXTURES).
   file(WRITE ${WORK_DIR}/bad.png "not a PNG\n")
@@ -208,6 +328,16 @@ elseif(PROGRAM STREQUAL "mc1-psnr")
   if(NOT png_after STREQUAL png_before)
     message(SEND_ERROR "mc1-psnr --diff tiny8.png replaced the input")
   endif()
+  file(REMOVE ${WORK_DIR}/tiny8-sym.png)
+  file(CREATE_LINK tiny8.png ${WORK_DIR}/tiny8-sym.png SYMBOLIC)
+  expect(diff_is_input_link RC 2 ERR "--diff tiny8-sym.png would replace the image tiny8.png"
+         ARGS tiny8.png tiny8.png --diff tiny8-sym.png)
+  file(SHA256 ${WORK_DIR}/tiny8.png png_after)
+  if(NOT png_after STREQUAL png_before)
+    message(SEND_ERROR "mc1-psnr --diff tiny8-sym.png replaced the input")
+  endif()
+  expect(diff_no_dir RC 2 ERR "--diff: none/d.png: cannot open for writing" ARGS tiny8.png tiny8.png --diff none/d.png)
+  expect_stdout_full(stdout_full tiny8.png tiny8.png)
 else()
   message(FATAL_ERROR "cli_test.cmake: no cases for ${PROGRAM}")
 endif()

@@ -12,6 +12,7 @@
 #include "apu_image.hpp"
 #include "apuasm.hpp"
 #include "atomic_file.hpp"
+#include "cmdline.hpp"
 
 namespace {
 
@@ -30,23 +31,12 @@ std::string default_image(const std::string& source) {
   return (has_ext ? source.substr(0, dot) : source) + ".bin";
 }
 
-// The outputs of an assembly, as (option, path): the image (named by -o or
-// after the source), the listing and the hex text when asked for.
-mc1::NamedPaths outputs(const Options& o) {
-  mc1::NamedPaths out;
-  out.emplace_back(o.image.empty() ? "-o (default)" : "-o", o.image.empty() ? default_image(o.source) : o.image);
-  if (!o.listing.empty()) out.emplace_back("-l", o.listing);
-  if (!o.hex.empty()) out.emplace_back("-x", o.hex);
-  return out;
-}
-
-// The files the assembly read besides the source: every .include'd one.
-mc1::NamedPaths included_files(const mc1::apuasm::Program& p, const std::string& source) {
+// The files the assembly read besides the source: every .include'd one,
+// added to `files`' inputs.
+void add_included_files(const mc1::apuasm::Program& p, const std::string& source, mc1::cmdline::Files& files) {
   std::set<std::string> seen{source};
-  mc1::NamedPaths out;
   for (const auto& l : p.listing)
-    if (seen.insert(l.loc.file).second) out.emplace_back("the include file", l.loc.file);
-  return out;
+    if (seen.insert(l.loc.file).second) files.add_input("the include file", l.loc.file);
 }
 
 int disassemble(const std::string& image) {
@@ -66,7 +56,7 @@ int disassemble(const std::string& image) {
 
 // Every output is staged before any is committed, so a failed one leaves none;
 // none may replace an included file (throws).
-int assemble(const Options& o) {
+int assemble(const Options& o, mc1::cmdline::Files& files) {
   mc1::apuasm::Program program;
   try {
     program = mc1::apuasm::assemble_file(o.source);
@@ -74,7 +64,8 @@ int assemble(const Options& o) {
     for (const auto& d : e.diagnostics()) std::cerr << d.str() << "\n";
     return kExitInput;
   }
-  mc1::check_distinct_files(included_files(program, o.source), outputs(o));  // main() reports it
+  add_included_files(program, o.source, files);
+  files.check(false);  // main() reports it; a write that fails is found by staging, at once
   try {
     std::vector<mc1::StagedFile> staged;
     staged.reserve(3);
@@ -89,21 +80,25 @@ int assemble(const Options& o) {
   return 0;
 }
 
-void describe(CLI::App& app, Options& o) {
+// The file options are declared in `files` (cmdline::Files), checked after parsing.
+void describe(CLI::App& app, Options& o, mc1::cmdline::Files& files) {
   app.footer(
       "No output may be the source, a file it includes or another output.\n"
       "Errors go to standard error as file:line:col: error: message.\n"
       "Exit status: 0 done, 2 usage or input error, 1 an output could not be written (none is left).");
   // The form every MC-1 program prints (host/common/cmdline.hpp), spelled
-  // out here: the assembler runs inside the build and links CLI11 alone.
+  // out here: apuasm keeps its own messages and exit statuses (see the top).
   app.set_version_flag("--version", std::string("apuasm (MC-1 virtual platform) ") + MC1_VERSION,
                        "print the version and exit");
-  auto* source = app.add_option("source", o.source, "APU assembly source (docs/apu-asm.md)")->type_name("SOURCE.apu");
-  auto* image = app.add_option("-o", o.image, "image to write (default: the source name with .bin)")->type_name("FILE");
-  auto* listing =
-      app.add_option("-l", o.listing, "also write a listing: address, 128-bit encoding, source line")->type_name("FILE");
-  auto* hex = app.add_option("-x", o.hex, "also write the image as Verilog $readmemh text (32 hex digits a word)")
-                  ->type_name("FILE");
+  auto* source = files.input(
+      app.add_option("source", o.source, "APU assembly source (docs/apu-asm.md)")->type_name("SOURCE.apu"), "the source");
+  auto* image = files.output(
+      app.add_option("-o", o.image, "image to write (default: the source name with .bin)")->type_name("FILE"));
+  auto* listing = files.output(
+      app.add_option("-l", o.listing, "also write a listing: address, 128-bit encoding, source line")->type_name("FILE"));
+  auto* hex = files.output(
+      app.add_option("-x", o.hex, "also write the image as Verilog $readmemh text (32 hex digits a word)")
+          ->type_name("FILE"));
   app.add_option("-d", o.disasm, "disassemble a binary image to standard output instead")
       ->type_name("FILE")
       ->excludes(source)
@@ -121,7 +116,8 @@ int main(int argc, char** argv) {
   mc1::remove_staged_files_on_signals();  // Ctrl-C leaves no temporary file
   CLI::App app("apuasm: assembles APU microcode into a binary image, or disassembles one.", "apuasm");
   Options o;
-  describe(app, o);
+  mc1::cmdline::Files files;
+  describe(app, o, files);
   try {
     app.parse(argc, argv);
     if (o.disasm.empty() && o.source.empty()) throw CLI::RequiredError("a source file (or -d IMAGE)");
@@ -130,8 +126,9 @@ int main(int argc, char** argv) {
   }
   try {
     if (!o.disasm.empty()) return disassemble(o.disasm);
-    mc1::check_distinct_files({{"the source", o.source}}, outputs(o));  // before anything is read or written
-    return assemble(o);
+    if (o.image.empty()) files.add_output("-o (default)", default_image(o.source));
+    files.check(false);  // before anything is read or written
+    return assemble(o, files);
   } catch (const std::exception& e) {
     std::cerr << "apuasm: " << e.what() << "\n";
     return kExitInput;

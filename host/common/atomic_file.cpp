@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <mutex>
 #include <fcntl.h>
 #include <stdexcept>
@@ -215,14 +216,34 @@ void check_writable(const std::string& path) {
   throw std::runtime_error(path + ": cannot open for writing: " + why);
 }
 
+namespace {
+
+// What same_file compares, for one path: "i" device and inode of a regular
+// file that exists, "p" the resolved path of one that does not; "" (equal
+// to nothing) for a directory, device or FIFO.
+std::string file_key(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0)
+    return S_ISREG(st.st_mode) ? "i" + std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino) : "";
+  return "p" + resolve(path);
+}
+
+}  // namespace
+
+// Each path's key once, looked up: a sweep declares thousands of outputs.
 void check_distinct_files(const NamedPaths& inputs, const NamedPaths& outputs) {
-  for (std::size_t i = 0; i < outputs.size(); ++i) {
-    const auto& [option, path] = outputs[i];
-    for (std::size_t j = 0; j < i; ++j)
-      if (same_file(path, outputs[j].second))
-        throw std::runtime_error(outputs[j].first + " and " + option + " name one file: " + path);
-    for (const auto& [role, input] : inputs)
-      if (same_file(path, input)) throw std::runtime_error(option + " " + path + " would replace " + role + " " + input);
+  std::map<std::string, const std::pair<std::string, std::string>*> read, written;
+  for (const auto& in : inputs)
+    if (std::string key = file_key(in.second); !key.empty()) read.emplace(std::move(key), &in);
+  for (const auto& out : outputs) {
+    const auto& [option, path] = out;
+    const std::string key = file_key(path);
+    if (key.empty()) continue;
+    if (const auto w = written.find(key); w != written.end())
+      throw std::runtime_error(w->second->first + " and " + option + " name one file: " + path);
+    if (const auto r = read.find(key); r != read.end())
+      throw std::runtime_error(option + " " + path + " would replace " + r->second->first + " " + r->second->second);
+    written.emplace(key, &out);
   }
 }
 

@@ -189,6 +189,57 @@ void check_writable(const NamedPaths& outputs) {
   }
 }
 
+CLI::Option* Files::input(CLI::Option* option, const std::string& role) {
+  inputs_.push_back({option, role.empty() ? option->get_name() : role, {}});
+  return option;
+}
+
+CLI::Option* Files::output(CLI::Option* option, std::vector<std::string> side_suffixes) {
+  outputs_.push_back({option, option->get_name(), std::move(side_suffixes)});
+  return option;
+}
+
+void Files::add_input(const std::string& role, const std::string& path) { more_inputs_.emplace_back(role, path); }
+
+void Files::add_output(const std::string& name, const std::string& path) { more_outputs_.emplace_back(name, path); }
+
+NamedPaths Files::inputs() const {
+  NamedPaths in;
+  for (const Declared& d : inputs_)
+    for (const std::string& path : d.option->results())
+      if (!path.empty() && path != "-") in.emplace_back(d.role, path);
+  in.insert(in.end(), more_inputs_.begin(), more_inputs_.end());
+  // A regular file redirected to standard input (a pipe or a terminal is
+  // never one): /dev/stdin stats as that file.
+  if (stdin_) in.emplace_back("standard input", "/dev/stdin");
+  return in;
+}
+
+NamedPaths Files::outputs() const {
+  NamedPaths out;
+  for (const Declared& d : outputs_)
+    for (const std::string& path : d.option->results()) {
+      out.emplace_back(d.role, path);
+      for (const std::string& suffix : d.sides) out.emplace_back(d.role + "'s side file", path + suffix);
+    }
+  out.insert(out.end(), more_outputs_.begin(), more_outputs_.end());
+  return out;
+}
+
+void Files::check(bool writable) const {
+  for (const Declared& d : outputs_) {
+    const std::vector<std::string>& given = d.option->results();
+    if (given.size() < 2) continue;
+    std::string list;
+    for (const std::string& path : given) list += (list.empty() ? "" : ", ") + path;
+    throw UsageError(d.role + " is given " + std::to_string(given.size()) + " times (" + list +
+                     "): the last would replace the others; name one file");
+  }
+  const NamedPaths out = outputs();
+  check_distinct(inputs(), out);
+  if (writable) check_writable(out);
+}
+
 int flush_stdout(const std::string& program, int status) {
   errno = 0;
   std::cout.flush();

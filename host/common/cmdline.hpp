@@ -83,6 +83,58 @@ void check_distinct(const NamedPaths& inputs, const NamedPaths& outputs);
 // option: before a run that writes its outputs at its end.
 void check_writable(const NamedPaths& outputs);
 
+// The files a program reads and writes, declared once, where its options are
+// added, and checked all together by one call after parsing (docs/reliability.md
+// "Output files"): every program uses it.
+//   cmdline::Files files;
+//   files.input(app.add_option("--vectors", o.vectors, ...), "the vectors");
+//   files.output(app.add_option("--json", o.json, ...));
+//   files.output(app.add_option("--trace", o.trace, ...), {".gtkw"});  // and TRACE.gtkw
+//   ... cmdline::parse(app, argc, argv) ...
+//   files.check();  // before anything is read or written
+// check() throws UsageError, before the run, when
+// - an output option is given more than once (the first file would be lost);
+// - two outputs name one file, a side file an output implies (an FST's
+//   TRACE.gtkw) included, or an output names an input (standard input
+//   redirected from a file included, with reads_stdin()): through symbolic
+//   and hard links (mc1::check_distinct_files);
+// - an output cannot be written (mc1::check_writable): a missing directory
+//   is found before the run, not after it.
+// An input given as "-" is standard input. Paths known only after parsing
+// (an assembly's included files, the files a sweep writes into --out-dir)
+// are added with add_input / add_output before check().
+class Files {
+ public:
+  // An option whose values name files the program reads; `role` names them
+  // in messages ("--out x.json would replace the scene x.json"); the option's
+  // name when empty.
+  CLI::Option* input(CLI::Option* option, const std::string& role = "");
+  // An option whose value names a file the program writes, and the side
+  // files it implies: the value followed by each of `side_suffixes`.
+  CLI::Option* output(CLI::Option* option, std::vector<std::string> side_suffixes = {});
+  void add_input(const std::string& role, const std::string& path);
+  void add_output(const std::string& name, const std::string& path);
+  // Standard input is read: a regular file redirected to it is an input.
+  void reads_stdin() { stdin_ = true; }
+
+  // The files given, after parsing: (role, path) and (option, path) pairs.
+  NamedPaths inputs() const;
+  NamedPaths outputs() const;
+  // The checks above; `writable` false skips the last (a program whose
+  // outputs are made before its work, so that a bad path costs nothing).
+  void check(bool writable = true) const;
+
+ private:
+  struct Declared {
+    CLI::Option* option;
+    std::string role;
+    std::vector<std::string> sides;
+  };
+  std::vector<Declared> inputs_, outputs_;
+  NamedPaths more_inputs_, more_outputs_;
+  bool stdin_ = false;
+};
+
 // The exit status once standard output is flushed: `status`, or
 // kExitFailed, said on stderr as "PROGRAM: standard output: reason", when a
 // write to it failed (`> /dev/full`): a report printed there is the output.

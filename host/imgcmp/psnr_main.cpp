@@ -25,9 +25,15 @@ struct Options {
   int max_cluster = 0;
 };
 
-void add_options(CLI::App& app, Options& o) {
-  app.add_option("FILES", o.files, "the two PNG files A.png B.png")->required()->expected(2)->check(cli::input_file());
-  app.add_option("--diff", o.diff_path, "write the difference image min(255, K |a - b|) to FILE")->type_name("FILE");
+// The file options are declared in `files` (cmdline::Files), checked after parsing.
+void add_options(CLI::App& app, Options& o, cli::Files& files) {
+  files.input(app.add_option("FILES", o.files, "the two PNG files A.png B.png")
+                  ->required()
+                  ->expected(2)
+                  ->check(cli::input_file()),
+              "the image");
+  files.output(app.add_option("--diff", o.diff_path, "write the difference image min(255, K |a - b|) to FILE")
+                   ->type_name("FILE"));
   app.add_option("--scale", o.scale, "K, the difference image's gain")
       ->transform(cli::unsigned_in(1, 255))
       ->capture_default_str();
@@ -58,10 +64,11 @@ int main(int argc, char** argv) {
                    "could not be written;\n"
                    "2 usage or input error (a missing, unreadable or bad PNG file).");
   Options o;
-  add_options(app, o);
+  cli::Files files;
+  add_options(app, o, files);
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
   try {
-    if (!o.diff_path.empty()) cli::check_distinct({{"the image", o.files[0]}, {"the image", o.files[1]}}, {{"--diff", o.diff_path}});
+    files.check();
   } catch (const cli::UsageError& e) {
     return cli::usage_error(app, e.what());
   }

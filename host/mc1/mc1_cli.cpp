@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <system_error>
 
 #include "mc1_engines.hpp"
@@ -38,8 +39,15 @@ CLI::Option* flag_option(CLI::App& cmd, const std::string& name, const std::stri
   return cmd.add_flag("--" + name, help);
 }
 
+cmdline::Files& files(const CLI::App& cmd) {
+  static std::map<const CLI::App*, cmdline::Files> commands;  // the main thread's, while parsing and before the run
+  return commands[&cmd];
+}
+
 void add_param_options(CLI::App& cmd) {
-  list_option(cmd, "params", "FILE", "timing table file (docs/timing.md); repeatable, in order with --param");
+  files(cmd).input(
+      list_option(cmd, "params", "FILE", "timing table file (docs/timing.md); repeatable, in order with --param"),
+      "the timing table");
   list_option(cmd, "param", "key=value", "one timing figure; repeatable, in order with --params");
 }
 
@@ -184,10 +192,11 @@ void fault_options(const Parsed& a, SystemConfig& cfg) {
 }
 
 void add_report_options(CLI::App& cmd) {
-  value_option(cmd, "out", "FILE.png", "write the frame memory as PNG");
-  value_option(cmd, "stats", "FILE.json", "write statistics (docs/platform.md \"Statistics\")");
-  value_option(cmd, "gantt", "FILE.svg", "write the activity chart of every NC and the RC's dispatches");
-  value_option(cmd, "vcd", "FILE.vcd", "trace platform signals (HDLC line busy, image-bus grant/owner)");
+  cmdline::Files& f = files(cmd);
+  f.output(value_option(cmd, "out", "FILE.png", "write the frame memory as PNG"));
+  f.output(value_option(cmd, "stats", "FILE.json", "write statistics (docs/platform.md \"Statistics\")"));
+  f.output(value_option(cmd, "gantt", "FILE.svg", "write the activity chart of every NC and the RC's dispatches"));
+  f.output(value_option(cmd, "vcd", "FILE.vcd", "trace platform signals (HDLC line busy, image-bus grant/owner)"));
 }
 
 void add_threads_option(CLI::App& cmd) {
@@ -226,19 +235,6 @@ std::string stage_vcd(const Parsed& a, Outputs& out) {
   std::string temp = f.temp();
   out.add(std::move(f));
   return temp;
-}
-
-NamedPaths report_outputs(const Parsed& a) {
-  NamedPaths out;
-  for (const char* name : {"out", "stats", "gantt", "vcd"})
-    if (a.has(name)) out.emplace_back(std::string("--") + name, a.get(name));
-  return out;
-}
-
-NamedPaths params_inputs(const Parsed& a) {
-  NamedPaths in;
-  for (const std::string& f : a.all("params")) in.emplace_back("the timing table", f);
-  return in;
 }
 
 void Outputs::commit() {

@@ -26,6 +26,13 @@ CLI::Option* value_option(CLI::App& cmd, const std::string& name, const std::str
 // --name VALUE, repeatable: every value, in the order given.
 CLI::Option* list_option(CLI::App& cmd, const std::string& name, const std::string& type, const std::string& help);
 CLI::Option* flag_option(CLI::App& cmd, const std::string& name, const std::string& help);
+// The files a command reads and writes (cmdline::Files), declared with its
+// options: files(cmd).input(value_option(...)), .output(...). run_command
+// checks them all before the command runs (an output on an input or on
+// another output, an output given twice, one that cannot be written); a
+// command that learns more paths later (mc1 sweep's points) adds them and
+// checks again.
+cmdline::Files& files(const CLI::App& cmd);
 // --params FILE and --param key=value, both repeatable.
 void add_param_options(CLI::App& cmd);
 // The default scene of bench-render and sweep, scenes/whitted.json: the
@@ -67,7 +74,7 @@ CutLine parse_cut_line(const std::string& text);
 void add_fault_options(CLI::App& cmd);
 // Reads them into cfg, the NCs named checked against cfg.nodes.
 void fault_options(const Parsed& a, SystemConfig& cfg);
-// The files a frame command writes: --out, --stats, --gantt, --vcd.
+// The files a frame command writes: --out, --stats, --gantt, --vcd (outputs in files(cmd)).
 void add_report_options(CLI::App& cmd);
 // --threads N (SystemConfig::threads).
 void add_threads_option(CLI::App& cmd);
@@ -99,12 +106,6 @@ using cmdline::writer_output;
 // --vcd's file, if given, staged in `out`: the path SystemC is to write
 // during the run, or "".
 std::string stage_vcd(const Parsed& a, Outputs& out);
-using cmdline::NamedPaths;
-using cmdline::check_distinct;
-// The files that the report options (add_report_options) given name, and
-// the --params files as inputs.
-NamedPaths report_outputs(const Parsed& a);
-NamedPaths params_inputs(const Parsed& a);
 
 // The summary's lines on injected faults and the links the RC found down.
 void print_faults(const FrameReport& r);

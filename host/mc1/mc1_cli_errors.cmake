@@ -75,9 +75,9 @@ expect(gantt_is_params 2 "--gantt ${WORK_DIR}/w4.params would replace the timing
        render ${tiny} --params ${WORK_DIR}/w4.params --gantt ${WORK_DIR}/w4.params)
 expect(vcd_is_stats 2 "mc1 diag: --stats and --vcd name one file" diag --nodes 2 --vcd ${WORK_DIR}/d.vcd
        --stats ${WORK_DIR}/d.vcd)
-expect(trace_is_dir 2 "--trace: ${WORK_DIR}: is a directory" render ${tiny} --trace ${WORK_DIR})
+expect(trace_is_dir 2 "--trace: ${WORK_DIR}: cannot open for writing: is a directory" render ${tiny} --trace ${WORK_DIR})
 expect(vcd_is_device 2 "--vcd: /dev/null: is not a regular file" render ${tiny} --vcd /dev/null)
-expect(trace_no_dir 2 "--trace: ${WORK_DIR}/none/t.fst: cannot create a temporary file beside it"
+expect(trace_no_dir 2 "--trace: ${WORK_DIR}/none/t.fst: cannot open for writing: cannot create a temporary file beside it"
        render ${tiny} --trace ${WORK_DIR}/none/t.fst)
 foreach(f x.png d.vcd)
   if(EXISTS ${WORK_DIR}/${f})
@@ -114,6 +114,64 @@ execute_process(COMMAND ${MC1} params OUTPUT_FILE /dev/full ERROR_VARIABLE err R
 if(NOT rc EQUAL 1 OR NOT err MATCHES "^mc1 params: standard output: No space left on device")
   message(SEND_ERROR "case params_stdout_full: exit ${rc}, ${err}")
 endif()
+
+# Every file option of every command in one check (cmdline::Files): a side
+# file of the trace is an output too; an output given twice is refused (the
+# first would be lost); sweep's --json, --out-dir and points, and --merge's
+# reports, through links. Exit 2 before anything runs, nothing written.
+expect(stats_is_trace_side 2 "--stats and --trace's side file name one file: ${WORK_DIR}/a\\.fst\\.kpc\\.txt"
+       render ${tiny} --trace ${WORK_DIR}/a.fst --stats ${WORK_DIR}/a.fst.kpc.txt)
+expect(gantt_is_trace_gtkw 2 "--gantt and --trace's side file name one file: ${WORK_DIR}/a\\.fst\\.gtkw"
+       render ${tiny} --gantt ${WORK_DIR}/a.fst.gtkw --trace ${WORK_DIR}/a.fst)
+expect(profile_twice 2 "--profile is given 2 times" render ${tiny} --profile ${WORK_DIR}/p.md --profile ${WORK_DIR}/p.json)
+expect(stats_twice 2 "--stats is given 2 times" diag --nodes 2 --stats ${WORK_DIR}/s1.json --stats ${WORK_DIR}/s2.json)
+expect(bench_json_is_params 2 "--json ${WORK_DIR}/w4.params would replace the timing table"
+       bench --params ${WORK_DIR}/w4.params --json ${WORK_DIR}/w4.params)
+foreach(f a.fst a.fst.kpc.txt a.fst.gtkw p.md p.json s1.json s2.json)
+  if(EXISTS ${WORK_DIR}/${f})
+    message(SEND_ERROR "an output of a refused command was written: ${f}")
+  endif()
+endforeach()
+set(sweep sweep --scene ${WORK_DIR}/tiny.json --size 8x8 --nodes 2 --quiet)
+expect(sweep_json_is_scene 2 "--json ${WORK_DIR}/tiny.json would replace the scene ${WORK_DIR}/tiny.json"
+       ${sweep} --json ${WORK_DIR}/tiny.json)
+file(REMOVE ${WORK_DIR}/tiny-link.json)
+file(CREATE_LINK tiny.json ${WORK_DIR}/tiny-link.json SYMBOLIC)
+expect(sweep_json_is_scene_link 2 "--json ${WORK_DIR}/tiny-link.json would replace the scene"
+       ${sweep} --json ${WORK_DIR}/tiny-link.json)
+file(READ ${WORK_DIR}/tiny.json scene_after)
+if(NOT scene_after STREQUAL scene_before)
+  message(SEND_ERROR "case sweep_json_is_scene: the scene was replaced")
+endif()
+file(MAKE_DIRECTORY ${WORK_DIR}/sw)
+expect(sweep_json_is_point_png 2 "--json and --out-dir \\(--png frame\\) name one file: ${WORK_DIR}/sw/point-0000\\.png"
+       ${sweep} --out-dir ${WORK_DIR}/sw --png --json ${WORK_DIR}/sw/point-0000.png)
+expect(sweep_json_no_dir 2 "--json: ${WORK_DIR}/none/r.json: cannot open for writing"
+       ${sweep} --out-dir ${WORK_DIR}/sw --json ${WORK_DIR}/none/r.json)
+expect(sweep_out_dir_missing 2 "--out-dir \\(point statistics\\): ${WORK_DIR}/none/point-0000\\.json: cannot open for writing"
+       ${sweep} --out-dir ${WORK_DIR}/none)
+# A sweep that fails part way (the second scene is bad) leaves none of its files.
+file(WRITE ${WORK_DIR}/bad.json "{\"camera\": ")
+expect(sweep_fails 2 "bad\\.json" ${sweep} --scene ${WORK_DIR}/bad.json --out-dir ${WORK_DIR}/sw --png
+       --json ${WORK_DIR}/sw/r.json)
+file(GLOB written ${WORK_DIR}/sw/*)
+if(written)
+  message(SEND_ERROR "case sweep_fails: files of the failed sweep left: ${written}")
+endif()
+# --merge: the merged report on a shard's report, directly or through a link.
+expect(sweep_one 0 "" ${sweep} --out-dir ${WORK_DIR}/sw --json ${WORK_DIR}/sw/r.json)
+file(READ ${WORK_DIR}/sw/r.json report_before)
+file(REMOVE ${WORK_DIR}/sw/r-link.json)
+file(CREATE_LINK r.json ${WORK_DIR}/sw/r-link.json SYMBOLIC)
+expect(merge_json_is_report 2 "--json ${WORK_DIR}/sw/r.json would replace the report ${WORK_DIR}/sw/r.json"
+       sweep --merge ${WORK_DIR}/sw/r.json --json ${WORK_DIR}/sw/r.json)
+expect(merge_json_is_report_link 2 "--json ${WORK_DIR}/sw/r-link.json would replace the report"
+       sweep --merge ${WORK_DIR}/sw/r.json --json ${WORK_DIR}/sw/r-link.json)
+file(READ ${WORK_DIR}/sw/r.json report_after)
+if(NOT report_after STREQUAL report_before)
+  message(SEND_ERROR "case merge_json_is_report: the shard's report was replaced")
+endif()
+file(REMOVE_RECURSE ${WORK_DIR}/sw)
 
 file(GLOB leftovers ${WORK_DIR}/.*)
 if(leftovers)

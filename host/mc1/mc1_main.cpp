@@ -65,7 +65,8 @@ void add_diag_options(CLI::App& cmd) {
   cli::value_option(cmd, "nodes", "N", "node computers, 1..4096 (default 4)");
   add_frame_options(cmd, "block size (default 16; rows of at most 1024 pixels)");
   cli::add_fault_options(cmd);
-  cli::value_option(cmd, "kernel", "FILE", "APU image to broadcast instead of the built-in diag.bin");
+  cli::files(cmd).input(
+      cli::value_option(cmd, "kernel", "FILE", "APU image to broadcast instead of the built-in diag.bin"), "the kernel");
   cli::add_report_options(cmd);
   cli::flag_option(cmd, "quiet", "print nothing but errors");
 }
@@ -73,7 +74,7 @@ void add_diag_options(CLI::App& cmd) {
 void add_bench_options(CLI::App& cmd) {
   cli::value_option(cmd, "nodes", "LIST", "node counts (default 16,256)");
   add_frame_options(cmd, "block size (default 16)");
-  cli::value_option(cmd, "json", "FILE", "also write the figures as JSON");
+  cli::files(cmd).output(cli::value_option(cmd, "json", "FILE", "also write the figures as JSON"));
 }
 
 using cli::parse_engine;
@@ -138,12 +139,9 @@ int cmd_diag(const CLI::App& cmd) {
   const std::vector<apu::Encoded> program =
       a.has("kernel") ? kernel_image(a.get("kernel")) : diag::kernel();
 
-  cli::NamedPaths inputs = cli::params_inputs(a);
-  if (a.has("kernel")) inputs.emplace_back("the kernel", a.get("kernel"));
-  cli::check_distinct(inputs, cli::report_outputs(a));
+  // The outputs were checked before the command ran (run_command).
   cli::Outputs out;  // the VCD's writer writes under a temporary name during the run
   const std::string vcd = cli::stage_vcd(a, out);
-  cmdline::check_writable(cli::report_outputs(a));  // before the run, not after it
 
   const FrameReport r = run_frame(cfg, program, diag::nc_main, vcd);
   const Check c = compare(r);
@@ -261,6 +259,9 @@ int run_command(const CLI::App& app, const CLI::App& cmd) {
     std::cout << subs.front()->help();
     return cmdline::kExitOk;
   }
+  // Every file option of the command at once: no output on an input or on
+  // another output, none given twice, each writable (cmdline::Files).
+  cli::files(cmd).check();
   if (name == "diag") return cmd_diag(cmd);
   if (name == "render") return cli::cmd_render(cmd);
   if (name == "bench-render") return cli::cmd_bench_render(cmd);

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <thread>
 
+#include "apu_trace_files.hpp"
 #include "image.hpp"
 #include "json.hpp"
 #include "cmdline.hpp"
@@ -55,8 +56,9 @@ const char* const kBenchRenderDescription =
     "must equal the first run's of its size bit for bit.";
 
 void add_render_options(CLI::App& cmd) {
-  cmd.add_option("SCENE", "the scene file (or --scene FILE)")->type_name("FILE");
-  value_option(cmd, "scene", "FILE", "the scene file, instead of SCENE");
+  cmdline::Files& f = files(cmd);
+  f.input(cmd.add_option("SCENE", "the scene file (or --scene FILE)")->type_name("FILE"), "the scene");
+  f.input(value_option(cmd, "scene", "FILE", "the scene file, instead of SCENE"), "the scene");
   value_option(cmd, "nodes", "N", "node computers, 1..4096 (default 16)");
   value_option(cmd, "size", "WxH", "frame size (default: the scene's camera size)");
   value_option(cmd, "block", "B|WxH", "block size (default 16)");
@@ -71,27 +73,28 @@ void add_render_options(CLI::App& cmd) {
   add_fault_options(cmd);
   add_param_options(cmd);
   add_report_options(cmd);
-  value_option(cmd, "profile", "FILE.md|FILE.json",
+  f.output(value_option(cmd, "profile", "FILE.md|FILE.json",
                "FILE.md: the timing evaluation, per step and per kernel APU cycles, issue, bank stalls, MPU cycles "
                "(docs/renderer.md \"Timing\"); FILE.json: the stall "
                "profile per kernel and pc, over NCs and per NC (schema apu-profile/2, docs/apu-tools.md), its "
-               "summary on stdout");
-  value_option(cmd, "trace", "FILE.fst",
-               "APU waveform of NC --trace-node (that NC runs the RTL core) on simulated time; also FILE.fst.gtkw "
-               "(the save file), .kpc.txt, .kernel.txt and .<enum>.txt (translate filters)");
+               "summary on stdout"));
+  f.output(value_option(cmd, "trace", "FILE.fst",
+                        "APU waveform of NC --trace-node (that NC runs the RTL core) on simulated time; also "
+                        "FILE.fst.gtkw (the save file), .kpc.txt, .kernel.txt and .<enum>.txt (translate filters)"),
+           apu::trace_side_suffixes());
   value_option(cmd, "trace-node", "K", "the NC to trace (default 1)");
   value_option(cmd, "trace-from", "TIME", "the waveform starts at simulated TIME (12.5ms, 300us, ...; bare: ms)");
   value_option(cmd, "trace-to", "TIME", "the waveform ends at simulated TIME");
   flag_option(cmd, "ref",
               "also render the double-precision reference (mc1-ref) at the same size and print the PSNR of the "
               "frame against it");
-  value_option(cmd, "diff", "FILE.png", "with --ref: the difference image, |frame - reference| x 8");
+  f.output(value_option(cmd, "diff", "FILE.png", "with --ref: the difference image, |frame - reference| x 8"));
   value_option(cmd, "min-psnr", "DB", "with --ref: exit status 1 when the PSNR is below DB");
   flag_option(cmd, "quiet", "print nothing but errors (no progress bar)");
 }
 
 void add_bench_render_options(CLI::App& cmd) {
-  value_option(cmd, "scene", "FILE", "(default: " + default_scene() + ")");
+  files(cmd).input(value_option(cmd, "scene", "FILE", "(default: " + default_scene() + ")"), "the scene");
   value_option(cmd, "size", "WxH", "(default 256x256)");
   value_option(cmd, "nodes", "LIST", "(default 1,4,16,64)");
   value_option(cmd, "static-nodes", "N", "(default 16)");
@@ -105,7 +108,7 @@ void add_bench_render_options(CLI::App& cmd) {
                "host's load only ever adds)");
   add_threads_option(cmd);
   add_param_options(cmd);
-  value_option(cmd, "json", "FILE", "also write the figures as JSON");
+  files(cmd).output(value_option(cmd, "json", "FILE", "also write the figures as JSON"));
 }
 
 namespace {
@@ -271,25 +274,17 @@ int compare_to_reference(const RenderJob& job, const FrameReport& r, const std::
   return 0;
 }
 
-// Before the run: no output names an input or another output, and each can
-// be written; --trace's FST and --vcd's VCD staged in `out` (their writers
-// write the temporary files: cfg.trace_path, and the VCD path returned, ""
-// without --vcd).
-std::string stage_writers(const Parsed& a, const RenderJob& job, SystemConfig& cfg, Outputs& out) {
-  NamedPaths outputs = report_outputs(a);
-  for (const char* name : {"profile", "diff", "trace"})
-    if (a.has(name)) outputs.emplace_back(std::string("--") + name, a.get(name));
-  NamedPaths inputs = params_inputs(a);
-  inputs.emplace_back("the scene", job.scene);
-  check_distinct(inputs, outputs);
+// Before the run (the outputs were checked against the inputs and each
+// other before the command ran: run_command): --trace's FST and --vcd's VCD
+// staged in `out` (their writers write the temporary files: cfg.trace_path,
+// and the VCD path returned, "" without --vcd).
+std::string stage_writers(const Parsed& a, SystemConfig& cfg, Outputs& out) {
   if (a.has("trace")) {
     StagedFile fst = writer_output("--trace", a.get("trace"));
     cfg.trace_path = fst.temp();
     out.add(std::move(fst));
   }
-  std::string vcd = stage_vcd(a, out);
-  cmdline::check_writable(outputs);  // before the run, not after it
-  return vcd;
+  return stage_vcd(a, out);
 }
 
 }  // namespace
@@ -326,7 +321,7 @@ int cmd_render(const CLI::App& cmd) {
   // write that fails leaves none of them; a failed check still leaves them.
   // The waveforms' writers write under a temporary name during the run.
   Outputs out;
-  const std::string vcd = stage_writers(a, job, cfg, out);
+  const std::string vcd = stage_writers(a, cfg, out);
 
   RenderRun run;
   {

@@ -29,7 +29,9 @@ const char* const kSweepDescription =
     "Exit 0 when every frame is complete and equal, 1 if not, 2 on a usage error or a bad report.";
 
 void add_sweep_options(CLI::App& cmd) {
-  list_option(cmd, "scene", "FILE", "a scene of the grid; repeatable (default " + default_scene() + ")");
+  cmdline::Files& f = files(cmd);
+  f.input(list_option(cmd, "scene", "FILE", "a scene of the grid; repeatable (default " + default_scene() + ")"),
+          "the scene");
   value_option(cmd, "nodes", "LIST", "node counts (default 16)");
   value_option(cmd, "schedules", "LIST", "schedules: lpt, fifo, static (default lpt)");
   value_option(cmd, "blocks", "LIST", "block sizes B or WxH (default 16)");
@@ -43,12 +45,13 @@ void add_sweep_options(CLI::App& cmd) {
   value_option(cmd, "shard", "K/N", "run slice K of N of the points (default 1/1)");
   value_option(cmd, "out-dir", "DIR", "write point-I.json (statistics) there (default: .)");
   flag_option(cmd, "png", "also write each point's frame as point-I.png");
-  value_option(cmd, "json", "FILE", "the report of the points run, or with --merge the merged report");
-  cmd.add_option("--merge", "merge the --json reports of shards 1..N of one grid (nothing is run)")
-      ->type_name("REPORT.json ...")
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->allow_extra_args(true)
-      ->expected(1, CLI::detail::expected_max_vector_size);
+  f.output(value_option(cmd, "json", "FILE", "the report of the points run, or with --merge the merged report"));
+  f.input(cmd.add_option("--merge", "merge the --json reports of shards 1..N of one grid (nothing is run)")
+              ->type_name("REPORT.json ...")
+              ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+              ->allow_extra_args(true)
+              ->expected(1, CLI::detail::expected_max_vector_size),
+          "the report");
   flag_option(cmd, "list", "print the grid's points (of the shard) and run nothing");
   flag_option(cmd, "quiet", "print nothing but errors");
 }
@@ -196,6 +199,42 @@ int list_points(const Parsed& a, const Grid& g, std::uint64_t first, std::uint64
   return 0;
 }
 
+// "point-0007": the files of point i are this name .json and .png.
+std::string point_name(std::uint64_t i) {
+  char name[32];
+  std::snprintf(name, sizeof name, "point-%04llu", static_cast<unsigned long long>(i));
+  return name;
+}
+
+// Before the run: the files the points [first, end) write into `dir`, and
+// the default scene, added to the command's files and all checked (no
+// output on a scene, a timing table or another output; each writable), so
+// that a bad --out-dir or --json stops the sweep before point 0.
+void check_sweep_files(const CLI::App& cmd, const Parsed& a, const std::string& dir, std::uint64_t first,
+                       std::uint64_t end) {
+  cmdline::Files& f = files(cmd);
+  if (!a.has("scene")) f.add_input("the scene", default_scene());
+  for (std::uint64_t i = first; i < end; ++i) {
+    f.add_output("--out-dir (point statistics)", dir + "/" + point_name(i) + ".json");
+    if (a.has("png")) f.add_output("--out-dir (--png frame)", dir + "/" + point_name(i) + ".png");
+  }
+  f.check();
+}
+
+// One point's entry of the report.
+std::string point_json(const Grid& g, const Point& p, const FrameReport& r, bool complete) {
+  std::ostringstream s;
+  s << "    {\"index\": " << p.index << ", \"scene\": " << quote(p.scene) << ", \"frame\": " << p.frame
+    << ", \"orbit_deg\": " << num(orbit_deg(g, p.frame)) << ", \"nodes\": " << p.nodes
+    << ", \"schedule\": " << quote(rc::schedule_name(p.schedule)) << ", \"block\": " << quote(block_name(p.block))
+    << ", \"width\": " << r.width << ", \"height\": " << r.height << ", \"simulated_time_ps\": " << r.frame_time
+    << ", \"download_done_ps\": " << milestone_time(r, "downloaded")
+    << ", \"apu_utilization\": " << num(apu_utilization_mean(r)) << ", \"complete\": " << (complete ? "true" : "false")
+    << ", \"image_fnv1a\": " << quote(image_hash(r.rgb)) << ", \"stats\": " << quote(point_name(p.index) + ".json")
+    << ", \"host_seconds\": " << num(r.host_seconds) << "}";
+  return s.str();
+}
+
 int run_sweep(const CLI::App& cmd, const Parsed& a) {
   SystemConfig base = machine_config();
   apply_params(cmd, base.timing);
@@ -207,7 +246,11 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
   const std::string dir = a.get("out-dir", ".");
   const bool quiet = a.has("quiet");
   if (a.has("list")) return list_points(a, g, first, end);
+  check_sweep_files(cmd, a, dir, first, end);
   const auto t0 = std::chrono::steady_clock::now();
+  // Every point's files and the report staged, and renamed into place
+  // together at the end: a sweep that fails part way leaves none of them.
+  Outputs out;
   std::ostringstream points;
   bool passed = true, any = false;
   for (std::uint64_t i = first; i < end; ++i) {
@@ -225,22 +268,10 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
     const FrameReport r = run_render(job, cfg).report;
     const bool complete = r.fm_pixels_written == std::uint64_t{r.width} * r.height;
     passed = passed && complete;
-    char name[32];
-    std::snprintf(name, sizeof name, "point-%04llu", static_cast<unsigned long long>(i));
-    Outputs out;
+    const std::string name = point_name(i);
     out.add(dir + "/" + name + ".json", stats_json(r));
     if (a.has("png")) out.add(dir + "/" + name + ".png", encode_png_rgb8(r.width, r.height, r.rgb.data()));
-    out.commit();
-    points << (i > first ? ",\n" : "") << "    {\"index\": " << i << ", \"scene\": " << quote(p.scene)
-           << ", \"frame\": " << p.frame << ", \"orbit_deg\": " << num(orbit_deg(g, p.frame))
-           << ", \"nodes\": " << p.nodes << ", \"schedule\": " << quote(rc::schedule_name(p.schedule))
-           << ", \"block\": " << quote(block_name(p.block)) << ", \"width\": " << r.width
-           << ", \"height\": " << r.height << ", \"simulated_time_ps\": " << r.frame_time
-           << ", \"download_done_ps\": " << milestone_time(r, "downloaded")
-           << ", \"apu_utilization\": " << num(apu_utilization_mean(r)) << ", \"complete\": "
-           << (complete ? "true" : "false") << ", \"image_fnv1a\": " << quote(image_hash(r.rgb))
-           << ", \"stats\": " << quote(std::string(name) + ".json") << ", \"host_seconds\": " << num(r.host_seconds)
-           << "}";
+    points << (i > first ? ",\n" : "") << point_json(g, p, r, complete);
     if (!quiet)
       std::printf("point %llu/%llu: %s frame %u, %u NCs, %s, blocks %s: %.3f ms simulated, %.2f s host%s (%s)\n",
                   static_cast<unsigned long long>(i), static_cast<unsigned long long>(g.points()),
@@ -256,7 +287,8 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
     << (base.threads ? base.threads : nc::ApuPool::default_threads()) << ",\n  \"wall_seconds\": " << num(wall)
     << ",\n  \"points\": [\n"
     << points.str() << (end > first ? "\n" : "") << "  ],\n  \"passed\": " << (passed ? "true" : "false") << "\n}\n";
-  if (a.has("json")) write_file_atomically(a.get("json"), j.str());
+  if (a.has("json")) out.add(a.get("json"), j.str());
+  out.commit();
   return passed ? cmdline::kExitOk : cmdline::kExitFailed;
 }
 

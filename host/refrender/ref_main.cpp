@@ -28,10 +28,14 @@ void parse_size(Options& o) {
   o.height = static_cast<int>(cli::parse_unsigned("--size " + o.size, o.size.substr(x + 1), 1, kMaxSide));
 }
 
-void add_options(CLI::App& app, Options& o) {
-  app.add_option("SCENE", o.scene_path, "the scene (JSON, docs/scene-format.md)")->required()->check(cli::input_file());
+// The file options are declared in `files` (cmdline::Files), checked after parsing.
+void add_options(CLI::App& app, Options& o, cli::Files& files) {
+  files.input(app.add_option("SCENE", o.scene_path, "the scene (JSON, docs/scene-format.md)")
+                  ->required()
+                  ->check(cli::input_file()),
+              "the scene");
   app.add_option("--size", o.size, "image size instead of the camera's (each side 1 to 8192)")->type_name("WxH");
-  app.add_option("--out", o.out_path, "the PNG to write")->required()->type_name("FILE");
+  files.output(app.add_option("--out", o.out_path, "the PNG to write")->required()->type_name("FILE"));
 }
 
 // Rows done on a terminal, at most ten times a second: "  [####....]
@@ -73,12 +77,13 @@ int main(int argc, char** argv) {
                    "Exit status: 0 done; 1 the PNG could not be written; 2 usage or input error (a missing\n"
                    "or bad scene file).");
   Options o;
-  add_options(app, o);
+  cli::Files files;
+  add_options(app, o, files);
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
   mc1::scene::Scene scene;
   try {
     if (!o.size.empty()) parse_size(o);
-    cli::check_distinct({{"the scene", o.scene_path}}, {{"--out", o.out_path}});
+    files.check();  // --out not the scene, and writable: before the render, not after it
     scene = mc1::scene::load_scene(o.scene_path);
   } catch (const cli::UsageError& e) {
     return cli::usage_error(app, e.what());

@@ -51,16 +51,21 @@ std::pair<std::uint16_t, std::uint16_t> parse_read(const std::string& text) {
   return {static_cast<std::uint16_t>(addr), static_cast<std::uint16_t>(n)};
 }
 
-void add_options(CLI::App& app, Options& o) {
-  tools::add_program_option(app, o.program)->required();
+// Every file option is declared in `files` (cmdline::Files), checked after parsing.
+void add_options(CLI::App& app, Options& o, cli::Files& files) {
+  files.input(tools::add_program_option(app, o.program)->required(), "the program");
   app.add_option("--engine", o.engine, "the engine")
       ->check(CLI::IsMember(tools::engine_names()))
       ->capture_default_str();
-  tools::add_data_option(app, o.data);
-  app.add_option("--trace", o.trace, "rtl only: write an FST waveform of the core to FILE")->type_name("FILE");
+  files.input(tools::add_data_option(app, o.data), "the data file");
+  files.output(app.add_option("--trace", o.trace,
+                              "rtl only: write an FST waveform of the core to FILE, and its GTKWave\n"
+                              "save file and filters beside it (FILE.gtkw, FILE.kpc.txt, ...)")
+                   ->type_name("FILE"),
+               trace_side_suffixes());
   app.add_flag("--profile", o.profile, "print the cycle profile");
-  app.add_option("--profile-json", o.profile_json, "also write the profile as JSON to FILE (docs/apu-tools.md)")
-      ->type_name("FILE");
+  files.output(app.add_option("--profile-json", o.profile_json, "also write the profile as JSON to FILE (docs/apu-tools.md)")
+                   ->type_name("FILE"));
   app.add_option("--top", o.top, "stalling words the profile lists")
       ->transform(cli::unsigned_in(0, 2 * kProgramWords))
       ->capture_default_str();
@@ -109,14 +114,17 @@ bool output_ok(const std::string& option, Put put) {
   }
 }
 
-// An output file written whole; false, said on stderr, when it could not be.
-bool write_output(const std::string& option, const std::string& path, const std::string& text) {
-  return output_ok(option, [&] { mc1::write_file_atomically(path, text); });
+// An output file staged in `out`, to be committed with the others once the
+// run has succeeded; false, said on stderr, when it could not be written.
+bool stage_output(std::vector<mc1::StagedFile>& out, const std::string& option, const std::string& path,
+                  const std::string& text) {
+  return output_ok(option, [&] { out.emplace_back(path, text); });
 }
 
 // fst: the file the RTL engine writes --trace's waveform to (its staged
-// temporary; "" without --trace).
-int run(const Options& o, const std::string& fst) {
+// temporary; "" without --trace). The outputs are staged in `out`: a run
+// that fails leaves none of them.
+int run(const Options& o, const std::string& fst, std::vector<mc1::StagedFile>& out) {
   const std::vector<Encoded> words = tools::load_program_file(o.program);
   auto engine = tools::make_engine(o.engine, fst.empty() ? nullptr : fst.c_str());
   ApuDriver drv(*engine);
@@ -172,7 +180,7 @@ int run(const Options& o, const std::string& fst) {
   if (!o.trace.empty()) {
     const std::string markers = stalls.nc_totals(1).cycles ? stalls.gtkw_markers(kernels, 1, 26) : "";
     for (const auto& [path, text] : trace_side_files(o.trace, kernels, markers, "apu-run --trace"))
-      if (!write_output("--trace", path, text)) rc = 1;
+      if (!stage_output(out, "--trace", path, text)) rc = 1;
   }
   if (profile && o.profile) std::cout << profile->report(o.top);
   if (profile && !o.profile_json.empty()) {
@@ -180,7 +188,7 @@ int run(const Options& o, const std::string& fst) {
     for (int u = 0; u < kFpUnits; ++u)
       extra += std::string(u ? ", " : "") + "\"" + unit_name(u) + "\": " + std::to_string(profile->unit_ops(u));
     extra += "}";
-    if (!write_output("--profile-json", o.profile_json, stalls.json(kernels, "apu-run", extra))) rc = 1;
+    if (!stage_output(out, "--profile-json", o.profile_json, stalls.json(kernels, "apu-run", extra))) rc = 1;
   }
   return rc;
 }
@@ -191,17 +199,22 @@ int main(int argc, char** argv) {
   CLI::App app{kDescription, "apu-run"};
   cli::conventions(app, "Exit status: 0 halted; 1 fault or cycle limit; 2 usage or input error.");
   Options o;
-  add_options(app, o);
+  cli::Files files;
+  add_options(app, o, files);
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
   try {
     check_options(o);
+    files.check();  // no output on an input or another output; each writable
     // The waveform is staged: the engine writes it under a temporary name,
-    // put in place once the engine has closed it (run() returned).
+    // put in place with the other outputs once the engine has closed it
+    // (run() returned), and only if the run succeeded.
     std::optional<mc1::StagedFile> fst;
     if (!o.trace.empty()) fst.emplace(cli::writer_output("--trace", o.trace));
-    int rc = run(o, fst ? fst->temp() : "");
-    if (fst && !output_ok("--trace", [&] { fst->commit(); })) rc = 1;
-    return rc;
+    std::vector<mc1::StagedFile> out;
+    int rc = run(o, fst ? fst->temp() : "", out);
+    if (rc == 0 && fst) out.push_back(std::move(*fst));
+    if (rc == 0 && !output_ok("the outputs", [&] { for (mc1::StagedFile& f : out) f.commit(); })) rc = 1;
+    return cli::flush_stdout("apu-run", rc);
   } catch (const cli::UsageError& e) {
     return cli::usage_error(app, e.what());
   } catch (const std::exception& ex) {

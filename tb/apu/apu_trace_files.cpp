@@ -67,17 +67,30 @@ std::string trace_save_file(const std::string& trace, const std::string& kpc_fil
   return out;
 }
 
+std::vector<std::string> trace_side_suffixes() {
+  std::vector<std::string> suffixes = {".kernel.txt", ".kpc.txt"};
+  const std::string base = kApuCoreGtkw;
+  for (const auto& [name, text] : enum_filters())  // the ones the save file names
+    if (base.find(kFilterDir + name + ".txt") != std::string::npos) suffixes.push_back("." + name + ".txt");
+  suffixes.push_back(".gtkw");
+  return suffixes;
+}
+
 std::vector<std::pair<std::string, std::string>> trace_side_files(const std::string& trace, const KernelTable& kernels,
                                                                   const std::string& markers,
                                                                   const std::string& writer) {
   const std::string abs = absolute(trace);
-  std::vector<std::pair<std::string, std::string>> files = {{trace + ".kernel.txt", kernels.id_filter()},
-                                                            {trace + ".kpc.txt", kernels.kpc_filter()}};
-  const std::string base = kApuCoreGtkw;
-  for (const auto& [name, text] : enum_filters())  // the ones the save file names
-    if (base.find(kFilterDir + name + ".txt") != std::string::npos) files.emplace_back(trace + "." + name + ".txt", text);
-  files.emplace_back(trace + ".gtkw",
-                     trace_save_file(abs, abs + ".kpc.txt", abs + ".kernel.txt", markers, writer, abs + "."));
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const std::string& suffix : trace_side_suffixes()) {  // each suffix's text
+    std::string text;
+    if (suffix == ".kernel.txt") text = kernels.id_filter();
+    else if (suffix == ".kpc.txt") text = kernels.kpc_filter();
+    else if (suffix == ".gtkw") text = trace_save_file(abs, abs + ".kpc.txt", abs + ".kernel.txt", markers, writer, abs + ".");
+    else
+      for (const auto& [name, filter] : enum_filters())
+        if (suffix == "." + name + ".txt") text = filter;
+    files.emplace_back(trace + suffix, std::move(text));
+  }
   return files;
 }
 

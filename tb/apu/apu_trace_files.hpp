@@ -26,6 +26,11 @@ std::vector<std::pair<std::string, std::string>> trace_side_files(const std::str
                                                                   const std::string& markers,
                                                                   const std::string& writer);
 
+// What trace_side_files' paths add to the trace's: ".kernel.txt",
+// ".kpc.txt", ".<enum>.txt"..., ".gtkw" (side files a program declares as
+// outputs with the trace: cmdline::Files::output).
+std::vector<std::string> trace_side_suffixes();
+
 // The save file alone (trace_side_files' TRACE.gtkw); `trace`, `kpc_filter`
 // and `kernel_filter` are the paths it names, and enum filter <e> is named
 // `enum_filter_prefix` + "<e>.txt".
