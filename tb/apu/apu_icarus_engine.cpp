@@ -456,8 +456,11 @@ IcarusEngine::Impl::Impl(const Options& o) {
   if (!p) p = std::make_unique<Process>(vvp, file);
 }
 
+// MC1_ICARUS_FRESH=1: no bench is kept, every engine starts its own from
+// the power-on state (flip-flops without a reset X), at ~0.1 s an engine.
 IcarusEngine::Impl::~Impl() {
-  if (p && p->healthy()) {
+  const char* fresh = std::getenv("MC1_ICARUS_FRESH");
+  if (p && p->healthy() && !(fresh && *fresh && std::strcmp(fresh, "0") != 0)) {
     p->send("z");
     Pool::get().give(std::move(p));
   }
