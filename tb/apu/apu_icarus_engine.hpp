@@ -18,11 +18,14 @@
 // reads are answered from a copy fetched once (4096 words in one line) and
 // kept until the next call that may change them.
 //
+// A bench whose engine ends healthy is reset and kept for the next engine
+// on the same file (a vvp start costs ~100 cycles; MC1_ICARUS_FRESH=1: not).
+//
 // A failure is an IcarusError naming what and where: the vvp file or the
 // vvp program missing, the bench ending (its exit status and last lines),
-// an X on a port the cycle uses, or a line of the simulation's own output
-// that says ERROR or ASSERT (an assertion of the RTL: its text, the cycle
-// and the pc).
+// an X on a port the cycle uses, dbg_unit_mismatch set, or a line of the
+// simulation's own output that says ERROR or ASSERT (an assertion of the
+// RTL: its text, the cycle and the pc).
 #pragma once
 
 #include <cstdint>
