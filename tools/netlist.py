@@ -5,6 +5,9 @@
     netlist.py write [--units U,...] BUILD_DIR
     netlist.py check [--units U,...] [--form quick|full] [--jobs N] BUILD_DIR
     netlist.py status [--units U,...] BUILD_DIR
+    --flow ice40 (write, check, status): the FP24 units' synth_ice40
+    netlists instead (BUILD_DIR/netlist/U.ice40.v, Yosys's iCE40 cell
+    models; the quick sets thinned, the iCE40 cells simulating slowly)
     further options: --rtl DIR --out DIR (a copy of apu_rtl/, its netlists
     and records in DIR instead of BUILD_DIR/netlist: tb/netlist's test that
     the check catches a planted bug)
@@ -111,6 +114,23 @@ def generic_script(gen, top, out):
             f" write_verilog -noattr {out}.v; ltp -noff")
 
 
+def ice40_script(gen, top, out):
+    """synth_ice40 (tools/synth.py's iCE40 figures and nextpnr's input):
+    SB_LUT4, SB_CARRY, SB_DFF*, SB_RAM40_4K cells, simulated with Yosys's
+    ice40/cells_sim.v."""
+    return (f"{read_cmd(gen, top)}; synth_ice40 -top {top} -json {out}.json;"
+            f" write_verilog -noattr {out}.v")
+
+
+FLOWS = {"generic": generic_script, "ice40": ice40_script}
+ICE40_CELLS = "/usr/share/yosys/ice40/cells_sim.v"
+
+
+def flow_name(top, flow):
+    """The file name of a netlist: U (generic) or U.ice40."""
+    return top if flow == "generic" else f"{top}.{flow}"
+
+
 def yosys_version():
     r = subprocess.run(["yosys", "-V"], capture_output=True, text=True)
     return r.stdout.strip()
@@ -135,10 +155,10 @@ def input_files(gen):
     return files
 
 
-def stamp_of(gen, top):
+def stamp_of(gen, top, flow="generic"):
     h = hashlib.sha256()
     h.update(yosys_version().encode())
-    h.update(generic_script("GEN", top, "OUT").encode())
+    h.update(FLOWS[flow]("GEN", top, "OUT").encode())
     for f in input_files(gen):
         h.update(os.path.basename(f).encode())
         with open(f, "rb") as fh:
@@ -179,7 +199,7 @@ def use_rtl(rtl, out):
     RTL, OUT_DIR = os.path.abspath(rtl), os.path.abspath(out)
 
 
-def write(build, top, log=say):
+def write(build, top, log=say, flow="generic"):
     """The netlist of `top` (see the module doc): returns {"v", "json",
     "log", "sha256", "stamp", "reused", "seconds"}; raises Failed when Yosys
     fails."""
@@ -188,8 +208,9 @@ def write(build, top, log=say):
     if shutil.which("yosys") is None:
         raise Usage("yosys not found (tools/setup.sh installs it)")
     build, gen, outdir = build_paths(build)
-    base = os.path.join(outdir, top)
-    stamp = stamp_of(gen, top)
+    name = flow_name(top, flow)
+    base = os.path.join(outdir, name)
+    stamp = stamp_of(gen, top, flow)
     with locked(base + ".lock"):
         try:
             with open(base + ".stamp.json") as f:
@@ -205,47 +226,48 @@ def write(build, top, log=say):
                 os.remove(base + e)
         tmp = base + ".tmp"
         t0 = time.monotonic()
-        log(f"netlist: {top}: synthesizing (yosys synth -flatten, abc -fast)")
+        log(f"netlist: {name}: synthesizing (" + ("yosys synth -flatten, abc -fast)" if flow == "generic"
+                                                  else "yosys synth_ice40)"))
         with open(base + ".yosys.out", "w") as f:
-            rc = subprocess.run(["yosys", "-q", "-l", tmp + ".log", "-p", generic_script(gen, top, tmp)],
+            rc = subprocess.run(["yosys", "-q", "-l", tmp + ".log", "-p", FLOWS[flow](gen, top, tmp)],
                                 stdout=f, stderr=subprocess.STDOUT).returncode
         seconds = round(time.monotonic() - t0, 1)
         if rc != 0 or not all(os.path.exists(tmp + e) for e in (".v", ".json")):
             with open(base + ".yosys.out") as f:
                 tail = f.read().strip().splitlines()[-5:]
-            raise Failed(f"{top}: yosys failed (exit {rc}, log {tmp}.log):\n  " + "\n  ".join(tail))
+            raise Failed(f"{name}: yosys failed (exit {rc}, log {tmp}.log):\n  " + "\n  ".join(tail))
         for e in (".json", ".log", ".v"):
             os.replace(tmp + e, base + e)
         sha = sha256_file(base + ".v")
         with open(base + ".stamp.json", "w") as f:
-            json.dump({"unit": top, "stamp": stamp, "sha256": sha, "yosys": yosys_version(),
-                       "script": generic_script("BUILD/generated", top, "BUILD/netlist/" + top),
+            json.dump({"unit": top, "flow": flow, "stamp": stamp, "sha256": sha, "yosys": yosys_version(),
+                       "script": FLOWS[flow]("BUILD/generated", top, "BUILD/netlist/" + name),
                        "seconds": seconds}, f, indent=1)
-        log(f"netlist: {top}: {base}.v written in {seconds} s")
+        log(f"netlist: {name}: {base}.v written in {seconds} s")
         return {"v": base + ".v", "json": base + ".json", "log": base + ".log", "sha256": sha,
                 "stamp": stamp, "reused": False, "seconds": seconds}
 
 
 # ---- check records ----
 
-def record_path(build, top, form):
-    return os.path.join(netlist_dir(build), f"{top}.{form}.check.json")
+def record_path(build, top, form, flow="generic"):
+    return os.path.join(netlist_dir(build), f"{flow_name(top, flow)}.{form}.check.json")
 
 
-def save_record(build, top, form, rec):
-    path = record_path(build, top, form)
+def save_record(build, top, form, rec, flow="generic"):
+    path = record_path(build, top, form, flow)
     tmp = path + ".tmp"
     with open(tmp, "w") as f:
         json.dump(rec, f, indent=1)
     os.replace(tmp, path)
 
 
-def passing_record(build, top, sha):
+def passing_record(build, top, sha, flow="generic"):
     """The passing check record of the netlist with this sha256, the full
     form preferred; None when there is none."""
-    for form in ("full", "quick"):
+    for form in FORMS[::-1]:
         try:
-            with open(record_path(build, top, form)) as f:
+            with open(record_path(build, top, form, flow)) as f:
                 rec = json.load(f)
         except (OSError, ValueError):
             continue
@@ -311,17 +333,26 @@ def stub(build, gen, unit, outdir):
     return path
 
 
-def fp_vvp(build, gen, unit, net, outdir):
+def fp_vvp(build, gen, unit, net, work, flow="generic"):
     """tb/fp24_icarus_tb.sv on fp24_units with `unit`'s netlist (net: its
-    .v), the other units idle stubs; fp24_units' own netlist alone."""
-    vvp = os.path.join(outdir, f"{unit}.check.vvp")
+    .v), the other units idle stubs; fp24_units' own netlist alone. An
+    iCE40 netlist with Yosys's models of its cells."""
+    vvp = os.path.join(work, f"{unit}.check.vvp")
     files = [os.path.join(gen, "apu_pkg.sv"), os.path.join(TB, "fp24_icarus_tb.sv")]
     if unit == "fp24_units":
         files.append(net)
     else:
         files += [os.path.join(RTL, "fp24_units.sv"), net]
-        files += [stub(build, gen, u, outdir) for u in FP_UNITS if u != unit]
-    iverilog(vvp, "fp24_icarus_tb", files, gen, f"{unit} netlist")
+        files += [stub(build, gen, u, netlist_dir(build)) for u in FP_UNITS if u != unit]
+    defs = []
+    if flow == "ice40":
+        if not os.path.exists(ICE40_CELLS):
+            raise Usage(f"{ICE40_CELLS} not found (Debian's yosys installs it)")
+        # cells_sim.v's port defaults (`input X = 1'b1`) are beyond Icarus 11
+        files.append(ICE40_CELLS)
+        defs = ["-DNO_ICE40_DEFAULT_ASSIGNMENTS"]
+    run([tool("iverilog"), "-g2012", *defs, f"-I{gen}", "-s", "fp24_icarus_tb", "-o", vvp] + files,
+        f"iverilog ({flow_name(unit, flow)} netlist)")
     return vvp
 
 
@@ -360,17 +391,33 @@ def model_results(fp24_run, vec_lines):
     return [" ".join(l.split()) for l in r.stdout.splitlines() if l.strip()]
 
 
-def check_fp(build, unit, form, jobs, log):
+# The iCE40 netlists simulate some 15 times slower (cells_sim.v's models):
+# their check runs the quick sets thinned to this many vectors (the known
+# ones whole).
+ICE40_VECTORS = {"fp24_mul": 3000, "fp24_add": 3000, "fp24_func": 150}
+
+
+def thin(sets, limit):
+    total = sum(len(v) for n, v in sets if n != "known")
+    if total <= limit:
+        return sets
+    step = total / limit
+    return [(n, v if n == "known" else [v[int(i * step)] for i in range(int(len(v) / step))]) for n, v in sets]
+
+
+def check_fp(build, unit, form, jobs, log, flow="generic"):
     import netlist_vectors  # tb/netlist/netlist_vectors.py
     build, gen, outdir = build_paths(build)
     fp24_run = tool("fp24-run", os.path.join(build, "bin", "fp24-run"))
     t0 = time.monotonic()
-    net = write(build, unit, log)
+    net = write(build, unit, log, flow)
     ops = None if unit == "fp24_units" else netlist_vectors.UNIT_OPS[unit]
     sets = netlist_vectors.sets(form, ops, os.path.join(TB, "vectors", "fp24_known.vec"))
+    if flow == "ice40":
+        sets = thin(sets, ICE40_VECTORS[unit])
     vectors = [v for _, vs in sets for v in vs]
     with tempfile.TemporaryDirectory(dir=outdir) as work:
-        vvp = fp_vvp(build, gen, unit, net["v"], work)
+        vvp = fp_vvp(build, gen, unit, net["v"], work, flow)
         t1 = time.monotonic()
         got = run_vectors(vvp, vectors, work, jobs)
         sim_s = time.monotonic() - t1
@@ -389,22 +436,23 @@ def check_fp(build, unit, form, jobs, log):
     by_op = {}
     for _, v, _, _ in wrong:
         by_op[v.split()[0]] = by_op.get(v.split()[0], 0) + 1
-    rec = {"unit": unit, "form": form, "netlist": net["v"], "netlist_sha256": net["sha256"],
+    rec = {"unit": unit, "flow": flow, "form": form, "netlist": net["v"], "netlist_sha256": net["sha256"],
            "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
            "against": "fp24-run --engine model", "sets": by_set, "vectors": len(vectors),
            "mismatches": len(wrong), "mismatches_by_op": by_op,
            "first_mismatches": [{"set": s, "vector": v, "netlist": g, "model": w} for s, v, g, w in wrong[:20]],
            "passed": not wrong, "sim_seconds": round(sim_s, 1), "seconds": round(time.monotonic() - t0, 1)}
-    save_record(build, unit, form, rec)
+    save_record(build, unit, form, rec, flow)
+    name = flow_name(unit, flow)
     sets_txt = ", ".join(f"{s['name']} {s['vectors']}" for s in by_set)
     if wrong:
-        lines = [f"{unit} netlist: {len(wrong)} of {len(vectors)} vectors differ from the model "
+        lines = [f"{name} netlist: {len(wrong)} of {len(vectors)} vectors differ from the model "
                  f"(by op: {', '.join(f'{k} {n}' for k, n in sorted(by_op.items()))}; sets: "
                  + ", ".join(f"{s['name']} {s['mismatches']}/{s['vectors']}" for s in by_set) + ")",
                  "  first ones (vector: netlist result flags / model result flags):"]
         lines += [f"  [{s}] {v}: netlist {g} / model {w}" for s, v, g, w in wrong[:20]]
         raise Failed("\n".join(lines))
-    log(f"netlist: {unit}: {form} check passed: {len(vectors)} vectors ({sets_txt}) agree with the model, "
+    log(f"netlist: {name}: {form} check passed: {len(vectors)} vectors ({sets_txt}) agree with the model, "
         f"{rec['seconds']} s ({round(sim_s, 1)} s in Icarus)")
     return rec
 
@@ -520,27 +568,29 @@ def check_core(build, form, jobs, log):
     return rec
 
 
-def check(build, unit, form="quick", jobs=1, log=say):
-    """Runs the check of `unit`'s netlist; returns its record (passed), or
-    raises Failed after saving a failing record."""
+def check(build, unit, form="quick", jobs=1, log=say, flow="generic"):
+    """Runs the check of `unit`'s netlist (flow generic, or ice40 for the
+    FP24 units); returns its record (passed), or raises Failed after saving
+    a failing record."""
     if unit not in UNITS:
         raise Usage(f"unknown unit {unit} (units: {','.join(UNITS)})")
     if form not in FORMS:
         raise Usage(f"unknown form {form} (quick, full)")
+    if flow not in FLOWS or (flow == "ice40" and unit not in FP_UNITS):
+        raise Usage(f"no {flow} check of {unit} (ice40: the FP24 units)")
+    started = time.time()
     try:
-        return check_core(build, form, jobs, log) if unit == "apu_core" else check_fp(build, unit, form, jobs, log)
+        if unit == "apu_core":
+            return check_core(build, form, jobs, log)
+        return check_fp(build, unit, form, jobs, log, flow)
     except Failed as e:
-        path = record_path(build, unit, form)
-        try:
-            with open(path) as f:
-                rec = json.load(f)
-        except (OSError, ValueError):
-            rec = {}
-        if rec.get("passed") is not False or rec.get("date") is None:
+        path = record_path(build, unit, form, flow)
+        if not os.path.exists(path) or os.path.getmtime(path) < started:
             # a failure before the comparison: the record says so
-            save_record(build, unit, form, {"unit": unit, "form": form, "passed": False, "netlist_sha256": None,
-                                            "error": str(e)[:4000], "date": datetime.datetime.now(
-                                                datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")})
+            save_record(build, unit, form, {"unit": unit, "flow": flow, "form": form, "passed": False,
+                                            "netlist_sha256": None, "error": str(e)[:4000],
+                                            "date": datetime.datetime.now(datetime.timezone.utc).strftime(
+                                                "%Y-%m-%d %H:%M UTC")}, flow)
         raise
 
 
@@ -550,13 +600,15 @@ def main(argv):
         print(__doc__.split("\n\n")[1], file=sys.stderr)
         return 2
     cmd, args = args[0], args[1:]
-    units, form, jobs, rest, rtl, out = None, "quick", 1, [], None, None
+    units, form, jobs, rest, rtl, out, flow = None, "quick", 1, [], None, None, "generic"
     i = 0
     while i < len(args):
         a = args[i]
-        if a in ("--units", "--form", "--jobs", "--rtl", "--out") and i + 1 < len(args):
+        if a in ("--units", "--form", "--jobs", "--rtl", "--out", "--flow") and i + 1 < len(args):
             v = args[i + 1]
-            if a == "--rtl":
+            if a == "--flow":
+                flow = v
+            elif a == "--rtl":
                 rtl = v
             elif a == "--out":
                 out = v
@@ -573,7 +625,7 @@ def main(argv):
             continue
         rest.append(a)
         i += 1
-    if len(rest) != 1 or form not in FORMS or (rtl is None) != (out is None):
+    if len(rest) != 1 or form not in FORMS or (rtl is None) != (out is None) or flow not in FLOWS:
         print(__doc__.split("\n\n")[1], file=sys.stderr)
         return 2
     build = rest[0]
@@ -590,22 +642,22 @@ def main(argv):
                 raise Usage(f"unknown unit {u} (units: {','.join(UNITS)})")
         for u in units:
             if cmd == "write":
-                write(build, u)
+                write(build, u, flow=flow)
             elif cmd == "check":
                 try:
-                    check(build, u, form, jobs)
+                    check(build, u, form, jobs, flow=flow)
                 except Failed as e:  # the other units are still checked
                     print(f"netlist.py: FAILED: {e}", file=sys.stderr, flush=True)
                     failed.append(u)
             else:
                 for f in FORMS:
                     try:
-                        with open(record_path(build, u, f)) as fh:
+                        with open(record_path(build, u, f, flow)) as fh:
                             rec = json.load(fh)
                     except (OSError, ValueError):
-                        print(f"{u}: no {f} check")
+                        print(f"{flow_name(u, flow)}: no {f} check")
                         continue
-                    print(f"{u}: " + (describe(rec) if "sets" in rec or "programs" in rec else
+                    print(f"{flow_name(u, flow)}: " + (describe(rec) if "sets" in rec or "programs" in rec else
                                       f"{f} check FAILED on {rec.get('date')}: {rec.get('error', '')[:300]}"))
     except Usage as e:
         print(f"netlist.py: {e}", file=sys.stderr)

@@ -1,19 +1,31 @@
 #!/usr/bin/env python3
 """Open-flow synthesis report of the APU RTL (docs/apu-rtl.md "Synthesis").
 
-    synth.py [--quick] [--units U,U,...] [--no-ice40] BUILD_DIR
+    synth.py [--quick] [--units U,U,...] [--no-ice40] [--check-form quick|full]
+             [--require-check] [--rtl DIR --out DIR] BUILD_DIR
 
 Reads the same sources Verilator does (apu_rtl/*.sv and BUILD_DIR/generated/
 apu_pkg.sv, fp24_rom.svh) with Debian's Yosys 0.23 and, per unit:
   - checks: hierarchy, proc, `check -assert`, no latch;
-  - generic `synth` (memories kept as memories): cells, flip-flops, inferred
+  - the unit's gate-level netlist, written by tools/netlist.py (the one
+    netlist writer: BUILD_DIR/netlist/U.v and .json), and its check
+    (docs/apu-rtl.md "Gate-level checks"): a netlist without a passing
+    check record gets its check run first (--check-form, default quick);
+    a check that fails, or with --require-check one that was not run,
+    exits 1 naming the unit, and no figure of that unit is reported;
+  - from that checked netlist, generic `synth` (memories kept as memories): cells, flip-flops, inferred
     memories, and per pipeline stage the cells, flip-flops and logic depth in
     gate levels (tools/synth_depth.py), cross-checked with `ltp -noff`; the
     deepest path into every register, and for apu_core those paths by
     pipeline stage (the issue cycle, each unit's own stages);
-  - `synth_ice40` and, where the result fits an HX8K, nextpnr-ice40 Fmax.
+  - `synth_ice40` (tools/netlist.py --flow ice40, its netlist checked the
+    same way on a thinned quick set) and, where the result fits an HX8K,
+    nextpnr-ice40 Fmax.
 Writes BUILD_DIR/reports/synth.txt and synth.json (work files in
-BUILD_DIR/reports/synth/).
+BUILD_DIR/reports/synth/), each unit with the check its netlists passed.
+--rtl DIR --out DIR: a copy of apu_rtl/ instead, everything written into
+DIR (tb/netlist/netlist_planted_bug.cmake: a planted bug must stop the
+report).
 --quick runs the checks only (the default test suite's form) and writes
 nothing but the work files.
 Exit 0; 1 when a check fails (an error, a latch, a problem `check` found);
@@ -27,6 +39,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import netlist  # noqa: E402
 import synth_depth  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -42,15 +55,9 @@ class CheckFailed(Exception):
     pass
 
 
-def sources(gen, rtl=RTL):
-    """Packages first (Yosys resolves pkg::name at read time), then the rest:
-    the generated apu_pkg.sv and the .sv files of `rtl` (apu_rtl/)."""
-    pkgs = [os.path.join(gen, "apu_pkg.sv")]
-    rest = []
-    for f in sorted(os.listdir(rtl)):
-        if f.endswith(".sv"):
-            (pkgs if f.endswith("_pkg.sv") else rest).append(os.path.join(rtl, f))
-    return pkgs + rest
+def sources(gen, rtl=None):
+    """Packages first, then the rest (tools/netlist.py's sources())."""
+    return netlist.sources(gen, rtl)
 
 
 def yosys(script, log, what):
@@ -67,7 +74,7 @@ def yosys(script, log, what):
 
 
 def read_cmd(gen, top):
-    return f"read_verilog -sv -I{gen} {' '.join(sources(gen))}; hierarchy -check -top {top}"
+    return netlist.read_cmd(gen, top)
 
 
 def check_unit(gen, top, work):
@@ -88,16 +95,39 @@ def int_param(v):
     return int(v, 2) if isinstance(v, str) else int(v)
 
 
-def generic(gen, top, work):
-    """Generic synthesis, memories kept: counts and stages of the gate netlist."""
-    net = f"{work}/{top}.gates.json"
-    # synth's own script, `fine:` without memory_map: a memory stays one
-    # $mem_v2 cell (reported with its bits) instead of becoming flip-flops.
-    log = yosys(f"{read_cmd(gen, top)}; synth -flatten -top {top} -run coarse:fine;"
-                f" opt -fast -full; opt -full; techmap; opt -fast; abc -fast; opt -fast;"
-                f" hierarchy -check; check -assert; write_json {net}; ltp -noff",
-                f"{work}/{top}.synth.log", f"{top}: synth")
-    with open(net) as f:
+def checked(build, top, flow, form, run_checks, log):
+    """The unit's netlist (tools/netlist.py write) and the record of the
+    check it passed; CheckFailed when the check fails, or is missing and
+    `run_checks` is off: no figures of that netlist."""
+    name = netlist.flow_name(top, flow)
+    try:
+        net = netlist.write(build, top, log, flow)
+        rec = netlist.passing_record(build, top, net["sha256"], flow)
+        if rec is None:
+            if not run_checks:
+                raise CheckFailed(f"{name}: its netlist {net['v']} (sha256 {net['sha256'][:16]}) has no passing "
+                                  f"check: no figures (tools/netlist.py check --units {top}"
+                                  f"{' --flow ' + flow if flow != 'generic' else ''} {build})")
+            log(f"synth: {name}: no passing check of this netlist: running its {form} check")
+            rec = netlist.check(build, top, form, jobs=2, log=log, flow=flow)
+    except netlist.Failed as e:
+        raise CheckFailed(f"{name}: netlist check failed, no figures of it reported:\n{e}")
+    except netlist.Usage as e:
+        raise CheckFailed(f"{name}: netlist check could not run, no figures of it reported: {e}")
+    summary = {k: rec.get(k) for k in ("form", "date", "against", "sets", "vectors", "programs", "seconds")
+               if rec.get(k) is not None}
+    return net, {"netlist": os.path.relpath(net["v"], build), "sha256": net["sha256"],
+                 "check": summary, "passed": netlist.describe(rec)}
+
+
+def generic(gen, top, work, net):
+    """Generic synthesis, memories kept: counts and stages of the gate
+    netlist `net` (tools/netlist.py's generic flow: synth's own script,
+    `fine:` without memory_map, so a memory stays one $mem_v2 cell,
+    reported with its bits, instead of becoming flip-flops)."""
+    with open(net["log"]) as f:
+        log = f.read()
+    with open(net["json"]) as f:
         mod = json.load(f)["modules"][top]
     memories, n_ff, n_cells = [], 0, 0
     for name, c in mod["cells"].items():
@@ -120,7 +150,7 @@ def generic(gen, top, work):
     # counts it): a disagreement is a bug in synth_depth.py.
     if m is None or int(m.group(1)) != ltp_count:
         raise CheckFailed(f"{top}: depth {ltp_count} but `ltp -noff` says "
-                          f"{m.group(1) if m else 'nothing'} (log {work}/{top}.synth.log.full)")
+                          f"{m.group(1) if m else 'nothing'} (log {net['log']})")
     paths = synth_depth.paths(mod, net_)
     return {"cells": n_cells, "flip_flops": n_ff, "memories": memories,
             "memory_bits": sum(x["bits"] for x in memories),
@@ -183,16 +213,16 @@ def memory_name(cell, name):
     return synth_depth.memory_name(cell["parameters"].get("MEMID", name))
 
 
-def ice40(gen, top, work, report):
-    """synth_ice40, then nextpnr-ice40 on an HX8K when the netlist fits it."""
+def ice40(build, top, work, report, form, run_checks, log):
+    """synth_ice40 (tools/netlist.py --flow ice40, checked), then
+    nextpnr-ice40 on an HX8K when the netlist fits it."""
     if report["memory_bits"] > HX8K["bram_bits"] or any(not m["sync_read"] for m in report["memories"]):
         big = report["memory_bits"] > HX8K["bram_bits"]
         why = (f"{report['memory_bits']} memory bits, the HX8K has {HX8K['bram_bits']} of block RAM"
                if big else "an asynchronously read memory cannot be block RAM")
         return {"part": HX8K["name"], "fits": False, "reason": why}
-    net = f"{work}/{top}.ice40.json"
-    yosys(f"{read_cmd(gen, top)}; synth_ice40 -top {top} -json {net}", f"{work}/{top}.ice40.log",
-          f"{top}: synth_ice40")
+    ice, chk = checked(build, top, "ice40", form, run_checks, log)
+    net = ice["json"]
     with open(net) as f:
         cells = json.load(f)["modules"][top]["cells"].values()
     count = {}
@@ -202,7 +232,7 @@ def ice40(gen, top, work, report):
     ffs = sum(n for t, n in count.items() if t.startswith("SB_DFF"))
     bram = count.get("SB_RAM40_4K", 0)
     res = {"part": HX8K["name"], "luts": luts, "flip_flops": ffs, "carries": count.get("SB_CARRY", 0),
-           "bram": bram}
+           "bram": bram, "netlist": chk}
     if luts > HX8K["luts"] or ffs > HX8K["ffs"] or bram > HX8K["bram"]:
         res.update(fits=False, reason=f"{luts} LUTs, {ffs} FFs, {bram} BRAMs; the HX8K has "
                                       f"{HX8K['luts']} logic cells and {HX8K['bram']} BRAMs")
@@ -227,7 +257,13 @@ def text_report(units):
     out = ["APU RTL, open-flow synthesis (tools/synth.sh; method: docs/apu-rtl.md \"Synthesis\")",
            "Yosys 0.23 generic `synth -flatten`, memories kept; depth = gate levels, every gate one level,",
            "an asynchronous memory read its mux tree (log2 words; `ltp -noff` counts it as one level).",
-           ""]
+           "Every figure is of a netlist that passed its gate-level check (tools/netlist.py, simulated in",
+           "Icarus Verilog 11; docs/apu-rtl.md \"Gate-level checks\"):", ""]
+    for name, u in units.items():
+        for chk in (u.get("netlist"), (u.get("ice40") or {}).get("netlist")):
+            if chk:
+                out.append(f"  {chk['netlist']} (sha256 {chk['sha256'][:16]}): {chk['passed']}")
+    out.append("")
     out.append(f"{'unit':<10} {'stage':<8} {'cells':>8} {'FFs':>7} {'depth':>6}")
     for name, u in units.items():
         g = u["generic"]
@@ -272,18 +308,27 @@ def main(argv):
     args = argv[1:]
     quick = "--quick" in args
     do_ice40 = "--no-ice40" not in args
+    run_checks = "--require-check" not in args
     units = UNITS
     rest = []
+    form = "quick"
+    scratch = {}
     i = 0
     while i < len(args):
         a = args[i]
         if a == "--units" and i + 1 < len(args):
             units = args[i + 1].split(",")
             i += 1
-        elif a not in ("--quick", "--no-ice40"):
+        elif a == "--check-form" and i + 1 < len(args):
+            form = args[i + 1]
+            i += 1
+        elif a in ("--rtl", "--out") and i + 1 < len(args):
+            scratch[a] = args[i + 1]
+            i += 1
+        elif a not in ("--quick", "--no-ice40", "--require-check"):
             rest.append(a)
         i += 1
-    if len(rest) != 1 or any(u not in UNITS for u in units):
+    if len(rest) != 1 or any(u not in UNITS for u in units) or form not in netlist.FORMS or len(scratch) == 1:
         print(__doc__.split("\n\n")[1], file=sys.stderr)
         print(f"synth.py: units are {','.join(UNITS)}", file=sys.stderr)
         return 2
@@ -293,12 +338,17 @@ def main(argv):
         if not os.path.exists(os.path.join(gen, f)):
             print(f"synth.py: {gen}/{f} is missing: configure and build {build} first", file=sys.stderr)
             return 2
-    tools = ["yosys"] + (["nextpnr-ice40"] if do_ice40 and not quick else [])
+    tools = ["yosys"] + (["nextpnr-ice40", "iverilog", "vvp"] if not quick else [])
     for t in tools:
         if shutil.which(t) is None:
             print(f"synth.py: {t} not found (tools/setup.sh installs it)", file=sys.stderr)
             return 2
     reports = os.path.join(build, "reports")
+    if scratch:
+        # a copy of apu_rtl/ (tb/netlist's planted bug): its netlists, records
+        # and reports in the --out directory, the build's left alone
+        netlist.use_rtl(scratch["--rtl"], scratch["--out"])
+        reports = os.path.join(scratch["--out"], "reports")
     work = os.path.join(reports, "synth")
     os.makedirs(work, exist_ok=True)
     result = {}
@@ -307,11 +357,13 @@ def main(argv):
             r = {"latches": check_unit(gen, u, work)}
             print(f"synth: {u}: read, proc, check: ok, 0 latches", flush=True)
             if not quick:
-                r["generic"] = generic(gen, u, work)
+                net, r["netlist"] = checked(build, u, "generic", form, run_checks, netlist.say)
+                print(f"synth: {u}: netlist {r['netlist']['netlist']}: {r['netlist']['passed']}", flush=True)
+                r["generic"] = generic(gen, u, work, net)
                 g = r["generic"]
                 print(f"synth: {u}: {g['cells']} cells, {g['flip_flops']} FFs, depth {g['depth']}", flush=True)
                 if do_ice40:
-                    r["ice40"] = ice40(gen, u, work, g)
+                    r["ice40"] = ice40(build, u, work, g, form, run_checks, netlist.say)
                     fm = r["ice40"].get("fmax_mhz")
                     print(f"synth: {u}: iCE40 " + (f"Fmax {fm:.1f} MHz" if fm else "does not fit"), flush=True)
             result[u] = r

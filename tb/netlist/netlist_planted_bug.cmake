@@ -23,3 +23,14 @@ endif()
 string(REGEX MATCH "[0-9]+ of [0-9]+ vectors differ" caught "${err}")
 string(REGEX MATCH "\\[known\\] mul [^\n]*" first "${err}")
 message(STATUS "netlist_planted_bug: caught: ${caught}; first: ${first}")
+
+# tools/synth.py refuses to report figures of that netlist: exit 1 naming
+# the unit and its failed check, no report written.
+execute_process(COMMAND ${PYTHON} ${SOURCE_DIR}/tools/synth.py --units fp24_mul --no-ice40
+                        --rtl ${WORK}/rtl --out ${WORK}/netlist ${BUILD}
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "synth: FAILED: fp24_mul: netlist check failed, no figures of it reported"
+   OR EXISTS ${WORK}/netlist/reports/synth.txt)
+  message(FATAL_ERROR "tools/synth.py reported on the netlist that failed its check (exit ${rc}):\n${out}${err}")
+endif()
+message(STATUS "netlist_planted_bug: tools/synth.py refused: exit 1, no synth.txt")
