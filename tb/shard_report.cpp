@@ -219,15 +219,6 @@ void check_items(const std::vector<Report>& reports, const ItemRules& rules) {
   }
 }
 
-void check_writable(const std::string& path) {
-  if (path.empty()) return;
-  try {
-    mc1::check_writable(path);
-  } catch (const std::runtime_error& e) {
-    throw UsageError(e.what());
-  }
-}
-
 bool write_texts(const std::vector<std::pair<std::string, std::string>>& files, const char* program) {
   try {
     std::vector<StagedFile> staged;

@@ -75,10 +75,8 @@ struct ItemRules {
 void check_items(const std::vector<Report>& reports, const ItemRules& rules);
 
 // Report files are written whole or not at all (atomic_file.hpp), and what
-// was at their path (a report, a device) stays as it was on any error.
-// check_writable: mc1::check_writable, its error a UsageError; an empty path
-// is no file.
-void check_writable(const std::string& path);
+// was at their path (a report, a device) stays as it was on any error (that
+// they can be written is checked before the run: cmdline::Files).
 // Writes each (path, text) of `files` (an empty path: none), all staged
 // before any is committed; on an error says so on stderr (as `program`:
 // "PROGRAM: PATH: what failed: reason") and returns false.
