@@ -4,6 +4,7 @@
 // the word of that cycle already sees an empty stack. `top2`, the entry
 // below the top, is what a RET issuing now leaves on top (the sequencer's
 // prediction for a RET in decode behind it).
+`include "apu_assert.svh"
 module apu_callstack #(
     parameter int DEPTH  = 8,
     parameter int ADDR_W = 10
@@ -34,6 +35,14 @@ module apu_callstack #(
   assign top2    = stack_q[top2_ix];
   assign empty  = (sp == '0);
   assign full   = (sp == SP_W'(DEPTH));
+
+  // The sequencer faults a CALL on a full stack and a RET on an empty one
+  // before it pushes or pops, and a word does one or the other; the depth
+  // stays within the stack.
+  `APU_ASSERT_BC(CallStackPushNotFull, !push || !full)
+  `APU_ASSERT_BC(CallStackPopNotEmpty, !pop || !empty)
+  `APU_ASSERT_BC(CallStackPushOrPop, !(push && pop))
+  `APU_ASSERT(CallStackDepthLegal, `APU_KNOWN(sp_q) && sp_q <= SP_W'(DEPTH))
 
   always_ff @(posedge clk) begin
     if (!rst_n) begin

@@ -33,6 +33,10 @@
 // the ISA page's terms (Clarification 2): results that become visible in this
 // cycle (FP completions now, LD/MOVAF/LIF and A writes of the previous word)
 // and this cycle's store, CC and FLAGS changes.
+//
+// Assertions (`APU_ASSERT, apu_assert.svh) state the rules of each part beside
+// it; docs/apu-rtl.md "Assertions" lists them.
+`include "apu_assert.svh"
 module apu_core
 (
     input  logic                              clk,
@@ -163,6 +167,15 @@ module apu_core
   assign data_ready    = data_ready_q || mpu2apu_hand_over_data;
   assign psel          = psel_q ^ start_swaps;
   assign pc            = pc_q;
+
+  // The MPU's requests are driven (no X into the sequencer), with their
+  // arguments when presented; the bank selects and hand-over state are known.
+  `APU_ASSERT(MpuRequestsKnown, `APU_KNOWN({mpu2apu_hand_over_program, mpu2apu_hand_over_data,
+                                             mpu2apu_start, mpu2apu_pmem_we, mpu2apu_dmem_we}))
+  `APU_ASSERT(MpuStartArgsKnown, !mpu2apu_start || `APU_KNOWN({mpu2apu_start_pc, mpu2apu_start_new_program}))
+  `APU_ASSERT(MpuBankWriteKnown, !mpu2apu_pmem_we || `APU_KNOWN({mpu2apu_pmem_addr, mpu2apu_pmem_wdata}))
+  `APU_ASSERT(MpuDataWriteKnown, !mpu2apu_dmem_we || `APU_KNOWN({mpu2apu_dmem_addr, mpu2apu_dmem_wdata}))
+  `APU_ASSERT(BankStateKnown, `APU_KNOWN({psel_q, dsel_q, program_ready_q, data_ready_q}))
 
   // =========================================================================
   // F: fetch; D: decode and F register read; the D/I registers
@@ -409,6 +422,13 @@ module apu_core
   end
   assign stall = (stall_reason != apu_pkg::STALL_NONE);
 
+  // stall_e's codes are 0 .. STALL_FETCH; a stall reason only while the APU
+  // runs (or starts), and `fetch` exactly when no word is in I.
+  `APU_ASSERT_BC(StallReasonLegal, `APU_KNOWN(stall_reason) && stall_reason <= apu_pkg::STALL_FETCH)
+  `APU_ASSERT_BC(StallOnlyWhileRunning, !stall || run_q || start_req)
+  `APU_ASSERT_BC(StallFetchIffNoWord, !(run_q && !start_req)
+                                   || ((stall_reason == apu_pkg::STALL_FETCH) == !i_valid_q))
+
   // =========================================================================
   // Faults: checked when the word would issue (a stalled word faults only once
   // its stall is over); the faulting word has no effect (Clarification 6)
@@ -440,6 +460,28 @@ module apu_core
   end
 
   assign issue = running && !stall && (fault_code == apu_pkg::FAULT_NONE);
+
+  // A word issues only with no hazard: none of its sources in flight (a
+  // result completing now is bypassed, and is no longer in flight), no
+  // destination landing no later than one in flight, no CMP in flight under
+  // a BCC/BNCC, no op in flight under a HALT: `issue` is built so (rules by
+  // construction, apu_assert.svh; the interlock's Ilk*InFlightIsBusy check
+  // that raw/waw see every op in flight).
+  `APU_ASSERT_BC(IssueNoRawHazard, !issue || !raw_hazard)
+  `APU_ASSERT_BC(IssueNoWawHazard, !issue || !waw_hazard)
+  `APU_ASSERT_BC_IF(IssueBccNoCmpInFlight, issue && is_bcc, !cmp_in_flight)
+  `APU_ASSERT_BC_IF(IssueHaltPipesDrained, issue && w.s_op == apu_pkg::S_HALT, !pipes_busy)
+  `APU_ASSERT_BC(IssueOnlyRunningWithWord, !issue || (run_q && i_valid_q && !start_req))
+  // An issuing word is known and legal: its LD/ST address in the bank, its
+  // successor inside the program memory. (No reserved op: the fault logic
+  // in front of `issue` says so directly.)
+  `APU_ASSERT_IF(IssueWordKnown, issue, `APU_KNOWN(i_word_q))
+  `APU_ASSERT_BC_IF(IssueDataAddressInRange, issue && (is_ld || is_st), mem_addr[15:DADDR_W] == '0)
+  `APU_ASSERT_BC(IssuePcNextInRange, !issue || !pc_next[PC_W])
+  // fault_e's codes are 0 .. FAULT_CALL_UNDERFLOW; a fault only for a word
+  // that would issue otherwise.
+  `APU_ASSERT_BC(FaultCodeLegal, `APU_KNOWN(fault_code) && fault_code <= apu_pkg::FAULT_CALL_UNDERFLOW)
+  `APU_ASSERT_BC(FaultOnlyWhenUnstalled, !fault_now || (running && !stall))
 
   // =========================================================================
   // Register files and data memory
@@ -550,6 +592,25 @@ module apu_core
     else        byp_ld_q <= byp_ld_next;
     for (int i = 0; i < N_RD; i++) opnd_q[i] <= opnd_next[i];
   end
+  // An operand takes a LD's word only in the cycle a LD completes.
+  `APU_ASSERT_IF(LdBypassNeedsLd, byp_ld_q != '0, ld_wb_valid)
+  // A store's address and word are known.
+  `APU_ASSERT_IF(StoreKnown, issue && is_st, `APU_KNOWN({mem_addr, fop[RD_ST]}))
+  // At most one completion writes a register in a cycle (waw orders writes
+  // to one register, at most one a cycle); the issue write (MOVAF/LIF) may
+  // meet one, and wins (apu_regfile: the higher port).
+  // (mul, add and LD complete in most cycles of a kernel: one rule for their
+  // three pairs; one for a function-unit port against the others)
+  `APU_ASSERT_IF(OneCompletionPerRegister, (wb_en[0] && wb_en[1]) || wb_en[4],
+                 !(wb_en[0] && wb_en[1] && wb_addr[0] == wb_addr[1])
+                 && !(wb_en[0] && wb_en[4] && wb_addr[0] == wb_addr[4])
+                 && !(wb_en[1] && wb_en[4] && wb_addr[1] == wb_addr[4]))
+  `APU_ASSERT_IF(OneCompletionPerRegisterFu, wb_en[2] || wb_en[3],
+                 !(wb_en[2] && ((wb_en[0] && wb_addr[2] == wb_addr[0]) || (wb_en[1] && wb_addr[2] == wb_addr[1])
+                                || (wb_en[3] && wb_addr[2] == wb_addr[3]) || (wb_en[4] && wb_addr[2] == wb_addr[4])))
+                 && !(wb_en[3] && ((wb_en[0] && wb_addr[3] == wb_addr[0]) || (wb_en[1] && wb_addr[3] == wb_addr[1])
+                                   || (wb_en[4] && wb_addr[3] == wb_addr[4]))))
+
   // (N_WB = 5, N_WI = 1: six write ports, concatenated as above)
   assign f_wr_en_v   = {wi_en[0], wb_en[4], wb_en[3], wb_en[2], wb_en[1], wb_en[0]};
   assign f_wr_addr_v = {wi_addr[0], wb_addr[4], wb_addr[3], wb_addr[2], wb_addr[1], wb_addr[0]};
@@ -695,6 +756,11 @@ module apu_core
   assign swapd     = issue && (w.s_op == apu_pkg::S_SWAPD);
   assign swapp     = issue && (w.s_op == apu_pkg::S_SWAPP);
 
+  // Bank hand-over: a SWAPD / SWAPP takes only a bank the MPU handed over
+  // (this cycle's requests included).
+  `APU_ASSERT_BC(SwapdNeedsDataHandOver, !swapd || data_ready)
+  `APU_ASSERT_BC(SwappNeedsProgramHandOver, !swapp || program_ready)
+
   // Prediction in D: the address after the word in D, fetched while it moves
   // into I. JMP and CALL go to their target; RET to the call stack's top as
   // the word issuing in I now leaves it; a conditional branch to its target
@@ -764,6 +830,13 @@ module apu_core
   assign unit_mismatch = (mul_wb_valid != mul_out_valid) || (add_wb_valid != add_out_valid)
                       || (fu_wb_valid != fu_out_valid) || (fu_trig_wb_valid != fu_trig_valid);
 
+  // The interlock's tags complete exactly when the units' results do (the
+  // same check as dbg_unit_mismatch, failing at once), and a CMP's result is
+  // one condition (LT, EQ, GT or UN) with the upper bits 0.
+  `APU_ASSERT(UnitsCompleteWithTheirTags, !unit_mismatch)
+  `APU_ASSERT_IF(CmpGivesOneCondition, cc_update, $onehot(add_out_result[CC_W-1:0])
+                                                  && add_out_result[FP_W-1:CC_W] == '0)
+
   always_ff @(posedge clk) begin
     if (!rst_n) begin
       run_state_q     <= apu_pkg::RUN_IDLE;
@@ -802,6 +875,13 @@ module apu_core
       unit_mismatch_q <= unit_mismatch_q || unit_mismatch;
     end
   end
+
+  // run_e and fault_e hold known codes; a fault code is kept exactly while
+  // the APU is FAULTED.
+  `APU_ASSERT(RunStateKnown, `APU_KNOWN(run_state_q))
+  `APU_ASSERT(FaultIffFaulted, (fault_q != apu_pkg::FAULT_NONE) == (run_state_q == apu_pkg::RUN_FAULTED))
+  `APU_ASSERT_BC(FaultStateLegal, `APU_KNOWN(fault_q) && fault_q <= apu_pkg::FAULT_CALL_UNDERFLOW)
+  `APU_ASSERT(FlagsKnown, `APU_KNOWN({cc_q, flags_q}))
 
   // =========================================================================
   // Outputs

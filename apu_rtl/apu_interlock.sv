@@ -23,6 +23,7 @@
 //
 // Ports are flat vectors, slot i at [i*W +: W] (Yosys 0.23 takes no unpacked
 // ports).
+`include "apu_assert.svh"
 module apu_interlock #(
     parameter int ADDR_W   = 6,
     parameter int N_SRC    = 7,
@@ -89,6 +90,14 @@ module apu_interlock #(
   logic [N_TAG-1:0]        fl;
   logic [D_ADD-1:0]        add_kind;  // the adder's stage k holds a CMP
   logic                    add_wb_f;  // an adder op that writes F completes
+  // for the assertions below: the function unit's stage k holds a SIN/COS,
+  // every stage's tag
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [D_FU-1:0]         fu_kind;
+  logic [D_MUL*ADDR_W-1:0] mul_stage_d;
+  logic [D_ADD*ADDR_W-1:0] add_stage_d;
+  logic [D_FU*ADDR_W-1:0]  fu_stage_d;
+  /* verilator lint_on UNUSEDSIGNAL */
 
   apu_tagpipe #(.ADDR_W(ADDR_W), .LAT0(LAT_MUL), .LAT1(LAT_MUL)) u_mul_tags (
       .clk       (clk),
@@ -106,8 +115,9 @@ module apu_interlock #(
       .wb1_valid (),
       .wb1_d     (),
       .nx1_valid (),
-      .nx1_d     ()
+      .nx1_d     (),
       /* verilator lint_on PINCONNECTEMPTY */
+      .stage_d   (mul_stage_d)
   );
 
   // kind = CMP: in flight for `cc` and `drain`, but it writes no F register.
@@ -127,8 +137,9 @@ module apu_interlock #(
       /* verilator lint_off PINCONNECTEMPTY */
       .wb1_d     (),
       .nx1_valid (),
-      .nx1_d     ()
+      .nx1_d     (),
       /* verilator lint_on PINCONNECTEMPTY */
+      .stage_d   (add_stage_d)
   );
   assign add_wb_valid = add_wb_f || add_wb_cmp;
 
@@ -140,9 +151,7 @@ module apu_interlock #(
       .issue_d   (fu_d),
       .issue_kind(fu_trig),
       .fl        (fl[O_FU +: D_FU]),
-      /* verilator lint_off PINCONNECTEMPTY */
-      .fl_kind   (),
-      /* verilator lint_on PINCONNECTEMPTY */
+      .fl_kind   (fu_kind),
       .wb0_valid (fu_wb_valid),
       .wb0_d     (fu_wb_d),
       .wb1_valid (fu_trig_wb_valid),
@@ -150,7 +159,8 @@ module apu_interlock #(
       .nx0_valid (fu_nx_valid),
       .nx0_d     (fu_nx_d),
       .nx1_valid (fu_trig_nx_valid),
-      .nx1_d     (fu_trig_nx_d)
+      .nx1_d     (fu_trig_nx_d),
+      .stage_d   (fu_stage_d)
   );
 
   // ---- hazards of the word at PC: per-register busy vectors ----------------
@@ -270,5 +280,43 @@ module apu_interlock #(
 
   assign cmp_in_flight = |(fl[O_ADD +: D_ADD] & add_kind);
   assign pipes_busy    = |fl;
+
+  // ---- assertions (docs/apu-rtl.md "Assertions") ----------------------------
+  // The busy vectors against the tags, the two forms of the scoreboard: every
+  // op in flight (stage k of its unit, rem = L - k >= 1) has its register's
+  // bit in entry 1 (so a reader of it stalls: `raw` cannot miss it) and in
+  // entry rem (so a writer landing no later stalls: `waw`); a CMP writes no
+  // F register and sets none. And a unit with no op in flight has no bit set
+  // (below).
+`ifdef APU_ASSERT_ON
+  // (the stage's tag r and its rem written out in the rule: a signal of
+  // their own would be logic the verilated core computes in every cycle)
+  for (genvar k = 1; k < D_MUL; k++) begin : g_chk_mul
+    `APU_ASSERT_IF(IlkMulInFlightIsBusy, fl[k-1],
+                   mul_busy[mul_stage_d[(k-1)*ADDR_W +: ADDR_W]]
+                   && mul_ge[IW_MUL'({LAT_W'(LAT_MUL - k - 1), mul_stage_d[(k-1)*ADDR_W +: ADDR_W]})])
+  end
+  for (genvar k = 1; k < D_ADD; k++) begin : g_chk_add
+    `APU_ASSERT_IF(IlkAddInFlightIsBusy, fl[O_ADD+k-1] && !add_kind[k-1],
+                   add_busy[add_stage_d[(k-1)*ADDR_W +: ADDR_W]]
+                   && add_ge[IW_ADD'({LAT_W'(LAT_ADD - k - 1), add_stage_d[(k-1)*ADDR_W +: ADDR_W]})])
+  end
+  for (genvar k = 1; k < D_FU; k++) begin : g_chk_fu
+    `APU_ASSERT_IF(IlkFuInFlightIsBusy, fl[O_FU+k-1],
+                   fu_busy[fu_stage_d[(k-1)*ADDR_W +: ADDR_W]]
+                   && fu_ge[IW_FU'({(fu_kind[k-1] ? LAT_W'(LAT_TRIG) : LAT_W'(LAT_FUNC)) - LAT_W'(k + 1),
+                                    fu_stage_d[(k-1)*ADDR_W +: ADDR_W]})])
+  end
+`endif
+  // (the function unit's: its vectors are cleared in such a cycle, by
+  // construction)
+  `APU_ASSERT_IF(IlkIdleMulHasNoBusyBit, !(|fl[0 +: D_MUL]), mul_ge == '0)
+  `APU_ASSERT_IF(IlkIdleAdderHasNoBusyBit, !(|fl[O_ADD +: D_ADD]), add_ge == '0)
+  `APU_ASSERT_BC_IF(IlkIdleFuncHasNoBusyBit, !fu_in_flight, fu_ge == '0)
+  // The function unit's two completion ports never write one register in
+  // one cycle (waw holds back the later issue), and a CMP completes on the
+  // adder's port with no F register.
+  `APU_ASSERT_IF(IlkFuPortsWriteDistinctRegisters, fu_wb_valid && fu_trig_wb_valid, fu_wb_d != fu_trig_wb_d)
+  `APU_ASSERT_BC(IlkCmpWritesNoRegister, !(add_wb_f && add_wb_cmp))
 
 endmodule

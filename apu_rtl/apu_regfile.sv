@@ -16,6 +16,7 @@
 //
 // Ports are flat vectors, port i at [i*W +: W] (Yosys 0.23 takes neither
 // unpacked nor multi-dimensional packed ports).
+`include "apu_assert.svh"
 module apu_regfile #(
     parameter int DATA_W     = 24,
     parameter int ADDR_W     = 6,
@@ -76,6 +77,18 @@ module apu_regfile #(
   always_comb begin
     for (int r = 0; r < N_RD; r++) rd_data[r*DATA_W +: DATA_W] = rd[r];
   end
+
+  // A write's register and word are known (no X into the file: a unit's
+  // result, a LD's word, MOVAF/LIF); a read port in use has a known address;
+  // a ZERO_REG file's register 0 stays 0.
+  for (genvar w = 0; w < N_WR; w++) begin : g_chk_wr
+    `APU_ASSERT(RegfileWriteKnown, !wr_take[w] || `APU_KNOWN({wa[w], wd[w]}))
+  end
+  for (genvar r = 0; r < N_RD; r++) begin : g_chk_rd
+    `APU_ASSERT(RegfileReadAddrKnown, `APU_KNOWN(rd_en[r])
+                                      && (!rd_en[r] || `APU_KNOWN(rd_addr[r*ADDR_W +: ADDR_W])))
+  end
+  `APU_ASSERT_BC(RegfileZeroRegIsZero, !ZERO_REG || regs[0] == '0)
 
   always_ff @(posedge clk) begin
     if (!rst_n) begin

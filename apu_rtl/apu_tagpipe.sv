@@ -13,6 +13,7 @@
 // depths; apu_core compares the two every cycle (dbg_unit_mismatch).
 //
 // Ports are flat vectors, stage k at [(k-1)*W +: W].
+`include "apu_assert.svh"
 module apu_tagpipe #(
     parameter int ADDR_W = 6,
     parameter int LAT0   = 2,
@@ -33,7 +34,8 @@ module apu_tagpipe #(
     output logic                      nx0_valid, // a kind-0 op completes in the next cycle
     output logic [ADDR_W-1:0]         nx0_d,
     output logic                      nx1_valid, // a kind-1 op completes in the next cycle
-    output logic [ADDR_W-1:0]         nx1_d
+    output logic [ADDR_W-1:0]         nx1_d,
+    output logic [DEPTH*ADDR_W-1:0]   stage_d    // every stage's tag (apu_interlock's assertions)
 );
   logic [DEPTH-1:0]        v;     // stage k holds an op (in flight or completing)
   logic [DEPTH*ADDR_W-1:0] d;
@@ -67,5 +69,18 @@ module apu_tagpipe #(
   assign nx0_d     = d[(LAT0-2)*ADDR_W +: ADDR_W];
   assign nx1_valid = v[LAT1-2] && kind[LAT1-2];
   assign nx1_d     = d[(LAT1-2)*ADDR_W +: ADDR_W];
+  assign stage_d   = d;
+
+  // ---- assertions (docs/apu-rtl.md "Assertions") ----------------------------
+  // The valid bits are never unknown after reset; a completing op's tag is
+  // known (the core's destination fields come from the word; a stage no op
+  // has reached since reset holds X, d having no reset).
+  `APU_ASSERT(TagpipeValidKnown, `APU_KNOWN(v))
+  `APU_ASSERT(TagpipeCompletionTagKnown, (!wb0_valid || `APU_KNOWN(wb0_d)) && (!wb1_valid || `APU_KNOWN(wb1_d)))
+  // An op leaves the pipe at its completion stage: no stage past the
+  // longer latency holds one, and (one issue a cycle) each kind completes
+  // at most one op a cycle by construction; an op of the shorter latency
+  // never shows in a stage past its own (LAT0 <= LAT1 in every instance).
+  `APU_ASSERT_BC(TagpipeOpLeavesAtItsLatency, (v & ~kind & ~(LAST0 | BEFORE0)) == '0)
 
 endmodule

@@ -14,6 +14,7 @@
 //       (fp24_result_stage). docs/fp24-rtl.md "The adder's stages".
 // rst_n is synchronous and clears only the valid bits. The unused op code 7
 // gives result 0, flags 0.
+`include "apu_assert.svh"
 module fp24_add #(
     parameter int EXP_W  = 7,
     parameter int FRAC_W = 16
@@ -315,6 +316,24 @@ module fp24_add #(
       .sticky(n0[NORM_W-3-FRAC_W:0] != '0),
       .out_valid(s2_valid), .out_result(s2_result), .out_flags(s2_flags),
       .next_result(out_next_result));
+
+  // ---- assertions (docs/apu-rtl.md "Assertions"; the result stage's own in
+  // fp24_result_stage) ----------------------------------------------------------
+  // An op's code and first operand are known, the second one for the ops
+  // that read it (ADD, SUB, CMP: the core's operand of an unused port is a
+  // don't care).
+  `APU_ASSERT(AddInKnown, `APU_KNOWN(in_valid) && (!in_valid || `APU_KNOWN({in_op, in_a})))
+  `APU_ASSERT(AddInBKnown, !(in_valid && (in_op == OP_ADD || in_op == OP_SUB || in_op == OP_CMP))
+                           || `APU_KNOWN(in_b))
+  // Latency 2: each stage's valid is the one before it a cycle earlier.
+`ifdef APU_ASSERT_ON
+  logic [1:0] chk_in_valid;  // in_valid at the last two edges
+  always_ff @(posedge clk) chk_in_valid <= rst_n ? {chk_in_valid[0], in_valid} : 2'b00;
+  `APU_ASSERT(AddStageValids, {s2_valid, s1_valid} == chk_in_valid)
+`endif
+  // Every NaN it returns is the canonical one.
+  `APU_ASSERT_IF(AddNaNIsCanonical, out_valid, out_result[W-2 -: EXP_W] != EXP_ONES
+                 || out_result[FRAC_W-1:0] == '0 || out_result == CANON_NAN)
 
   assign out_valid  = s2_valid;
   assign out_result = s2_result;

@@ -12,6 +12,7 @@
 // The latencies come from apu_rtl/isa/apu_isa.tbl (LAT_FUNC, LAT_TRIG); the
 // two pipes can finish in one cycle: hence two ports.
 // rst_n is synchronous and clears only the valid bits.
+`include "apu_assert.svh"
 module fp24_func #(
     parameter int EXP_W  = 7,
     parameter int FRAC_W = 16
@@ -46,4 +47,7 @@ module fp24_func #(
       .in_cos(in_op == fp24_func_pkg::OP_COS), .in_a(in_a),
       .out_valid(out_trig_valid), .out_result(out_trig_result), .out_flags(out_trig_flags),
       .out_next_result(out_trig_next_result));
+
+  // An op's code and operand are known (each pipe checks its own stages).
+  `APU_ASSERT(FuncInKnown, `APU_KNOWN(in_valid) && (!in_valid || `APU_KNOWN({in_op, in_a})))
 endmodule

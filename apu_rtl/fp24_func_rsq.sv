@@ -9,6 +9,7 @@
 //   s3 <- r = N - q0 * (RECIP: m, SQRT: q0) mod 2^21 (N = 2^34 or the
 //         radicand), the floor and sticky from r, rounded and packed
 // rst_n is synchronous and clears only the valid bits.
+`include "apu_assert.svh"
 module fp24_func_rsq #(
     parameter int EXP_W  = 7,
     parameter int FRAC_W = 16
@@ -212,4 +213,22 @@ module fp24_func_rsq #(
   assign out_result = s3_result;
   assign out_flags  = s3_flags;
   assign out_next_result = result;
+
+  // ---- assertions (docs/apu-rtl.md "Assertions") ----------------------------
+  // Latency 3: each stage's valid is the one before it a cycle earlier.
+`ifdef APU_ASSERT_ON
+  logic [2:0] chk_in_valid;  // in_valid at the last three edges
+  always_ff @(posedge clk) chk_in_valid <= rst_n ? {chk_in_valid[1:0], in_valid} : 3'b000;
+  `APU_ASSERT(RsqStageValids, {s3_valid, s2_valid, s1_valid} == chk_in_valid)
+`endif
+  // The result is known a cycle before it completes and while it is valid.
+  `APU_ASSERT_IF(RsqNextKnown, s2_valid, `APU_KNOWN(out_next_result))
+  `APU_ASSERT_IF(RsqOutKnown, out_valid, `APU_KNOWN({out_result, out_flags}))
+  // Every NaN is the canonical one; 1/x and sqrt(x) of a normal x never
+  // overflow; DZ (RECIP of a zero) gives an infinity.
+  `APU_ASSERT_IF(RsqNaNIsCanonical, out_valid, (out_result[W-2 -: EXP_W] != EXP_ONES
+                                                || out_result[FRAC_W-1:0] == '0 || out_result == NAN))
+  `APU_ASSERT_IF(RsqNoOverflow, out_valid, !out_flags[2])
+  `APU_ASSERT_IF(RsqDivideByZeroIsInf, out_valid && out_flags[3],
+                   out_result[W-2:0] == {EXP_ONES, {FRAC_W{1'b0}}})
 endmodule

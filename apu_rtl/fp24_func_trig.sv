@@ -24,6 +24,7 @@
 // apu_rtl/rom/fp24_trig_rtl.cpp is the same pipeline in C++, bit for bit.
 // Every stage's datapath registers load only when an op is in it.
 // rst_n is synchronous and clears only the valid bits.
+`include "apu_assert.svh"
 module fp24_func_trig #(
     parameter int EXP_W  = 7,
     parameter int FRAC_W = 16
@@ -407,4 +408,22 @@ module fp24_func_trig #(
   assign out_result = s9_result;
   assign out_flags  = s9_flags;
   assign out_next_result = s8_known ? s8_result : trig_result;
+
+  // ---- assertions (docs/apu-rtl.md "Assertions") ----------------------------
+  // Latency 9: each stage's valid is the one before it a cycle earlier.
+`ifdef APU_ASSERT_ON
+  logic [8:0] chk_in_valid;  // in_valid at the last nine edges
+  always_ff @(posedge clk) chk_in_valid <= rst_n ? {chk_in_valid[7:0], in_valid} : 9'd0;
+  `APU_ASSERT(TrigStageValids, {s9_valid, s8_valid, s7_valid, s6_valid, s5_valid, s4_valid, s3_valid,
+                                s2_valid, s1_valid} == chk_in_valid)
+`endif
+  // The result is known a cycle before it completes and while it is valid.
+  `APU_ASSERT_IF(TrigNextKnown, s8_valid, `APU_KNOWN(out_next_result))
+  `APU_ASSERT_IF(TrigOutKnown, out_valid, `APU_KNOWN({out_result, out_flags}))
+  // Every NaN is the canonical one; otherwise |sin|, |cos| <= 1; no DZ, no OF.
+  `APU_ASSERT_IF(TrigNaNIsCanonical, out_valid, (out_result[W-2 -: EXP_W] != EXP_ONES
+                                                 || out_result[FRAC_W-1:0] == '0 || out_result == NAN))
+  `APU_ASSERT_IF(TrigWithinUnitRange, out_valid, out_result[W-2 -: EXP_W] == EXP_ONES
+                                   || out_result[W-2:0] <= ONE[W-2:0])
+  `APU_ASSERT_IF(TrigNoOverflowNoDivideByZero, out_valid, out_flags[3:2] == 2'b00)
 endmodule

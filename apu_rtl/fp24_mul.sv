@@ -6,6 +6,7 @@
 //   s2: normalise (the product is in [1, 4)), round and pack, or substitute
 //       the special-case result (fp24_result_stage).
 // rst_n is synchronous and clears only the valid bits.
+`include "apu_assert.svh"
 module fp24_mul #(
     parameter int EXP_W  = 7,
     parameter int FRAC_W = 16
@@ -113,4 +114,21 @@ module fp24_mul #(
   assign out_valid  = s2_valid;
   assign out_result = s2_result;
   assign out_flags  = s2_flags;
+
+  // ---- assertions (docs/apu-rtl.md "Assertions"; the result stage's own in
+  // fp24_result_stage) ----------------------------------------------------------
+  localparam int W = EXP_W + FRAC_W + 1;
+  // An op's operands are known.
+  `APU_ASSERT(MulInKnown, `APU_KNOWN(in_valid) && (!in_valid || `APU_KNOWN({in_a, in_b})))
+  // Latency 2: each stage's valid is the one before it a cycle earlier
+  // (checked against a copy of in_valid of its own).
+`ifdef APU_ASSERT_ON
+  logic [1:0] chk_in_valid;  // in_valid at the last two edges
+  always_ff @(posedge clk) chk_in_valid <= rst_n ? {chk_in_valid[0], in_valid} : 2'b00;
+  `APU_ASSERT(MulStageValids, {s2_valid, s1_valid} == chk_in_valid)
+`endif
+  // Every NaN it returns is the canonical one, and NV (0 * inf) comes with it.
+  `APU_ASSERT_IF(MulNaNIsCanonical, out_valid, out_result[W-2 -: EXP_W] != EXP_ONES
+                 || out_result[FRAC_W-1:0] == '0 || out_result == CANON_NAN)
+  `APU_ASSERT_IF(MulInvalidGivesNaN, out_valid && out_flags[4], out_result == CANON_NAN)
 endmodule

@@ -12,6 +12,7 @@
 // (in_valid low) it is a don't care, as nothing takes it then. fp24_round
 // works only for an op that needs it. rst_n is synchronous and clears only
 // the valid bit.
+`include "apu_assert.svh"
 module fp24_result_stage #(
     parameter int EXP_W  = 7,
     parameter int FRAC_W = 16,
@@ -43,6 +44,24 @@ module fp24_result_stage #(
       .result(rnd_result), .flags(rnd_flags));
 
   assign next_result = special ? special_result : rnd_result;
+
+  // ---- assertions (docs/apu-rtl.md "Assertions") ----------------------------
+  localparam int W = EXP_W + FRAC_W + 1;
+  localparam logic [EXP_W-1:0] EXP_ONES = {EXP_W{1'b1}};
+  // The valid bits are known; an op's result is known in the cycle before it
+  // completes (the core's bypass takes it then) and on out_* while valid.
+  `APU_ASSERT(ResultValidKnown, `APU_KNOWN({in_valid, out_valid}))
+  `APU_ASSERT(ResultNextKnown, !in_valid || `APU_KNOWN({special, next_result}))
+  `APU_ASSERT(ResultOutKnown, !out_valid || `APU_KNOWN({out_result, out_flags}))
+  // fp24_round gives a number, an infinity (OF) or a zero (UF), never a NaN.
+  `APU_ASSERT_IF(RoundGivesNoNaN, in_valid && !special,
+                 rnd_result[W-2 -: EXP_W] != EXP_ONES || rnd_result[FRAC_W-1:0] == '0)
+  // The multiplier and the adder unit never divide: no DZ. OF comes with NX
+  // and an infinity, UF with NX and a zero (docs/fp24.md "Rounding").
+  `APU_ASSERT_IF(ResultFlagsConsistent, out_valid && out_flags[3:1] != 3'b000,
+                 !out_flags[3]
+                 && (!out_flags[2] || (out_flags[0] && out_result[W-2:0] == {EXP_ONES, {FRAC_W{1'b0}}}))
+                 && (!out_flags[1] || (out_flags[0] && out_result[W-2:0] == '0)))
 
   always_ff @(posedge clk) begin
     if (!rst_n) out_valid <= 1'b0;

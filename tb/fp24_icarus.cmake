@@ -14,7 +14,7 @@ file(GLOB packages ${rtl}/fp24_*pkg.sv)
 file(GLOB units ${rtl}/fp24_*.sv)
 list(REMOVE_ITEM units ${packages})
 set(vvp_file ${WORK}/fp24_icarus.vvp)
-execute_process(COMMAND ${IVERILOG} -g2012 -I${GENERATED} -s fp24_icarus_tb -o ${vvp_file}
+execute_process(COMMAND ${IVERILOG} -g2012 -I${GENERATED} -I${rtl} -s fp24_icarus_tb -o ${vvp_file}
                         ${GENERATED}/apu_pkg.sv ${packages} ${SOURCE_DIR}/tb/fp24_icarus_tb.sv ${units}
   RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_VARIABLE out)
 if(NOT rc EQUAL 0 OR err MATCHES "error")

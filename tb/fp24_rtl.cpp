@@ -178,7 +178,14 @@ std::array<Pins, kUnits> units_pins(Vfp24_units& m) {
 template <class Model>
 class Clocked {
  public:
-  Clocked() : ctx_(std::make_unique<VerilatedContext>()), model_(std::make_unique<Model>(ctx_.get(), "TOP")) {}
+  Clocked() : ctx_(std::make_unique<VerilatedContext>()), model_(std::make_unique<Model>(ctx_.get(), "TOP")) {
+    // A failing assertion ($error) must not abort: posedge() throws.
+    ctx_->fatalOnError(false);
+  }
+
+  // The calling thread's Verilator context is this model's, so that a
+  // failing assertion reports here (once per run, not per edge).
+  void bind() { Verilated::threadContextp(ctx_.get()); }
 
   Model& model() { return *model_; }
   VerilatedContext& context() { return *ctx_; }
@@ -186,6 +193,7 @@ class Clocked {
   // Holds rst_n low for two edges (it is synchronous) with nothing issued.
   template <class Idle>
   void reset(Idle idle) {
+    bind();
     idle();
     model_->rst_n = 0;
     for (int i = 0; i < 2; ++i) posedge_then_negedge();
@@ -196,6 +204,12 @@ class Clocked {
   void posedge() {
     model_->clk = 1;
     model_->eval();
+    if (__builtin_expect(ctx_->gotError(), 0)) {
+      std::fflush(stdout);  // Verilator's message first
+      throw RtlAssertionError("fp24 RTL: an assertion failed at clock edge " + std::to_string(cycles_) +
+                              " (reset edges included; the rule: Verilator's \"APU_ASSERT <Name> failed in <instance>\" "
+                              "on standard output)");
+    }
     dump(kHalfPeriod);
   }
 
@@ -273,6 +287,7 @@ class UnitImpl final : public RtlUnit::Impl {
   void run(Op op, const Bits* a, const Bits* b, Result* out, std::size_t n) override {
     std::size_t issued = 0, done = 0;
     Lane::Done d[Lane::kMaxDone];
+    clk_.bind();
     while (done < n) {
       if (issued < n && lane_.ready(edge)) {
         lane_.drive({op, a[issued], b != nullptr ? b[issued] : 0}, issued, edge);
@@ -348,6 +363,7 @@ std::vector<Result> RtlUnits::run(const std::vector<Issue>& ops, const IssuePatt
   std::bernoulli_distribution bubble(pattern.bubble);
 
   std::size_t done = 0;
+  m.clk.bind();
   while (done < ops.size()) {
     for (int u = 0; u < kUnits; ++u) {
       const bool waiting = next[u] < queue[u].size();

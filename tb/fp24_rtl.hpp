@@ -39,6 +39,13 @@ class TimingError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An assertion of the RTL (`APU_ASSERT, docs/apu-rtl.md "Assertions") failed
+// at a rising edge; Verilator has printed the rule's name on standard output.
+class RtlAssertionError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // One unit's own verilated model (no tracing; built for speed).
 class RtlUnit {
  public:

@@ -5,6 +5,8 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "Vapu_core.h"
 #include "Vapu_fast.h"
@@ -126,6 +128,9 @@ namespace {
 std::unique_ptr<VerilatedContext> make_context(bool traced) {
   auto ctx = std::make_unique<VerilatedContext>();
   ctx->randReset(0);
+  // A failing assertion ($error) must not abort the process: the engine sees
+  // gotError() after the edge and throws RtlAssertionError (clock()).
+  ctx->fatalOnError(false);
   if (traced) ctx->traceEverOn(true);
   return ctx;
 }
@@ -302,10 +307,28 @@ void RtlEngine::ModelOf<Top, kTraced>::settle() {
 
 // ---- clocking -----------------------------------------------------------------
 
+// An assertion failed at the rising edge just clocked (docs/apu-rtl.md
+// "Assertions"): Verilator has printed its name; the run fails here.
+[[noreturn]] static void assertion_failed(std::uint64_t cycle, std::uint16_t pc);
+
+void check_rtl_assertions(const VerilatedContext& ctx, std::uint64_t cycle, std::uint16_t pc) {
+  if (__builtin_expect(ctx.gotError(), 0)) assertion_failed(cycle, pc);
+}
+
+[[noreturn]] static void assertion_failed(std::uint64_t cycle, std::uint16_t pc) {
+  std::fflush(stdout);  // Verilator's message first
+  char where[96];
+  std::snprintf(where, sizeof where, "cycle %llu, pc 0x%03x", static_cast<unsigned long long>(cycle), pc);
+  throw RtlAssertionError(cycle, pc,
+                          std::string("RTL assertion failed at ") + where +
+                              " (the rule: Verilator's \"APU_ASSERT <Name> failed in <instance>\" on standard output)");
+}
+
 template <class Top, bool kTraced>
 void RtlEngine::ModelOf<Top, kTraced>::clock() {
   Top& t = *top_;
   const bool traced = kTraced && fst_;
+  const std::uint16_t pc = t.dbg_pc;  // the word of the cycle, for an assertion's report
   if constexpr (!kTraced) func_->before_rising_edge();
   // Time in ps (Verilator's default precision): 250 ns cycles, 4 MHz.
   if (changed_ || traced) {
@@ -317,6 +340,9 @@ void RtlEngine::ModelOf<Top, kTraced>::clock() {
     // edge without recomputing the input logic (a third of the host time).
     backdoor_.rising_edge_unchanged();
   }
+  // Assertions run at the rising edge (the core's, and the function unit's
+  // in before_rising_edge(): one context).
+  check_rtl_assertions(*ctx_, cycle_, pc);
   if (traced) dump(time_of(cycle_) + time_.cycle_ps() / 2);
   // MPU requests last exactly the cycle after the call that made them.
   const bool requests =
@@ -360,6 +386,7 @@ const ApuCounters& RtlEngine::ModelOf<Top, kTraced>::counters() const {
 
 template <class Top, bool kTraced>
 void RtlEngine::ModelOf<Top, kTraced>::step(CycleRecord& rec) {
+  Verilated::threadContextp(ctx_.get());  // a failing assertion reports to the thread's context
   // Show forwarded MPU requests in the waveform before the edge that takes them.
   dump_requests();
   const Top& t = *top_;
@@ -406,6 +433,7 @@ void RtlEngine::ModelOf<Top, kTraced>::step(CycleRecord& rec) {
 
 template <class Top, bool kTraced>
 std::uint64_t RtlEngine::ModelOf<Top, kTraced>::clock_until(std::uint64_t max_cycles, bool until_data_taken) {
+  Verilated::threadContextp(ctx_.get());  // a failing assertion reports to the thread's context
   dump_requests();
   const Top& t = *top_;
   const bool traced = kTraced && fst_;

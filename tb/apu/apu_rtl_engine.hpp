@@ -20,11 +20,36 @@
 
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 #include "apu_engine.hpp"
 #include "apu_rtl_backdoor.hpp"
 
 namespace mc1::apu {
+
+// An assertion of the RTL (`APU_ASSERT, apu_rtl/apu_assert.svh; docs/apu-rtl.md
+// "Assertions") failed at the rising edge ending `cycle()`, the word at
+// `pc()` in I. Verilator has printed the rule's name and instance on
+// standard output ("%Error: ...: Assertion failed in TOP...: APU_ASSERT
+// <Name> failed in ..."); what() says the cycle and the pc. The model is not
+// clocked further.
+class RtlAssertionError : public std::runtime_error {
+ public:
+  RtlAssertionError(std::uint64_t cycle, std::uint16_t pc, const std::string& what)
+      : std::runtime_error(what), cycle_(cycle), pc_(pc) {}
+  std::uint64_t cycle() const { return cycle_; }
+  std::uint16_t pc() const { return pc_; }
+
+ private:
+  std::uint64_t cycle_;
+  std::uint16_t pc_;
+};
+
+// Throws RtlAssertionError for (cycle, pc) if an assertion failed in ctx
+// (gotError) since it was made: RtlEngine's check after every rising edge,
+// for a model whose context does not abort on $error (fatalOnError(false)).
+void check_rtl_assertions(const VerilatedContext& ctx, std::uint64_t cycle, std::uint16_t pc);
 
 class RtlEngine final : public ApuEngine {
  public:
