@@ -102,6 +102,19 @@ TEST_F(CmdlineFiles, AddedPathsAndStandardInput) {
   close(saved);
 }
 
+TEST_F(CmdlineFiles, AnInputsFallbackWhenNotGiven) {
+  Files f;
+  CLI::App app;
+  std::string scene, json;
+  f.input(app.add_option("--scene", scene), "the scene", file("in.txt"));
+  f.output(app.add_option("--json", json));
+  char prog[] = "prog", opt[] = "--json";
+  std::string out = file("in.txt");
+  char* argv[] = {prog, opt, out.data()};
+  app.parse(3, argv);
+  EXPECT_THROW(f.check(), UsageError) << "--json on the default scene";
+}
+
 TEST_F(CmdlineFiles, ManyOutputsCheckedOnce) {
   for (int i = 0; i < 5000; ++i) files_.add_output("--out-dir", file("point-" + std::to_string(i) + ".json"));
   files_.add_output("--json", file("point-4321.json"));

@@ -189,8 +189,10 @@ void check_writable(const NamedPaths& outputs) {
   }
 }
 
-CLI::Option* Files::input(CLI::Option* option, const std::string& role) {
-  inputs_.push_back({option, role.empty() ? option->get_name() : role, {}});
+CLI::Option* Files::input(CLI::Option* option, const std::string& role, const std::string& fallback) {
+  std::vector<std::string> fallbacks;
+  if (!fallback.empty()) fallbacks.push_back(fallback);
+  inputs_.push_back({option, role.empty() ? option->get_name() : role, fallbacks});
   return option;
 }
 
@@ -206,7 +208,7 @@ void Files::add_output(const std::string& name, const std::string& path) { more_
 NamedPaths Files::inputs() const {
   NamedPaths in;
   for (const Declared& d : inputs_)
-    for (const std::string& path : d.option->results())
+    for (const std::string& path : d.option->count() ? d.option->results() : d.sides)
       if (!path.empty() && path != "-") in.emplace_back(d.role, path);
   in.insert(in.end(), more_inputs_.begin(), more_inputs_.end());
   // A regular file redirected to standard input (a pipe or a terminal is

@@ -107,8 +107,8 @@ class Files {
  public:
   // An option whose values name files the program reads; `role` names them
   // in messages ("--out x.json would replace the scene x.json"); the option's
-  // name when empty.
-  CLI::Option* input(CLI::Option* option, const std::string& role = "");
+  // name when empty. `fallback`: the file read when the option is not given.
+  CLI::Option* input(CLI::Option* option, const std::string& role = "", const std::string& fallback = "");
   // An option whose value names a file the program writes, and the side
   // files it implies: the value followed by each of `side_suffixes`.
   CLI::Option* output(CLI::Option* option, std::vector<std::string> side_suffixes = {});
@@ -128,7 +128,7 @@ class Files {
   struct Declared {
     CLI::Option* option;
     std::string role;
-    std::vector<std::string> sides;
+    std::vector<std::string> sides;  // outputs: the side files' suffixes; inputs: {fallback} or {}
   };
   std::vector<Declared> inputs_, outputs_;
   NamedPaths more_inputs_, more_outputs_;

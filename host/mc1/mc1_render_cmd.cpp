@@ -94,7 +94,8 @@ void add_render_options(CLI::App& cmd) {
 }
 
 void add_bench_render_options(CLI::App& cmd) {
-  files(cmd).input(value_option(cmd, "scene", "FILE", "(default: " + default_scene() + ")"), "the scene");
+  files(cmd).input(value_option(cmd, "scene", "FILE", "(default: " + default_scene() + ")"), "the scene",
+                   default_scene());
   value_option(cmd, "size", "WxH", "(default 256x256)");
   value_option(cmd, "nodes", "LIST", "(default 1,4,16,64)");
   value_option(cmd, "static-nodes", "N", "(default 16)");

@@ -31,7 +31,7 @@ const char* const kSweepDescription =
 void add_sweep_options(CLI::App& cmd) {
   cmdline::Files& f = files(cmd);
   f.input(list_option(cmd, "scene", "FILE", "a scene of the grid; repeatable (default " + default_scene() + ")"),
-          "the scene");
+          "the scene", default_scene());
   value_option(cmd, "nodes", "LIST", "node counts (default 16)");
   value_option(cmd, "schedules", "LIST", "schedules: lpt, fifo, static (default lpt)");
   value_option(cmd, "blocks", "LIST", "block sizes B or WxH (default 16)");
@@ -206,14 +206,13 @@ std::string point_name(std::uint64_t i) {
   return name;
 }
 
-// Before the run: the files the points [first, end) write into `dir`, and
-// the default scene, added to the command's files and all checked (no
+// Before the run: the files the points [first, end) write into `dir`
+// added to the command's files, and all checked (no
 // output on a scene, a timing table or another output; each writable), so
 // that a bad --out-dir or --json stops the sweep before point 0.
 void check_sweep_files(const CLI::App& cmd, const Parsed& a, const std::string& dir, std::uint64_t first,
                        std::uint64_t end) {
   cmdline::Files& f = files(cmd);
-  if (!a.has("scene")) f.add_input("the scene", default_scene());
   for (std::uint64_t i = first; i < end; ++i) {
     f.add_output("--out-dir (point statistics)", dir + "/" + point_name(i) + ".json");
     if (a.has("png")) f.add_output("--out-dir (--png frame)", dir + "/" + point_name(i) + ".png");
