@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <dirent.h>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <utility>
 
 #include "atomic_file.hpp"
 
@@ -176,18 +178,53 @@ void write_as_library(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
 
+// The sections of an FST file as its writer frames them (a type byte, a
+// big-endian 64-bit length that counts itself): a header, a value-change
+// block, the geometry and the hierarchy.
+std::string fst_sections() {
+  std::string out;
+  for (auto [type, length] : {std::pair{0, 329}, {8, 40}, {3, 8}, {6, 20}}) {
+    out += static_cast<char>(type);
+    for (int i = 7; i >= 0; --i) out += static_cast<char>((std::uint64_t(length) >> (8 * i)) & 0xff);
+    out.append(static_cast<std::size_t>(length - 8), 'x');
+  }
+  return out;
+}
+
 TEST(AtomicFile, ForWriterRenamesTheWritersFileOnCommit) {
   ScratchDir dir;
   write_file_atomically(dir.file("t.fst"), "old");
   chmod(dir.file("t.fst").c_str(), 0640);
   StagedFile f = StagedFile::for_writer(dir.file("t.fst"));
   EXPECT_EQ(dir.names().size(), 2u) << "the temporary file is made at once";
-  write_as_library(f.temp(), "waveform");
+  write_as_library(f.temp(), fst_sections());
   EXPECT_EQ(slurp(dir.file("t.fst")), "old") << "untouched until commit()";
   f.commit();
-  EXPECT_EQ(slurp(dir.file("t.fst")), "waveform");
+  EXPECT_EQ(slurp(dir.file("t.fst")), fst_sections());
   EXPECT_EQ(mode_of(dir.file("t.fst")) & 0777, 0640u) << "a replaced file keeps its mode";
   EXPECT_EQ(dir.names(), std::set<std::string>{"t.fst"});
+}
+
+// An FST writer reports no failed write: a file cut short (a full disk) or
+// without its closing sections is removed by commit(), which throws, and
+// the old file stays.
+TEST(AtomicFile, ForWriterFstNotWholeIsNotCommitted) {
+  ScratchDir dir;
+  write_file_atomically(dir.file("t.fst"), "old");
+  const std::string whole = fst_sections();
+  for (const std::string& bad : {whole.substr(0, whole.size() - 3), whole.substr(0, 330 + 40 + 1), std::string()}) {
+    StagedFile f = StagedFile::for_writer(dir.file("t.fst"));
+    write_as_library(f.temp(), bad);
+    try {
+      f.commit();
+      ADD_FAILURE() << "an FST of " << bad.size() << " bytes was committed";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("t.fst: the waveform was not written whole"), std::string::npos)
+          << e.what();
+    }
+    EXPECT_EQ(dir.names(), std::set<std::string>{"t.fst"});
+    EXPECT_EQ(slurp(dir.file("t.fst")), "old");
+  }
 }
 
 TEST(AtomicFile, ForWriterWithoutCommitLeavesNothing) {
@@ -261,6 +298,26 @@ TEST(AtomicFile, SignalRemovesStagedFiles) {
   ASSERT_EQ(waitpid(child, &status, 0), child);
   ASSERT_TRUE(WIFSIGNALED(status)) << "exit " << WEXITSTATUS(status);
   EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  EXPECT_TRUE(dir.names().empty()) << *dir.names().begin();
+}
+
+// SIGBUS (an FST writer's mapped file on a full disk): the staged files go,
+// and the program exits 1 with a message instead of dumping core.
+TEST(AtomicFile, SigbusRemovesStagedFilesAndExitsOne) {
+  ScratchDir dir;
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    remove_staged_files_on_signals();
+    StagedFile w = StagedFile::for_writer(dir.file("t.fst"));
+    std::ofstream(w.temp() + ".hier") << "hierarchy";
+    raise(SIGBUS);
+    _exit(4);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 1);
   EXPECT_TRUE(dir.names().empty()) << *dir.names().begin();
 }
 

@@ -119,8 +119,49 @@ extern "C" void remove_staged_and_reraise(int sig) {
     ::unlink(s.path);
     s.path[n] = '\0';
   }
+  if (sig == SIGBUS) {
+    // A page of a mapped file that the file system could not back: an FST
+    // writer's on a full disk. The outputs are gone; the run failed.
+    static const char kMessage[] =
+        "error: a mapped output file could not be written (SIGBUS: is its file system full?); no output was kept\n";
+    (void)!::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+    ::_exit(1);
+  }
   ::signal(sig, SIG_DFL);
   ::raise(sig);
+}
+
+// FST (GTKWave's format): sections of a type byte and a 64-bit big-endian
+// length that counts itself, from the header to the end of the file; a
+// writer adds the geometry and hierarchy sections when it closes. A write
+// that failed (a full disk) leaves a section cut short or one missing.
+// Returns what is wrong, or "" for a whole file.
+std::string fst_incomplete(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::string("cannot open: ") + std::strerror(errno);
+  struct stat st {};
+  const off_t size = ::fstat(fd, &st) == 0 ? st.st_size : -1;
+  constexpr unsigned char kHeader = 0, kGeometry = 3, kHier = 4, kHierLz4 = 6, kHierLz4Duo = 7;
+  bool geometry = false, hierarchy = false;
+  std::string why;
+  off_t at = 0;
+  for (int n = 0; why.empty() && at < size; ++n) {
+    unsigned char head[9];
+    if (::pread(fd, head, sizeof head, at) != static_cast<ssize_t>(sizeof head)) {
+      why = "a section cut short at byte " + std::to_string(at);
+      break;
+    }
+    std::uint64_t length = 0;
+    for (int i = 1; i < 9; ++i) length = length << 8 | head[i];
+    if ((n == 0 && head[0] != kHeader) || length < 8 || length > static_cast<std::uint64_t>(size - at - 1))
+      why = "a section cut short at byte " + std::to_string(at);
+    geometry |= head[0] == kGeometry;
+    hierarchy |= head[0] == kHier || head[0] == kHierLz4 || head[0] == kHierLz4Duo;
+    at += 1 + static_cast<off_t>(length);
+  }
+  ::close(fd);
+  if (why.empty() && (size <= 0 || !geometry || !hierarchy)) why = "no geometry or hierarchy section";
+  return why;
 }
 
 }  // namespace
@@ -128,7 +169,7 @@ extern "C" void remove_staged_and_reraise(int sig) {
 void remove_staged_files_on_signals() {
   static std::once_flag once;
   std::call_once(once, [] {
-    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGBUS}) {
       struct sigaction old {};
       if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
       struct sigaction act {};
@@ -180,6 +221,7 @@ StagedFile StagedFile::for_writer(const std::string& path, const std::string& su
   ::close(fd);
   f.temp_ = std::move(temp);
   f.slot_ = register_temp(f.temp_);
+  f.writer_ = true;
   return f;
 }
 
@@ -188,7 +230,8 @@ StagedFile::StagedFile(StagedFile&& other) noexcept
       target_(std::move(other.target_)),
       temp_(std::exchange(other.temp_, {})),
       mode_(other.mode_),
-      slot_(std::exchange(other.slot_, -1)) {}
+      slot_(std::exchange(other.slot_, -1)),
+      writer_(other.writer_) {}
 
 bool same_file(const std::string& a, const std::string& b) {
   struct stat sa {};
@@ -254,6 +297,17 @@ StagedFile::~StagedFile() {
 
 void StagedFile::commit() {
   if (temp_.empty()) return;
+  // A waveform writer reports no failed write (a full disk): what it left
+  // is checked whole before it replaces anything.
+  if (writer_ && target_.size() > 4 && target_.compare(target_.size() - 4, 4, ".fst") == 0) {
+    if (const std::string why = fst_incomplete(temp_); !why.empty()) {
+      ::unlink(temp_.c_str());
+      temp_.clear();
+      unregister_temp(slot_);
+      throw std::runtime_error(path_ + ": the waveform was not written whole (" + why +
+                               "; is the file system full?)");
+    }
+  }
   if (mode_) ::chmod(temp_.c_str(), mode_);  // a replaced file keeps its mode
   const bool renamed = ::rename(temp_.c_str(), target_.c_str()) == 0;
   const int err = errno;

@@ -40,6 +40,10 @@ class StagedFile {
   static StagedFile for_writer(const std::string& path, const std::string& suffix = "");
   const std::string& temp() const { return temp_; }
 
+  // Renames the staged file onto the target. A writer's FST that is not
+  // whole (a write that failed on a full disk, which the writer does not
+  // report) is removed instead: std::runtime_error "PATH: the waveform was
+  // not written whole (...)".
   void commit();
   const std::string& path() const { return path_; }
 
@@ -50,6 +54,7 @@ class StagedFile {
   std::string temp_;    // the staged file; empty once committed or when written in place
   mode_t mode_ = 0;     // for_writer: the replaced file's mode (0: none)
   int slot_ = -1;       // the signal handler's entry for temp_ (remove_staged_files_on_signals)
+  bool writer_ = false;  // for_writer: commit() checks an FST is whole first
 };
 
 // StagedFile(path, bytes).commit().
@@ -60,6 +65,8 @@ void write_file_atomically(const std::string& path, std::string_view bytes);
 // the StagedFiles alive (and, for a writer's, the ".hier" file an FST writer
 // keeps beside it), then end the program as the signal would have. A signal
 // the program ignores stays ignored. Calling it again does nothing.
+// SIGBUS (a mapped file the file system cannot back: an FST writer's on a
+// full disk) removes them too, says so on stderr and exits 1.
 void remove_staged_files_on_signals();
 
 // Whether `a` and `b` name one regular file: the same device and inode when
