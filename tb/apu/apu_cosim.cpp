@@ -112,7 +112,7 @@ bool lockstep_cycles(const Options& o, Lockstep& ls, std::uint64_t max_cycles,
 
 // An engine that failed (the icarus engine: an assertion, an X, the bench
 // ending), reported as a divergence is: cycle, pc, the word (from the ISS,
-// if one of the two is), what.
+// if one of the two is), what. Exit 1, as a divergence.
 void report_failure(const Options& o, const Engines& e, const IcarusError& err) {
   const std::string name = dynamic_cast<const IcarusEngine*>(e.a.get()) ? o.engine_a : o.engine_b;
   std::cout << "apu-cosim: " << name << " failed";
@@ -134,6 +134,11 @@ bool lockstep_run(const Options& o, const Engines& e, Lockstep& ls, std::uint64_
     return lockstep_cycles(o, ls, max_cycles, mpu, cycles, stalls);
   } catch (const IcarusError& err) {
     report_failure(o, e, err);
+    return false;
+  } catch (const std::runtime_error& err) {
+    // Another engine's failure in the run (the verilated core's assertion
+    // error names its cycle and pc itself).
+    std::cout << "apu-cosim: an engine failed after " << cycles << " cycles\n  " << err.what() << "\n";
     return false;
   }
 }
