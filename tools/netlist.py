@@ -166,15 +166,30 @@ def stamp_of(gen, top, flow="generic"):
     return h.hexdigest()
 
 
+_HELD = set()
+
+
 @contextlib.contextmanager
 def locked(path):
-    """An exclusive lock on `path` (netlist writes and records of one unit)."""
+    """An exclusive lock on `path` (a netlist and its records, while one
+    process writes or checks them); taken again by its holder, a no-op."""
+    if path in _HELD:
+        yield
+        return
     with open(path, "a") as f:
         fcntl.flock(f, fcntl.LOCK_EX)
+        _HELD.add(path)
         try:
             yield
         finally:
+            _HELD.discard(path)
             fcntl.flock(f, fcntl.LOCK_UN)
+
+
+def holding(build, top, flow="generic"):
+    """The lock of a netlist: held, no other process replaces it (a writer
+    whose sources changed) while it is checked or measured."""
+    return locked(os.path.join(build_paths(build)[2], flow_name(top, flow) + ".lock"))
 
 
 def build_paths(build):
@@ -580,9 +595,10 @@ def check(build, unit, form="quick", jobs=1, log=say, flow="generic"):
         raise Usage(f"no {flow} check of {unit} (ice40: the FP24 units)")
     started = time.time()
     try:
-        if unit == "apu_core":
-            return check_core(build, form, jobs, log)
-        return check_fp(build, unit, form, jobs, log, flow)
+        with holding(build, unit, flow):
+            if unit == "apu_core":
+                return check_core(build, form, jobs, log)
+            return check_fp(build, unit, form, jobs, log, flow)
     except Failed as e:
         path = record_path(build, unit, form, flow)
         if not os.path.exists(path) or os.path.getmtime(path) < started:

@@ -2,7 +2,7 @@
 """Open-flow synthesis report of the APU RTL (docs/apu-rtl.md "Synthesis").
 
     synth.py [--quick] [--units U,U,...] [--no-ice40] [--check-form quick|full]
-             [--require-check] [--rtl DIR --out DIR] BUILD_DIR
+             [--require-check] [--ice40-units U,...] [--rtl DIR --out DIR] BUILD_DIR
 
 Reads the same sources Verilator does (apu_rtl/*.sv and BUILD_DIR/generated/
 apu_pkg.sv, fp24_rom.svh) with Debian's Yosys 0.23 and, per unit:
@@ -23,6 +23,8 @@ apu_pkg.sv, fp24_rom.svh) with Debian's Yosys 0.23 and, per unit:
     nextpnr-ice40 Fmax.
 Writes BUILD_DIR/reports/synth.txt and synth.json (work files in
 BUILD_DIR/reports/synth/), each unit with the check its netlists passed.
+--ice40-units: the units that get the iCE40 step (default all; fp24_func's
+synth_ice40 alone takes a quarter of an hour).
 --rtl DIR --out DIR: a copy of apu_rtl/ instead, everything written into
 DIR (tb/netlist/netlist_planted_bug.cmake: a planted bug must stop the
 report).
@@ -101,15 +103,28 @@ def checked(build, top, flow, form, run_checks, log):
     `run_checks` is off: no figures of that netlist."""
     name = netlist.flow_name(top, flow)
     try:
-        net = netlist.write(build, top, log, flow)
-        rec = netlist.passing_record(build, top, net["sha256"], flow)
-        if rec is None:
-            if not run_checks:
-                raise CheckFailed(f"{name}: its netlist {net['v']} (sha256 {net['sha256'][:16]}) has no passing "
-                                  f"check: no figures (tools/netlist.py check --units {top}"
-                                  f"{' --flow ' + flow if flow != 'generic' else ''} {build})")
-            log(f"synth: {name}: no passing check of this netlist: running its {form} check")
-            rec = netlist.check(build, top, form, jobs=2, log=log, flow=flow)
+        # the netlist's lock held: no other writer replaces it until its
+        # files are copied, the check's sha256 the copy's
+        with netlist.holding(build, top, flow):
+            net = netlist.write(build, top, log, flow)
+            rec = netlist.passing_record(build, top, net["sha256"], flow)
+            if rec is None:
+                if not run_checks:
+                    raise CheckFailed(f"{name}: its netlist {net['v']} (sha256 {net['sha256'][:16]}) has no "
+                                      f"passing check: no figures (tools/netlist.py check --units {top}"
+                                      f"{' --flow ' + flow if flow != 'generic' else ''} {build})")
+                log(f"synth: {name}: no passing check of this netlist: running its {form} check")
+                rec = netlist.check(build, top, form, jobs=2, log=log, flow=flow)
+            work = os.path.join(build, "reports", "synth") if netlist.OUT_DIR is None else netlist.OUT_DIR
+            copies = {}
+            for k in ("v", "json", "log"):
+                copies[k] = os.path.join(work, os.path.basename(net[k]) + ".checked")
+                shutil.copyfile(net[k], copies[k])
+            sha = netlist.sha256_file(copies["v"])
+            if rec.get("netlist_sha256") != sha:
+                raise CheckFailed(f"{name}: the checked netlist's sha256 {rec.get('netlist_sha256')} is not "
+                                  f"{net['v']}'s {sha}")
+            net = dict(net, sha256=sha, json=copies["json"], log=copies["log"])
     except netlist.Failed as e:
         raise CheckFailed(f"{name}: netlist check failed, no figures of it reported:\n{e}")
     except netlist.Usage as e:
@@ -312,12 +327,16 @@ def main(argv):
     units = UNITS
     rest = []
     form = "quick"
+    ice40_units = UNITS
     scratch = {}
     i = 0
     while i < len(args):
         a = args[i]
         if a == "--units" and i + 1 < len(args):
             units = args[i + 1].split(",")
+            i += 1
+        elif a == "--ice40-units" and i + 1 < len(args):
+            ice40_units = args[i + 1].split(",")
             i += 1
         elif a == "--check-form" and i + 1 < len(args):
             form = args[i + 1]
@@ -362,7 +381,7 @@ def main(argv):
                 r["generic"] = generic(gen, u, work, net)
                 g = r["generic"]
                 print(f"synth: {u}: {g['cells']} cells, {g['flip_flops']} FFs, depth {g['depth']}", flush=True)
-                if do_ice40:
+                if do_ice40 and u in ice40_units:
                     r["ice40"] = ice40(build, u, work, g, form, run_checks, netlist.say)
                     fm = r["ice40"].get("fmax_mhz")
                     print(f"synth: {u}: iCE40 " + (f"Fmax {fm:.1f} MHz" if fm else "does not fit"), flush=True)

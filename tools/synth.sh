@@ -6,14 +6,14 @@
 #   tools/synth.sh [BUILD]            full report (BUILD defaults to build/)
 #   tools/synth.sh --quick [BUILD]    read + proc + check of every unit, 0 latches
 #   further options: --units fp24_mul,fp24_add  --no-ice40  --check-form quick|full
-#   --require-check  --rtl DIR --out DIR  (tools/synth.py)
+#   --require-check  --ice40-units U,...  --rtl DIR --out DIR  (tools/synth.py)
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 opts=""
 build=""
 while [ "$#" -gt 0 ]; do
   case "$1" in
-    --units|--check-form|--rtl|--out) opts="$opts $1 $2"; shift ;;
+    --units|--ice40-units|--check-form|--rtl|--out) opts="$opts $1 $2"; shift ;;
     -*) opts="$opts $1" ;;
     *) build=$1 ;;
   esac
