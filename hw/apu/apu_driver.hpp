@@ -18,10 +18,12 @@ namespace mc1::apu {
 
 class Iss;
 
-// A run that did not end in HALT: a fault, the cycle limit, or misuse.
+// A run that did not end in HALT: a fault, the cycle limit, or misuse; or
+// an RTL engine's assertion failed (RtlAssertionError, docs/apu-rtl.md
+// "Assertions").
 class ApuError : public std::runtime_error {
  public:
-  enum class Kind { Fault, CycleLimit, NotRunning, Usage };
+  enum class Kind { Fault, CycleLimit, NotRunning, Usage, Assertion };
   ApuError(Kind kind, Fault fault, std::uint64_t cycle, std::uint16_t pc, const std::string& what)
       : std::runtime_error(what), kind_(kind), fault_(fault), cycle_(cycle), pc_(pc) {}
   Kind kind() const { return kind_; }

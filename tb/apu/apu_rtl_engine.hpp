@@ -23,6 +23,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "apu_driver.hpp"
 #include "apu_engine.hpp"
 #include "apu_rtl_backdoor.hpp"
 
@@ -33,17 +34,12 @@ namespace mc1::apu {
 // `pc()` in I. Verilator has printed the rule's name and instance on
 // standard output ("%Error: ...: Assertion failed in TOP...: APU_ASSERT
 // <Name> failed in ..."); what() says the cycle and the pc. The model is not
-// clocked further.
-class RtlAssertionError : public std::runtime_error {
+// clocked further. An ApuError of kind Assertion, so that a run fails as a
+// failed simulation (exit 1), as on a fault.
+class RtlAssertionError : public ApuError {
  public:
   RtlAssertionError(std::uint64_t cycle, std::uint16_t pc, const std::string& what)
-      : std::runtime_error(what), cycle_(cycle), pc_(pc) {}
-  std::uint64_t cycle() const { return cycle_; }
-  std::uint16_t pc() const { return pc_; }
-
- private:
-  std::uint64_t cycle_;
-  std::uint16_t pc_;
+      : ApuError(Kind::Assertion, Fault::None, cycle, pc, what) {}
 };
 
 // Throws RtlAssertionError for (cycle, pc) if an assertion failed in ctx
