@@ -276,6 +276,7 @@ int main(int argc, char** argv) {
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
   try {
     check_options(o);
+    if (!o.program.empty()) tools::add_included_files(o.program, files);
     files.check();
     if (o.random >= 0) return cli::flush_stdout("apu-cosim", run_random(o));
     // The waveform is staged: the engine writes it under a temporary name,

@@ -204,6 +204,7 @@ int main(int argc, char** argv) {
   if (auto rc = cli::parse(app, argc, argv)) return *rc;
   try {
     check_options(o);
+    tools::add_included_files(o.program, files);
     files.check();  // no output on an input or another output; each writable
     // The waveform is staged: the engine writes it under a temporary name,
     // put in place with the other outputs once the engine has closed it

@@ -3,6 +3,7 @@
 // assembler library, or an "APU1" binary image, docs/apu-asm.md).
 #pragma once
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
@@ -67,6 +68,19 @@ inline bool ends_with(const std::string& s, const char* suffix) {
 inline std::vector<Encoded> load_program_file(const std::string& path) {
   if (ends_with(path, ".apu")) return apuasm::assemble_file(path).words;
   return apu::load_image(path);
+}
+
+// A program in .apu source: the files it .includes (each with a line in its
+// listing) added to `files` as inputs, so that no output replaces one
+// (cmdline::Files). An image includes nothing.
+inline void add_included_files(const std::string& path, cmdline::Files& files) {
+  if (!ends_with(path, ".apu")) return;
+  std::vector<std::string> seen{path};
+  for (const auto& line : apuasm::assemble_file(path).listing)
+    if (std::find(seen.begin(), seen.end(), line.loc.file) == seen.end()) {
+      seen.push_back(line.loc.file);
+      files.add_input("the include file", line.loc.file);
+    }
 }
 
 }  // namespace mc1::apu::tools
