@@ -1,0 +1,391 @@
+#!/usr/bin/env python3
+"""Formal proofs of the APU RTL: Yosys 0.23 + yosys-smtbmc + z3 (docs/apu-rtl.md
+"Formal proofs").
+
+    tools/formal.py [options] PROOF...
+    tools/formal.py --list            the proofs, one a line: name, labels, what it proves
+    tools/formal.py --ctest-list      name;labels;timeout lines for tb/formal/CMakeLists.txt
+
+Each proof reads the RTL it needs (apu_rtl/*.sv, the generated package
+apu_pkg.sv) and, for the harness proofs, a harness of tb/formal/ with
+`read_verilog -formal`, runs `prep -top`, writes an SMT-LIB2 model
+(`write_smt2 -wires`) and runs yosys-smtbmc with z3:
+  - a bounded model check from the initial state (`-t DEPTH`, `--presat`:
+    the assumptions are checked satisfiable first, so a proof cannot pass on
+    contradicting assumptions);
+  - temporal induction (`-i -t K`) where the proof's table entry says it
+    closes; where it does not, the output says to which depth BMC checked it.
+A failing check prints the assertion that failed and the counterexample
+trace (--dump-vcd) path, and the run exits 1.
+
+Proof kinds:
+  - harness proofs (fp24_round, fp24_mul, fp24_add, apu_interlock): the
+    harness states the properties against a record of its own; the RTL's
+    embedded assertions (apu_assert.svh) are removed there (`chformal
+    -remove` on every module but the harness) so that each proof checks
+    what it names; they have proofs of their own:
+  - asserts_<module>: every apu_rtl/<module>.sv that uses APU_ASSERT*, read
+    with -formal (FORMAL defined, apu_assert.svh makes each rule a clocked
+    immediate assert), top = the module with its parameters set from the
+    package where it has them, rst_n low in the first cycle (an smtc
+    constraint), every other input free in every cycle;
+  - negative checks (*_mutant): a proof run on a copy of the RTL with a
+    planted bug (--mutate); it passes when the proof finds the
+    counterexample, so the machinery itself is tested.
+
+Options:
+  --generated DIR    the build's generated files (apu_pkg.sv); default build/generated
+  --work DIR         where models, logs and traces go; default build/formal
+  --mutate FILE:LINE:OLD:NEW   plant a bug: in a scratch copy of FILE, replace
+                     OLD by NEW on line LINE (LINE empty: the one line holding
+                     OLD); repeatable; implies the proof is expected to hold
+                     unless --expect-fail
+  --expect-fail      succeed only if some check finds a counterexample
+  --depth N / --k K  override the BMC depth / induction k
+  --no-induction     BMC only
+Python standard library only.
+"""
+import os
+import re
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RTL = os.path.join(ROOT, "apu_rtl")
+HARNESS = os.path.join(ROOT, "tb", "formal")
+
+# ---- the proofs -------------------------------------------------------------
+# rtl: apu_rtl modules read (file stems); harness: tb/formal file; top; bmc:
+# depth; ind: induction k (None: not expected to close, BMC only); probes:
+# (harness wire, flattened design wire) pairs connected after `flatten`;
+# cut: cell types whose outputs become free values (an over-approximation:
+# a property that holds with them free holds with them); labels; timeout (s).
+PROOFS = {
+    "fp24_round": dict(
+        what="fp24_round against the rounding rule of docs/fp24.md (nearest-even at 17 bits, OF, UF after rounding, NX), "
+             "input contract exp != +255",
+        rtl=["fp24_round"], harness="fp24_round_formal.sv", top="fp24_round_formal",
+        bmc=1, ind=1, labels="formal", timeout=120),
+    "fp24_mul": dict(
+        what="fp24_mul: out_valid exactly LAT_MUL cycles after in_valid, special values (NaN, 0*inf, inf, signed zero, DAZ) "
+             "of the op issued LAT_MUL cycles earlier, out_next_result, fp24_round's input contract",
+        rtl=["fp24_classify", "fp24_round", "fp24_result_stage", "fp24_mul"], harness="fp24_mul_formal.sv",
+        top="fp24_mul_formal", bmc=8, ind=4, cut=["$mul"],
+        probes=[("rnd_exp", "dut.rnd_exp"), ("rnd_en", "dut.u_s2.u_round.en")],
+        labels="formal", timeout=300),
+    "fp24_add": dict(
+        what="fp24_add: out_valid exactly LAT_ADD cycles after in_valid, ADD/SUB special values (NaN, inf-inf, inf, signed "
+             "and exact zero sums, x+0, DAZ), NEG/ABS, CMP and FIX on NaN, fp24_round's input contract",
+        rtl=["fp24_classify", "fp24_round", "fp24_result_stage", "fp24_add"], harness="fp24_add_formal.sv",
+        top="fp24_add_formal", bmc=6, ind=4,
+        probes=[("rnd_exp", "dut.rnd_exp"), ("rnd_en", "dut.u_s2.u_round.en")],
+        labels="formal", timeout=600),
+    "apu_interlock": dict(
+        what="apu_interlock + apu_tagpipe at the package's latencies: RAW exactly when a source is written by an op in "
+             "flight, WAW by the header's rule, completion and next-cycle tags, cmp_in_flight, pipes_busy",
+        rtl=["apu_tagpipe", "apu_interlock"], harness="apu_interlock_formal.sv", top="apu_interlock_formal",
+        probes=[(f"p_{u}_{r}", f"dut.u_{u}_tags.{r}") for u in ("mul", "add", "fu") for r in ("v", "d", "kind")]
+               + [(f"p_{u}_ge", f"dut.{u}_ge") for u in ("mul", "add", "fu")],
+        params={"ADDR_W": 3}, bmc=3, ind=2, labels="formal,long", timeout=14400),
+    "apu_interlock_tags": dict(
+        what="apu_interlock + apu_tagpipe at the package's latencies, all 64 registers: completion and next-cycle tags "
+             "(the tag issued L cycles earlier), cmp_in_flight, pipes_busy (the hazards: apu_interlock)",
+        base="apu_interlock", params={}, defines=["NO_HAZARDS"], bmc=3, ind=2, labels="formal", timeout=600),
+    "apu_interlock_full": dict(
+        what="apu_interlock as apu_interlock, over all 64 F registers (ADDR_W 6; the default proof takes 8)",
+        base="apu_interlock", params={}, bmc=3, ind=2, labels="formal,long", timeout=14400),
+    # negative checks: the machinery finds a planted bug
+    "fp24_round_mutant": dict(
+        what="fp24_round with ties away from zero planted: the proof must fail",
+        base="fp24_round", expect_fail=True,
+        mutate=[("apu_rtl/fp24_round.sv", None, "round_up = guard & (sticky | frac[0]);", "round_up = guard;")],
+        labels="formal", timeout=120),
+    "apu_interlock_mutant": dict(
+        what="apu_interlock with the function unit's tag pipe one stage too long for RECIP/SQRT (a wrong latency): the proof must fail",
+        base="apu_interlock_tags", expect_fail=True, no_induction=True, bmc=6,
+        mutate=[("apu_rtl/apu_interlock.sv", None, ".LAT0(LAT_FUNC), .LAT1(LAT_TRIG)", ".LAT0(LAT_FUNC + 1), .LAT1(LAT_TRIG)")],
+        labels="formal", timeout=300),
+}
+
+# Embedded assertions (asserts_<module>): depth and k per module where the
+# default does not suit; params from the package (name -> apu_pkg name).
+ASSERT_DEFAULT = dict(bmc=4, ind=4, labels="formal", timeout=600)
+ASSERT_TABLE = {
+    "apu_interlock": dict(pkg_params={"LAT_MUL": "LAT_MUL", "LAT_ADD": "LAT_ADD", "LAT_FUNC": "LAT_FUNC",
+                                      "LAT_TRIG": "LAT_TRIG"}, bmc=12, ind=11, labels="formal,long", timeout=14400),
+    # a module whose inputs come from its parent: its rules proved there
+    "fp24_result_stage": dict(context=["fp24_mul", "fp24_add"]),
+    "apu_tagpipe": dict(context=["apu_interlock"], pkg_params={"LAT_MUL": "LAT_MUL", "LAT_ADD": "LAT_ADD",
+                                                                "LAT_FUNC": "LAT_FUNC", "LAT_TRIG": "LAT_TRIG"},
+                        bmc=12, ind=11, labels="formal,long", timeout=14400),
+    "apu_core": dict(bmc=4, ind=None, labels="formal,long", timeout=14400),
+    "fp24_func": dict(bmc=6, ind=None, labels="formal,long", timeout=14400),
+    "fp24_func_rsq": dict(bmc=6, ind=None, labels="formal,long", timeout=14400),
+    "fp24_func_trig": dict(bmc=12, ind=None, labels="formal,long", timeout=14400),
+    "fp24_units": dict(bmc=6, ind=None, labels="formal,long", timeout=14400),
+}
+ASSERT_RE = re.compile(r"`APU_ASSERT")
+
+
+def rtl_modules():
+    """apu_rtl/*.sv stems (one module a file, named as the file)."""
+    return sorted(f[:-3] for f in os.listdir(RTL) if f.endswith(".sv"))
+
+
+def assert_modules():
+    out = []
+    for m in rtl_modules():
+        with open(os.path.join(RTL, m + ".sv"), encoding="utf-8") as f:
+            if ASSERT_RE.search(f.read()):
+                out.append(m)
+    return out
+
+
+def deps(module):
+    """The apu_rtl modules `module` instantiates, itself last (read order)."""
+    known = set(rtl_modules())
+    order, seen = [], set()
+
+    def visit(m):
+        if m in seen:
+            return
+        seen.add(m)
+        with open(os.path.join(RTL, m + ".sv"), encoding="utf-8") as f:
+            text = re.sub(r"//[^\n]*", "", f.read())
+        for name in re.findall(r"^\s*(\w+)\s*(?:#\s*\(|\w+\s*\()", text, re.M):
+            if name in known and name != m:
+                visit(name)
+        order.append(m)
+
+    visit(module)
+    return order
+
+
+def proof_table():
+    table = {}
+    def resolve(p):
+        q = resolve(PROOFS[p["base"]]) if "base" in p else {}
+        q.update(p)
+        return q
+    for name, p in PROOFS.items():
+        table[name] = resolve(p)
+    for m in assert_modules():
+        q = dict(ASSERT_DEFAULT)
+        q.update(ASSERT_TABLE.get(m, {}))
+        q.update(what=f"the assertions embedded in apu_rtl/{m}.sv (APU_ASSERT*)", rtl=deps(m), top=m, embedded=True)
+        table["asserts_" + m] = q
+    return table
+
+
+# ---- running ----------------------------------------------------------------
+def pkg_params(pkg_path):
+    vals = {}
+    with open(pkg_path, encoding="utf-8") as f:
+        for m in re.finditer(r"localparam\s+int\s+(\w+)\s*=\s*(\d+)\s*;", f.read()):
+            vals[m.group(1)] = int(m.group(2))
+    return vals
+
+
+def apply_mutations(mutations, work):
+    """Scratch copies of the mutated files: {original path: copy path}."""
+    copies = {}
+    for path, line, old, new in mutations:
+        src = path if os.path.isabs(path) else os.path.join(ROOT, path)
+        with open(copies.get(src, src), encoding="utf-8") as f:
+            lines = f.read().split("\n")
+        if line is None:
+            hits = [i for i, l in enumerate(lines) if old in l]
+            if len(hits) != 1:
+                sys.exit(f"formal: --mutate: '{old}' is on {len(hits)} lines of {path}, not 1")
+            idx = hits[0]
+        else:
+            idx = line - 1
+            if not 0 <= idx < len(lines) or old not in lines[idx]:
+                sys.exit(f"formal: --mutate: '{old}' is not on line {line} of {path}")
+        lines[idx] = lines[idx].replace(old, new, 1)
+        mdir = os.path.join(work, "mutant")
+        os.makedirs(mdir, exist_ok=True)
+        dst = os.path.join(mdir, os.path.basename(src))
+        with open(dst, "w", encoding="utf-8") as f:
+            f.write("\n".join(lines))
+        print(f"formal: planted in {os.path.relpath(src, ROOT)}:{idx + 1}: '{old}' -> '{new}'")
+        copies[src] = dst
+    return copies
+
+
+def run(cmd, log, timeout):
+    t0 = time.monotonic()
+    with open(log, "w", encoding="utf-8") as f:
+        try:
+            r = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, timeout=timeout, cwd=os.path.dirname(log))
+            rc = r.returncode
+        except subprocess.TimeoutExpired:
+            rc = None
+    return rc, time.monotonic() - t0
+
+
+def smtbmc_result(log):
+    with open(log, encoding="utf-8", errors="replace") as f:
+        text = f.read()
+    status = re.findall(r"Status: (\w+)", text)
+    failed = re.findall(r"(Assert failed in .*|Assumptions are unsatisfiable!.*)", text)
+    return (status[-1] if status else None), failed
+
+
+def prove(name, p, args):
+    if p.get("context"):
+        ok = True
+        for ctx in p["context"]:
+            q = dict(p, top=ctx, rtl=deps(ctx), context=None,
+                     what=p["what"] + f", in its parent {ctx} (its inputs are the parent's)")
+            ok = prove(f"{name}.{ctx}", q, args) and ok
+        return ok
+    work = os.path.join(args.work, name)
+    os.makedirs(work, exist_ok=True)
+    pkg = os.path.join(args.generated, "apu_pkg.sv")
+    if not os.path.exists(pkg):
+        sys.exit(f"formal: {pkg} missing (configure the build: it generates apu_pkg.sv)")
+    mutations = list(p.get("mutate", [])) + args.mutate
+    copies = apply_mutations(mutations, work) if mutations else {}
+    expect_fail = p.get("expect_fail", False) or args.expect_fail
+
+    def src(path):
+        return copies.get(path, path)
+
+    files = [pkg] + [src(os.path.join(RTL, m + ".sv")) for m in p["rtl"]]
+    if "harness" in p:
+        files.append(os.path.join(HARNESS, p["harness"]))
+    top = p["top"]
+    incdirs = [RTL, args.generated]
+    defs = " ".join("-D" + d for d in p.get("defines", []))
+    ys = [f"read_verilog -formal -sv {defs} {' '.join('-I' + d for d in incdirs)} {' '.join(files)}"]
+    params = pkg_params(pkg)
+    for par, pname in p.get("pkg_params", {}).items():
+        ys.append(f"chparam -set {par} {params[pname]} {top}")
+    for par, val in p.get("params", {}).items():
+        ys.append(f"chparam -set {par} {val} {top}")
+    ys.append(f"prep -top {top}")
+    if not p.get("embedded"):
+        # the RTL's own assertions have their own proofs (asserts_*)
+        ys.append(f"chformal -remove * {top} %d")
+        ys.append("opt_clean")
+    if p.get("probes") or p.get("cut"):
+        ys.append("flatten")
+        for wire, target in p.get("probes", []):
+            ys.append(f"connect -set {wire} {target}")
+        for cell in p.get("cut", []):
+            ys.append(f"delete t:{cell}")
+        ys.append("setundef -undriven -anyseq")
+        ys.append("opt_clean")
+    ys.append("async2sync")
+    ys.append("write_smt2 -wires model.smt2")
+    with open(os.path.join(work, "model.ys"), "w", encoding="utf-8") as f:
+        f.write("\n".join(ys) + "\n")
+    rc, t_ys = run(["yosys", "-q", "-l", "yosys.log", "-s", "model.ys"], os.path.join(work, "yosys.out"), 600)
+    if rc != 0:
+        print(f"formal {name}: yosys failed (rc {rc}); log {os.path.join(work, 'yosys.log')}")
+        with open(os.path.join(work, "yosys.out"), encoding="utf-8", errors="replace") as f:
+            print(f.read()[-3000:])
+        return False
+    smtc = []
+    if p.get("embedded"):
+        with open(os.path.join(work, "yosys.log"), encoding="utf-8", errors="replace") as f:
+            pass
+        smtc = ["--smtc", "reset.smtc"]
+        with open(os.path.join(work, "reset.smtc"), "w", encoding="utf-8") as f:
+            f.write("# rst_n low in the first cycle (the valid bits have no initial value)\ninitial\nassume (not [rst_n])\n")
+    depth = args.depth or p["bmc"]
+    k = args.k or p.get("ind")
+    print(f"formal {name}: {p['what']}")
+    print(f"formal {name}: model built in {t_ys:.1f} s ({work}/model.smt2)")
+    found_cex = False
+    ok = True
+    # BMC
+    vcd = os.path.join(work, "bmc.vcd")
+    cmd = ["yosys-smtbmc", "-s", "z3", "--unroll", "--noprogress", "--presat", "-t", str(depth), "--dump-vcd", vcd] + smtc + ["model.smt2"]
+    rc, t = run(cmd, os.path.join(work, "bmc.log"), args.timeout)
+    status, failed = smtbmc_result(os.path.join(work, "bmc.log"))
+    if rc is None:
+        print(f"formal {name}: BMC depth {depth}: TIMEOUT after {t:.1f} s (log {work}/bmc.log)")
+        ok = False
+    elif status == "PASSED":
+        print(f"formal {name}: BMC depth {depth}: passed ({t:.1f} s)")
+    else:
+        found_cex = status == "FAILED" and any(x.startswith("Assert failed") for x in failed)
+        for x in failed:
+            print(f"formal {name}: BMC: {x}")
+        what = f"counterexample {vcd}" if found_cex else f"log {work}/bmc.log"
+        print(f"formal {name}: BMC depth {depth}: FAILED ({t:.1f} s); {what}")
+        ok = False
+    # induction
+    if ok and k and not (args.no_induction or p.get("no_induction")):
+        vcd = os.path.join(work, "induction.vcd")
+        cmd = ["yosys-smtbmc", "-s", "z3", "--unroll", "--noprogress", "-i", "-t", str(k), "--dump-vcd", vcd] + smtc + ["model.smt2"]
+        rc, t = run(cmd, os.path.join(work, "induction.log"), args.timeout)
+        status, failed = smtbmc_result(os.path.join(work, "induction.log"))
+        if rc is not None and status == "PASSED":
+            print(f"formal {name}: induction k={k}: closed ({t:.1f} s): PROVED for every depth")
+        else:
+            why = "timeout" if rc is None else "did not close"
+            print(f"formal {name}: induction k={k}: {why} ({t:.1f} s; induction trace {vcd}, log {work}/induction.log)")
+            ok = False
+    elif ok:
+        print(f"formal {name}: no induction (does not close): checked by BMC to depth {depth} only")
+    if expect_fail:
+        if found_cex:
+            print(f"formal {name}: the planted bug was found, as expected")
+            return True
+        print(f"formal {name}: the planted bug was NOT found")
+        return False
+    return ok
+
+
+def main(argv):
+    sys.stdout.reconfigure(line_buffering=True)
+    import argparse
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("proofs", nargs="*")
+    ap.add_argument("--generated", default=os.path.join(ROOT, "build", "generated"))
+    ap.add_argument("--work", default=os.path.join(ROOT, "build", "formal"))
+    ap.add_argument("--mutate", action="append", default=[])
+    ap.add_argument("--expect-fail", action="store_true")
+    ap.add_argument("--depth", type=int)
+    ap.add_argument("--k", type=int)
+    ap.add_argument("--no-induction", action="store_true")
+    ap.add_argument("--timeout", type=float, default=3600, help="per solver run, seconds")
+    ap.add_argument("--list", action="store_true")
+    ap.add_argument("--ctest-list", action="store_true")
+    args = ap.parse_args(argv)
+    muts = []
+    for m in args.mutate:
+        parts = m.split(":", 3)
+        if len(parts) != 4:
+            ap.error(f"--mutate {m}: want FILE:LINE:OLD:NEW")
+        muts.append((parts[0], int(parts[1]) if parts[1] else None, parts[2], parts[3]))
+    args.mutate = muts
+    args.generated = os.path.abspath(args.generated)
+    args.work = os.path.abspath(args.work)
+    table = proof_table()
+    if args.list or args.ctest_list:
+        for name, p in table.items():
+            if args.ctest_list:
+                print(f"{name}|{p['labels']}|{p['timeout']}")
+            else:
+                print(f"{name:24} {p['labels']:12} {p['what']}")
+        return 0
+    if not args.proofs:
+        ap.error("name a proof (--list)")
+    ok = True
+    for name in args.proofs:
+        if name not in table:
+            ap.error(f"no proof {name} (--list)")
+        t0 = time.monotonic()
+        r = prove(name, table[name], args)
+        print(f"formal {name}: {'PASS' if r else 'FAIL'} in {time.monotonic() - t0:.1f} s")
+        ok = ok and r
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
