@@ -71,14 +71,14 @@ PROOFS = {
         what="fp24_mul: out_valid exactly LAT_MUL cycles after in_valid, special values (NaN, 0*inf, inf, signed zero, DAZ) "
              "of the op issued LAT_MUL cycles earlier, out_next_result, fp24_round's input contract",
         rtl=["fp24_classify", "fp24_round", "fp24_result_stage", "fp24_mul"], harness="fp24_mul_formal.sv",
-        top="fp24_mul_formal", bmc=8, ind=4, cut=["$mul"],
+        top="fp24_mul_formal", bmc=5, ind=4, cut=["$mul"],
         probes=[("rnd_exp", "dut.rnd_exp"), ("rnd_en", "dut.u_s2.u_round.en")],
         labels="formal", timeout=300),
     "fp24_add": dict(
         what="fp24_add: out_valid exactly LAT_ADD cycles after in_valid, ADD/SUB special values (NaN, inf-inf, inf, signed "
              "and exact zero sums, x+0, DAZ), NEG/ABS, CMP and FIX on NaN, fp24_round's input contract",
         rtl=["fp24_classify", "fp24_round", "fp24_result_stage", "fp24_add"], harness="fp24_add_formal.sv",
-        top="fp24_add_formal", bmc=6, ind=4,
+        top="fp24_add_formal", bmc=4, ind=4,
         probes=[("rnd_exp", "dut.rnd_exp"), ("rnd_en", "dut.u_s2.u_round.en")],
         labels="formal", timeout=600),
     "apu_interlock": dict(
