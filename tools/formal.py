@@ -114,6 +114,9 @@ ASSERT_DEFAULT = dict(bmc=4, ind=4, labels="formal", timeout=600)
 ASSERT_TABLE = {
     "apu_interlock": dict(pkg_params={"LAT_MUL": "LAT_MUL", "LAT_ADD": "LAT_ADD", "LAT_FUNC": "LAT_FUNC",
                                       "LAT_TRIG": "LAT_TRIG"}, bmc=12, ind=11, labels="formal,long", timeout=14400),
+    # rules about a module's inputs (its caller's obligations) are assumed
+    # where the module is the top and proved in its parent (apu_core, long)
+    "apu_callstack": dict(input_rules=["CallStackPushNotFull", "CallStackPopNotEmpty", "CallStackPushOrPop"]),
     # a module whose inputs come from its parent: its rules proved there
     "fp24_result_stage": dict(context=["fp24_mul", "fp24_add"]),
     "apu_tagpipe": dict(context=["apu_interlock"], pkg_params={"LAT_MUL": "LAT_MUL", "LAT_ADD": "LAT_ADD",
@@ -179,6 +182,26 @@ def proof_table():
 
 
 # ---- running ----------------------------------------------------------------
+def rule_lines(path, rules):
+    """Source lines of the APU_ASSERT* invocations of `rules` in `path` (an
+    invocation may span lines; Yosys names its assert by one of them)."""
+    with open(path, encoding="utf-8") as f:
+        lines = f.read().split("\n")
+    out = []
+    for rule in rules:
+        hits = [i for i, l in enumerate(lines) if re.search(r"`APU_ASSERT\w*\(\s*" + rule + r"\s*,", l)]
+        if len(hits) != 1:
+            sys.exit(f"formal: rule {rule} is on {len(hits)} lines of {path}, not 1")
+        i, depth = hits[0], 0
+        while True:
+            out.append(i + 1)
+            depth += lines[i].count("(") - lines[i].count(")")
+            if depth <= 0 or i + 1 >= len(lines):
+                break
+            i += 1
+    return out
+
+
 def pkg_params(pkg_path):
     vals = {}
     with open(pkg_path, encoding="utf-8") as f:
@@ -266,6 +289,11 @@ def prove(name, p, args):
     for par, val in p.get("params", {}).items():
         ys.append(f"chparam -set {par} {val} {top}")
     ys.append(f"prep -top {top}")
+    if p.get("input_rules"):
+        path = src(os.path.join(RTL, top + ".sv"))
+        sel = " ".join(f"a:src={path}:{n}.*" for n in rule_lines(path, p["input_rules"]))
+        ys.append(f"chformal -assert2assume {sel}")
+        print(f"formal {name}: assumed (input rules): {', '.join(p['input_rules'])}")
     if not p.get("embedded"):
         # the RTL's own assertions have their own proofs (asserts_*)
         ys.append(f"chformal -remove * {top} %d")
