@@ -55,9 +55,8 @@ inline Result add_normal_generic(Bits a, Bits b) {
 // round bit is at 2^39 or higher (msb 55..57) and big has no bits below 2^40,
 // so any nonzero small below 2^38 rounds the same way (down for a sum, up
 // for a difference) and is inexact (tests/fp24_fast_path_test.cpp).
-// Rounding as in mul24: the 17-bit significand rounded by an add, the
-// exponent field plus it is the magnitude's encoding, carry included; one
-// unsigned compare catches both overflow and tininess.
+// Rounded by the one rule, bits::round_sig(), q's 46 bits below the
+// significand its tail.
 [[gnu::always_inline]] inline Result add_normal(Bits a, Bits b) {
   constexpr int kPos = 40;
   constexpr int kMaxShift = 24;  // any value in 19..kPos
@@ -73,17 +72,8 @@ inline Result add_normal_generic(Bits a, Bits b) {
   if (__builtin_expect(m == 0, 0)) return {0, 0};           // x + (-x) = +0
   const int lz = __builtin_clzll(m);                         // 6..63; 7 when m's msb is big's
   const std::uint64_t q = m << (lz - 1);
-  const auto sig = static_cast<std::int32_t>(
-      (q + ((std::uint64_t{1} << (kDrop - 1)) - 1) + ((q >> kDrop) & 1)) >> kDrop);
-  // Biased exponent of m: ex + 7 - lz; the field holds e - 1 plus sig's 2^16.
-  const std::int32_t mag = (ex + 6 - lz) * (1 << kFracBits) + sig;
-  const Bits s = x & kSignBit;
-  if (__builtin_expect(static_cast<std::uint32_t>(mag - (1 << kFracBits)) >= kPosInf - (1u << kFracBits), 0)) {
-    if (mag >= static_cast<std::int32_t>(kPosInf)) return {s | kPosInf, static_cast<std::uint8_t>(kOF | kNX)};
-    return {s, static_cast<std::uint8_t>(kUF | kNX)};
-  }
-  const bool inexact = (q & ((std::uint64_t{1} << kDrop) - 1)) != 0;
-  return {s | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
+  // Biased exponent of m: ex + 7 - lz.
+  return bits::round_sig<kDrop>(x & kSignBit, ex + 7 - lz, q);
 }
 
 // Some operand is a zero, infinity or NaN (after DAZ). Without an infinity
@@ -122,30 +112,14 @@ namespace inl {
 // are): mul24, add24, sub24. mul, add, sub mask first.
 [[gnu::always_inline]] inline Result mul24(Bits a, Bits b) {
   if (__builtin_expect(!both_normal(a, b), 0)) return detail::mul_not_normal(a, b);
-  // Product of two 17-bit significands: 2^32 <= p < 2^34, exact in 64 bits.
-  // round_pack's rule without its general normalization: q is p at
-  // [2^33, 2^34), its 17 bits below the result's significand are dropped with
-  // RNE (sig = 2^17 on a carry), and the exponent field plus sig - 2^16 is
-  // the magnitude's encoding, the carry included; overflow and tininess
-  // after rounding are compares on it.
-  constexpr int kDrop = kFracBits + 1;
+  // Product of two 17-bit significands: 2^32 <= p < 2^34, exact in 64 bits;
+  // q is p at [2^33, 2^34), its biased exponent ea + eb - kBias + hi, and
+  // the one rule, bits::round_sig(), rounds it (the 17 bits below the
+  // result's significand are its tail).
   const std::uint64_t p = std::uint64_t{bits::sig_of(a)} * bits::sig_of(b);
   const int hi = static_cast<int>(p >> (2 * kFracBits + 1));
   const std::uint64_t q = p << (hi ^ 1);
-  const auto sig = static_cast<std::int32_t>(
-      (q + ((std::uint64_t{1} << (kDrop - 1)) - 1) + ((q >> kDrop) & 1)) >> kDrop);
-  // (ea + eb - kBias + hi - 1) * 2^16 + sig, with the exponent fields added
-  // where they are.
-  constexpr Bits kExpField = kPosInf;
-  const std::int32_t mag = static_cast<std::int32_t>((a & kExpField) + (b & kExpField)) + (hi << kFracBits) + sig -
-                           ((kBias + 1) << kFracBits);
-  const Bits s = (a ^ b) & kSignBit;
-  if (__builtin_expect(static_cast<std::uint32_t>(mag - (1 << kFracBits)) >= kPosInf - (1u << kFracBits), 0)) {
-    if (mag >= static_cast<std::int32_t>(kPosInf)) return {s | kPosInf, static_cast<std::uint8_t>(kOF | kNX)};
-    return {s, static_cast<std::uint8_t>(kUF | kNX)};
-  }
-  const bool inexact = (q & ((std::uint64_t{1} << kDrop) - 1)) != 0;
-  return {s | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
+  return bits::round_sig<kFracBits + 1>((a ^ b) & kSignBit, bits::exp_of(a) + bits::exp_of(b) - kBias + hi, q);
 }
 
 [[gnu::always_inline]] inline Result add24(Bits a, Bits b) {

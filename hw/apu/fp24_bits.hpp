@@ -1,15 +1,18 @@
 // FP24 field access, DAZ flushing and the one rounding rule of docs/fp24.md,
-// shared by the multiplier/adder model (fp24_arith.cpp) and the function unit.
-// Header-only, integer arithmetic only.
+// shared by every operation of the model (fp24_arith*.cpp, fp24_func.cpp),
+// the ISS (through fp24_arith_inline.hpp) and the host's conversion
+// (fp24_convert.cpp). Header-only, integer arithmetic only.
 //
-// Rounding contract: a unit computes its exact result (or a truncation of it
-// with every lost nonzero bit OR-ed into bit 0, "sticky") as a normalized
-// significand m in 1.63 fixed point (bit 63 set) and a biased exponent e, so
-// that |r| = 2^(e - kBias) * m / 2^63. round_pack() then applies steps 2-5 of
-// the rounding rule: RNE to 17 bits with an unbounded exponent, overflow,
-// tininess after rounding. Jamming sticky into bit 0 is exact enough because
-// the rounding point is 46 bits higher: the jammed and the true value always
-// share the same RNE result and the same inexactness.
+// Rounding contract: round_sig() is the rule, the only place in C++ where a
+// result is rounded; round() is the same with the ports of
+// apu_rtl/fp24_round.sv (a nonzero value (-1)^s * 1.frac * 2^(exp - kBias)
+// with an unbounded biased exponent, its guard bit and its sticky bit). Both
+// apply steps 2-5 of the rounding rule: RNE to 17 bits, overflow, tininess
+// after rounding, NX. A unit computes its exact result (or a truncation of it
+// with every lost nonzero bit OR-ed into a sticky bit) as a normalized
+// significand of any width and hands it to round_sig() (or to round_pack(),
+// the 1.63 form). tests/fp24_round_test.cpp proves round() equal to the
+// verilated fp24_round on every input.
 #pragma once
 
 #include <cassert>
@@ -62,26 +65,57 @@ inline Normalized normalize(std::uint64_t m, int k) {
   return {63 - lz + k + kBias, m << lz};
 }
 
-// Steps 2-5 of the rounding rule. Requires bit 63 of m set (see file comment).
+// The rounding rule, steps 2-5, on a normalized significand of any width:
+// q holds (-1)^s * 1.f * 2^(exp - kBias), its leading one at bit
+// kDrop + kFracBits, the 16 fraction bits above bit kDrop and kDrop bits of
+// tail below them (the guard at kDrop - 1, the sticky bits under it; bit 63
+// clear, so that adding half cannot overflow). exp is
+// biased and unbounded (|exp| < 2^15); s is the sign bit in place (0 or
+// kSignBit).
+// 1. round to nearest, ties to even: adding half - 1 plus the fraction's lsb
+//    to q carries into the lsb exactly when the tail is above half, or is
+//    half and the lsb is odd; sig is then the rounded 17-bit significand, or
+//    2^17 when 1.1...1 + ulp carried into 10.0...0;
+// 2. the exponent and the significand as one number, (exp - 1) * 2^16 + sig:
+//    the hidden bit adds the 1 back and a carry moves the exponent up; it is
+//    then the magnitude's encoding;
+// 3. rounded exponent >= 127: +-inf, OF|NX;
+// 4. rounded exponent <= 0 (tiny after rounding: a value rounded up to
+//    exactly 2^-62 has exponent 1 and is not tiny): +-0, UF|NX;
+// 5. otherwise the encoding, NX if the tail is not zero.
+// Steps 3 and 4 are one unsigned compare on the hot path. No assert here:
+// the ISS calls it on every MUL, ADD and SUB, and Release keeps asserts.
+template <int kDrop>
+[[gnu::always_inline]] inline Result round_sig(Bits s, int exp, std::uint64_t q) {
+  static_assert(kDrop >= 2 && kDrop + kFracBits <= 62, "a guard, a sticky, and q + half in 64 bits");
+  constexpr std::uint64_t kHalf = std::uint64_t{1} << (kDrop - 1);
+  const auto sig = static_cast<std::int32_t>((q + (kHalf - 1) + ((q >> kDrop) & 1)) >> kDrop);
+  const std::int32_t mag = (exp - 1) * (1 << kFracBits) + sig;
+  constexpr std::uint32_t kMinNormal = 1u << kFracBits;
+  if (__builtin_expect(static_cast<std::uint32_t>(mag) - kMinNormal >= kPosInf - kMinNormal, 0)) {
+    if (mag >= static_cast<std::int32_t>(kPosInf)) return {s | kPosInf, static_cast<std::uint8_t>(kOF | kNX)};
+    return {s, static_cast<std::uint8_t>(kUF | kNX)};
+  }
+  const bool inexact = (q & (2 * kHalf - 1)) != 0;
+  return {s | static_cast<Bits>(mag), static_cast<std::uint8_t>(inexact ? kNX : 0)};
+}
+
+// The same rule with fp24_round.sv's ports: sign bit s, biased unbounded
+// exp, the 16-bit frac below the leading one, the guard bit and the sticky
+// bit (the OR of every bit below the guard). It is round_sig() with a
+// two-bit tail, guard and sticky; tests/fp24_round_test.cpp proves it equal
+// to the verilated fp24_round on every input, and round_sig() of every
+// width in use equal to it.
+[[gnu::always_inline]] inline Result round(Bits s, int exp, std::uint32_t frac, bool guard, bool sticky) {
+  const std::uint64_t q = (std::uint64_t{kHidden | frac} << 2) | (std::uint64_t{guard} << 1) | std::uint64_t{sticky};
+  return round_sig<2>(s, exp, q);
+}
+
+// round_sig() of the 1.63 form (bit 63 of m set), as normalize() gives it:
+// shifted down one bit, the bit shifted out OR-ed into the sticky bits.
 inline Result round_pack(bool s, int e, std::uint64_t m) {
   assert(m >> 63);
-  constexpr int kDrop = 63 - kFracBits;  // bits below the 17-bit significand
-  constexpr std::uint64_t kRemMask = (std::uint64_t{1} << kDrop) - 1;
-  constexpr std::uint64_t kHalf = std::uint64_t{1} << (kDrop - 1);
-  std::uint32_t sig = static_cast<std::uint32_t>(m >> kDrop);
-  const std::uint64_t rem = m & kRemMask;
-  const bool up = rem > kHalf || (rem == kHalf && (sig & 1));
-  sig += up;
-  // Carry out of 1.1111...1 gives exactly 2.0: renormalize, exponent + 1.
-  const int carry = static_cast<int>(sig >> (kFracBits + 1));
-  sig >>= carry;
-  e += carry;
-  const std::uint8_t nx = rem != 0 ? kNX : 0;
-  if (e > 126) return {signed_inf(s), static_cast<std::uint8_t>(kOF | kNX)};
-  // Tiny after rounding: a value that rounded up to 2^-62 has e = 1 here.
-  if (e < 1) return {signed_zero(s), static_cast<std::uint8_t>(kUF | kNX)};
-  const Bits enc = signed_zero(s) | (static_cast<Bits>(e) << kFracBits) | (sig & kFracMask);
-  return {enc, nx};
+  return round_sig<62 - kFracBits>(signed_zero(s), e, (m >> 1) | (m & 1));
 }
 
 }  // namespace mc1::fp24::bits

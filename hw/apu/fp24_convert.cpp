@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "fp24_bits.hpp"
+
 namespace mc1::fp24 {
 
 std::uint32_t fp24_from_double(double x) {
@@ -12,21 +14,10 @@ std::uint32_t fp24_from_double(double x) {
   const std::uint64_t f = u & ((std::uint64_t{1} << 52) - 1);
   if (e == 0x7FF) return f ? 0x7F8000u : (sign | 0x7F0000u);  // NaN, inf
   if (e == 0) return sign;                                     // zero, subnormal: far below 2^-62
-  // 53-bit significand; keep 17 bits, round to nearest even on the 36 dropped.
-  std::uint64_t sig = (std::uint64_t{1} << 52) | f;
-  int exp = e - 1023;
-  const std::uint64_t dropped = sig & ((std::uint64_t{1} << 36) - 1);
-  sig >>= 36;
-  const std::uint64_t half = std::uint64_t{1} << 35;
-  if (dropped > half || (dropped == half && (sig & 1))) ++sig;
-  if (sig == (std::uint64_t{1} << 17)) {
-    sig >>= 1;
-    ++exp;
-  }
-  const int biased = exp + 63;
-  if (biased >= 127) return sign | 0x7F0000u;  // overflow
-  if (biased <= 0) return sign;                // tiny after rounding
-  return sign | (static_cast<std::uint32_t>(biased) << 16) | static_cast<std::uint32_t>(sig & 0xFFFF);
+  // 53-bit significand, leading one at bit 52: 17 bits kept, the 36 below
+  // are the guard and the sticky of the one rounding rule.
+  const std::uint64_t sig = (std::uint64_t{1} << 52) | f;
+  return bits::round_sig<36>(sign, e - 1023 + kBias, sig).value;
 }
 
 double fp24_to_double(std::uint32_t bits) {

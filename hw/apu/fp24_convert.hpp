@@ -1,9 +1,10 @@
 // Conversion between host doubles and FP24 encodings (docs/fp24.md): the
 // RC's conversion of the scene, done once before the broadcast, and the
 // Python module's float <-> FP24 (docs/library.md). Integer bit manipulation of
-// the IEEE binary64 encoding only: the same rounding rule as every FP24 op
-// (round to 17 significant bits, nearest, ties to even; overflow to inf;
-// tiny after rounding to a signed zero).
+// the IEEE binary64 encoding only, rounded by the very function every FP24
+// op's result goes through (bits::round(), fp24_bits.hpp: 17 significant
+// bits, nearest, ties to even; overflow to inf; tiny after rounding to a
+// signed zero).
 #pragma once
 
 #include <cstdint>
