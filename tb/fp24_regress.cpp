@@ -16,9 +16,10 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
+#include <stdexcept>
 #include <string>
-#include <thread>
 #include <system_error>
+#include <thread>
 #include <tuple>
 #include <vector>
 
