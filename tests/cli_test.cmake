@@ -1,4 +1,4 @@
-# CTest check: one program's command-line conventions (host/cli/cli.hpp):
+# CTest check: one program's command-line conventions (host/common/cmdline.hpp):
 # --help and --version exit 0 on stdout; bad options, out-of-range numbers,
 # missing files and directories exit 2 with a message naming the option or
 # the file; a failed check or write exits 1.

@@ -120,7 +120,7 @@ TEST(Fp24Rtl, AllUnitsWithRandomBubbles) {
 
 // sin, recip, cos, sqrt, sin back to back: one issue per cycle; SIN/COS
 // (out_trig_*) and RECIP/SQRT (out_*) are two pipes of their own latencies
-// (8 and 3), each port's results one per edge in its issue order.
+// (9 and 3), each port's results one per edge in its issue order.
 TEST(Fp24Rtl, SinCosIssueBackToBackWithTheOtherFunctionOps) {
   const std::vector<Issue> ops = {{Op::Sin, 0x3F0000, 0},
                                   {Op::Recip, 0x408000, 0},
