@@ -310,9 +310,35 @@ std::vector<shard::Report> read_sweep_reports(const std::vector<std::string>& fi
   return reports;
 }
 
+// Point `p` (index i) of report `r` is the grid's point i: its scene, orbit
+// frame and NC count are those point(grid, i) gives (the grid as the report
+// wrote it, grid_json).
+void check_point_in_grid(const shard::Report& r, const Value& p, std::uint64_t i) {
+  const Value& grid = *r.root.find("grid");
+  auto list = [&](const char* key) -> const std::vector<Value>& {
+    const Value& v = shard::member(r, grid, key, Type::array);
+    if (v.items.empty()) throw CliError(shard::where(r, grid) + ": grid." + key + " is empty");
+    return v.items;
+  };
+  const std::uint64_t inner = list("blocks").size() * list("schedules").size();
+  const std::vector<Value>& nodes = list("nodes");
+  const std::uint64_t orbit = static_cast<std::uint64_t>(shard::count_member(r, grid, "orbit").number);
+  const std::vector<Value>& scenes = list("scenes");
+  const std::uint64_t n = i / inner;
+  const std::uint64_t scene = n / nodes.size() / std::max<std::uint64_t>(orbit, 1);
+  const bool fits = scene < scenes.size() && p.find("scene")->string == scenes[scene].string &&
+                    p.find("nodes")->number == nodes[n % nodes.size()].number &&
+                    p.find("frame")->number == static_cast<double>(n / nodes.size() % std::max<std::uint64_t>(orbit, 1));
+  if (!fits)
+    throw CliError(shard::where(r, p) + ": point " + std::to_string(i) + " (" + p.find("scene")->string + ", " +
+                   shard::serialize(*p.find("nodes")) + " NCs, frame " + shard::serialize(*p.find("frame")) +
+                   ") is not the grid's point " + std::to_string(i));
+}
+
 // The points of the shards (sorted by shard) appended to `points`, each
-// shard's exactly the slice it has of `total`; their wall seconds summed.
-// True when every shard passed.
+// shard's exactly the slice it has of `total`, each the grid's point of its
+// index; their wall seconds summed. True when every shard passed and every
+// point is complete (a shard's "passed" alone is not trusted).
 bool merge_points(const std::vector<shard::Report>& reports, std::uint64_t total, Value& points, double& wall) {
   bool passed = true;
   for (const shard::Report& r : reports) {
@@ -321,10 +347,13 @@ bool merge_points(const std::vector<shard::Report>& reports, std::uint64_t total
     if (mine.items.size() != end - first)
       throw CliError(r.file + ": " + std::to_string(mine.items.size()) + " points, shard " + std::to_string(r.shard) +
                      "/" + std::to_string(r.shards) + " has " + std::to_string(end - first));
-    for (std::size_t i = 0; i < mine.items.size(); ++i)
+    for (std::size_t i = 0; i < mine.items.size(); ++i) {
       if (mine.items[i].find("index")->number != static_cast<double>(first + i))
         throw CliError(shard::where(r, mine.items[i]) + ": point " + shard::serialize(*mine.items[i].find("index")) +
                        ", expected " + std::to_string(first + i));
+      check_point_in_grid(r, mine.items[i], first + i);
+      passed = passed && mine.items[i].find("complete")->boolean;
+    }
     points.items.insert(points.items.end(), mine.items.begin(), mine.items.end());
     passed = passed && r.root.find("passed")->boolean;
     wall += shard::member(r, r.root, "wall_seconds", Type::number).number;

@@ -84,4 +84,32 @@ must(2 ${MC1} sweep --merge ${WORK_DIR}/sharded/bad-1.json ${WORK_DIR}/sharded/s
 if(NOT last_err MATCHES "bad-1.json:[0-9]+: \"nodes\" is -3, not a count")
   message(FATAL_ERROR "a negative NC count: ${last_err}")
 endif()
+# A point marked incomplete in a shard that says it passed: the merge fails
+# (exit 1, "passed": false), as the point says, not as the shard says.
+string(REGEX REPLACE "(\"index\": 1,[^\n]*\"complete\": )true" "\\1false" bad "${shard1}")
+file(WRITE ${WORK_DIR}/sharded/incomplete-1.json "${bad}")
+must(1 ${MC1} sweep --merge ${WORK_DIR}/sharded/incomplete-1.json ${WORK_DIR}/sharded/shard-2.json
+     ${WORK_DIR}/sharded/shard-3.json --json ${WORK_DIR}/sharded/incomplete-merged.json --quiet)
+file(READ ${WORK_DIR}/sharded/incomplete-merged.json merged)
+string(JSON passed GET "${merged}" passed)
+if(passed)
+  message(FATAL_ERROR "an incomplete point merged to passed")
+endif()
+# A point that is not the grid's point of its index (its NC count, its
+# scene): refused naming the file and line.
+string(REGEX REPLACE "(\"index\": 1,[^\n]*\"nodes\": )1," "\\14," bad "${shard1}")
+file(WRITE ${WORK_DIR}/sharded/offgrid-1.json "${bad}")
+must(2 ${MC1} sweep --merge ${WORK_DIR}/sharded/offgrid-1.json ${WORK_DIR}/sharded/shard-2.json
+     ${WORK_DIR}/sharded/shard-3.json)
+if(NOT last_err MATCHES "offgrid-1.json:[0-9]+: point 1 \\(.*tiny.json, 4 NCs, frame 0\\) is not the grid's point 1")
+  message(FATAL_ERROR "a point off the grid: ${last_err}")
+endif()
+string(REPLACE "scenes/tiny.json\", \"frame\": 0, \"orbit_deg\": 0, \"nodes\": 1, \"schedule\": \"lpt\", \"block\": \"16x8\""
+       "scenes/room.json\", \"frame\": 0, \"orbit_deg\": 0, \"nodes\": 1, \"schedule\": \"lpt\", \"block\": \"16x8\"" bad "${shard1}")
+file(WRITE ${WORK_DIR}/sharded/offgrid-1.json "${bad}")
+must(2 ${MC1} sweep --merge ${WORK_DIR}/sharded/offgrid-1.json ${WORK_DIR}/sharded/shard-2.json
+     ${WORK_DIR}/sharded/shard-3.json)
+if(NOT last_err MATCHES "is not the grid's point 1")
+  message(FATAL_ERROR "a point of another scene: ${last_err}")
+endif()
 message(STATUS "16 points whole and in 3 shards: the same report and statistics")
