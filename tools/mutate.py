@@ -11,7 +11,8 @@ The list (tools/mutants.txt) holds one mutant per block:
     equivalent: REASON        (optional: kept, not run, not scored)
 
 The copy is `git archive HEAD` under WORKDIR/src, configured and built once
-(Release) in WORKDIR/src/build. For each mutant: check the old text is on
+(Release) in WORKDIR/src/build; a later run at a newer HEAD updates the
+files that changed (git diff) and rebuilds incrementally. For each mutant: check the old text is on
 its line (else the list is stale: refuse), apply, rebuild `all`, run
 `ctest -R TESTS -LE long` (and with --full the default suite), record killed
 (build failed, or which tests failed) or survived, restore the file. Nothing
@@ -90,10 +91,32 @@ def original(commit, path):
     return subprocess.check_output(["git", "-C", REPO, "show", f"{commit}:{path}"])
 
 
+def sync_copy(src, old, commit):
+    """Brings a copy of commit `old` to `commit` file by file (the build stays)."""
+    names = subprocess.check_output(["git", "-C", REPO, "diff", "--name-only", old, commit], text=True).split()
+    log(f"mutate: updating the copy from {old[:10]} to {commit[:10]}: {len(names)} files")
+    for name in names:
+        path = os.path.join(src, name)
+        try:
+            data = original(commit, name)
+        except subprocess.CalledProcessError:  # removed at commit
+            if os.path.exists(path):
+                os.remove(path)
+            continue
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        write(src, name, data)
+
+
 def make_copy(workdir, commit):
     src = os.path.join(workdir, "src")
     stamp = os.path.join(workdir, "commit")
-    if os.path.exists(stamp) and open(stamp).read().strip() == commit:
+    old = open(stamp).read().strip() if os.path.exists(stamp) else ""
+    if old == commit:
+        return src
+    if old and os.path.isdir(src):
+        sync_copy(src, old, commit)
+        with open(stamp, "w") as f:
+            f.write(commit + "\n")
         return src
     log(f"mutate: copying {commit[:10]} to {src}")
     subprocess.run(["rm", "-rf", src], check=True)
