@@ -260,10 +260,28 @@ def campaign(mutants, commit, a):
     if not build(src, os.path.join(logdir, "base.build.log")):
         raise SystemExit(f"mutate: the unmutated copy does not build: {logdir}/base.build.log")
     log(f"mutate: base build {time.time() - t0:.0f} s")
-    return [one_result(src, commit, m, a.full, logdir, len(mutants)) for m in mutants]
+    baseline(src, mutants, logdir)
+    results = []
+    for k, m in enumerate(mutants, 1):
+        results.append(one_result(src, commit, m, a.full, logdir, f"{k} of {len(mutants)}"))
+        if a.json:  # a partial report survives an interrupted run
+            write_json(a.json, results)
+    return results
 
 
-def one_result(src, commit, m, full, logdir, total):
+def baseline(src, mutants, logdir):
+    """The unmutated copy must pass every test a mutant is to be killed by."""
+    regex = "|".join(sorted({m["tests"] for m in mutants if "equivalent" not in m}))
+    if not regex:
+        return
+    t0 = time.time()
+    rc, failed = ctest(src, ["-R", regex, "-LE", "long"], os.path.join(logdir, "base.test.log"))
+    if rc != 0:
+        raise SystemExit(f"mutate: the unmutated copy fails {' '.join(failed)}: {logdir}/base.test.log")
+    log(f"mutate: baseline tests pass in {time.time() - t0:.0f} s")
+
+
+def one_result(src, commit, m, full, logdir, progress):
     r = {"id": m["id"], "where": where(m), "old": m["old"], "new": m["new"],
          "tests": m.get("tests", ""), "why": m["why"]}
     if "equivalent" in m:
@@ -271,8 +289,13 @@ def one_result(src, commit, m, full, logdir, total):
         return r
     status, detail, secs = run_one(src, commit, m, full, logdir)
     r.update(status=status, detail=detail, seconds=round(secs, 1))
-    log(f"mutate: [{m['id']}/{total}] {where(m)} {status} in {secs:.0f} s: {detail}")
+    log(f"mutate: mutant {m['id']} ({progress}) {where(m)} {status} in {secs:.0f} s: {detail}")
     return r
+
+
+def write_json(path, results):
+    with open(path, "w") as f:
+        json.dump({"score": score(results), "mutants": results}, f, indent=1)
 
 
 def report(results, json_path):
@@ -281,8 +304,7 @@ def report(results, json_path):
     print(f"\nscore: {s['killed']} killed of {s['run']} run "
           f"({s['equivalent']} equivalent, not run); survived: {s['survived'] or 'none'}")
     if json_path:
-        with open(json_path, "w") as f:
-            json.dump({"score": s, "mutants": results}, f, indent=1)
+        write_json(json_path, results)
     return 0 if s["killed"] == s["run"] else 1
 
 
