@@ -515,6 +515,20 @@ TEST(SceneErrors, ValuesOutsideFp24Range) {
             "t.json:5: materials[0].n: expected at most 32767 (the NC's fixed-point exponent)");
 }
 
+// Each limit at its exact boundary (tools/mutants.txt: an off-by-one there
+// passed every test that tried values far outside).
+TEST(SceneErrors, LimitsHoldAtTheirExactBoundaries) {
+  // FP24's range includes both ends: 2^-62 and (2 - 2^-16) 2^63.
+  EXPECT_EQ(error_of(scene_text(kSphere, "", ", \"ks\": 2.1684043449710089e-19")), "(accepted)");
+  EXPECT_EQ(error_of(scene_text(kSphere, "", ", \"ko\": 18446462598732840960")), "(accepted)");
+  EXPECT_EQ(error_of(scene_text(kSphere, "", ", \"n\": 32767")), "(accepted)");
+  EXPECT_EQ(error_of(scene_text(kSphere, "", ", \"n\": 32768")),
+            "t.json:5: materials[0].n: expected at most 32767 (the NC's fixed-point exponent)");
+  std::string fov = scene_text(kSphere);
+  fov.replace(fov.find("\"fov\": 60"), 9, "\"fov\": 180");
+  EXPECT_EQ(error_of(fov), "t.json:2: camera.fov: expected degrees in (0, 180)");
+}
+
 TEST(SceneTessellation, PlanarBezierIsExact) {
   // Control points on a uniform grid: P(u, v) = (u, v, 0), normal +z.
   BicubicNet net;
