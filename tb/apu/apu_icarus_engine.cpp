@@ -681,16 +681,19 @@ namespace {
 constexpr std::uint64_t kMaxBurst = 20'000;
 }
 
-std::uint64_t IcarusEngine::run(std::uint64_t max_cycles) {
+// The bench's "r N" (run) or "u N" (until the data bank is taken) in bursts
+// of at most kMaxBurst cycles; the cycles run.
+std::uint64_t IcarusEngine::run_bursts(char op, std::uint64_t max_cycles) {
   Impl& m = *impl_;
+  const char name[2] = {op, '\0'};
   std::uint64_t total = 0;
   while (total < max_cycles) {
     const std::uint64_t n = std::min(max_cycles - total, kMaxBurst);
     char buf[32];
-    std::snprintf(buf, sizeof buf, "r %llx", static_cast<unsigned long long>(n));
+    std::snprintf(buf, sizeof buf, "%c %llx", op, static_cast<unsigned long long>(n));
     const std::string w = "running from cycle " + std::to_string(m.cycle);
     const std::string reply = m.request(buf, w);
-    const Fields fl(reply, 13, "r");
+    const Fields fl(reply, 13, name);
     const std::uint64_t k = std::strtoull(fl.token(0).c_str(), nullptr, 16);
     m.cycle += k;
     total += k;
@@ -701,25 +704,9 @@ std::uint64_t IcarusEngine::run(std::uint64_t max_cycles) {
   return total;
 }
 
-std::uint64_t IcarusEngine::run_until_data_taken(std::uint64_t max_cycles) {
-  Impl& m = *impl_;
-  std::uint64_t total = 0;
-  while (total < max_cycles) {
-    const std::uint64_t n = std::min(max_cycles - total, kMaxBurst);
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "u %llx", static_cast<unsigned long long>(n));
-    const std::string w = "running from cycle " + std::to_string(m.cycle);
-    const std::string reply = m.request(buf, w);
-    const Fields fl(reply, 13, "u");
-    const std::uint64_t k = std::strtoull(fl.token(0).c_str(), nullptr, 16);
-    m.cycle += k;
-    total += k;
-    m.clocked();
-    m.parse_status(fl, 1, "after cycle " + std::to_string(m.cycle));
-    if (k < n) break;
-  }
-  return total;
-}
+std::uint64_t IcarusEngine::run(std::uint64_t max_cycles) { return run_bursts('r', max_cycles); }
+
+std::uint64_t IcarusEngine::run_until_data_taken(std::uint64_t max_cycles) { return run_bursts('u', max_cycles); }
 
 // ---- state between cycles -----------------------------------------------------------
 

@@ -97,6 +97,7 @@ class IcarusEngine final : public ApuEngine {
   const std::string& vvp_file() const;
 
  private:
+  std::uint64_t run_bursts(char op, std::uint64_t max_cycles);  // run() and run_until_data_taken()
   class Impl;  // the vvp child, its pipes and what the engine knows of it (apu_icarus_engine.cpp)
   std::unique_ptr<Impl> impl_;
 };
