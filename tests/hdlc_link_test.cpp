@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <tuple>
 
 #include "hdlc_link.hpp"
 
@@ -265,6 +266,59 @@ TEST(HdlcLink, RejectsBadAddresses) {
   EXPECT_THROW(net.send(0, 0, 3, {}), std::invalid_argument);
   EXPECT_THROW(net.send(0, 1, 2, {}), std::invalid_argument);
   EXPECT_THROW(net.send(0, 0, kAddrRc, {}), std::invalid_argument);
+}
+
+// An N(R) one past what the sender has put on the line lies outside the
+// window (docs/hdlc.md "Go-back-N": ignored if it points outside what was
+// sent). Taken as an acknowledgement, it would drop a frame never sent from
+// the window: the message would stall or arrive short. No conforming peer
+// sends one, so NC 1's first RR is forged on the wire: the flipped bits turn
+// RR N(R)=1 into RR N(R)=(frames sent)+1 with a valid FCS. It must change
+// nothing: the message arrives whole, once, with no retransmission.
+TEST(HdlcLink, AckOnePastWhatWasSentIsIgnored) {
+  TimingParams t;
+  const Bytes data(12 * (t.hdlc_max_info_bytes - 1), 0x55);  // 12 full frames
+  // A clean run: NC 1's first RR, and how many I-frames had started when it ended.
+  Frame ack;
+  Picos ack_end = 0;
+  std::uint8_t sent = 0;
+  {
+    Network net(t, 1);
+    std::vector<std::tuple<Picos, unsigned, Frame>> trace;
+    net.set_trace([&](Picos at, unsigned line, const Frame& f) { trace.emplace_back(at, line, f); });
+    ASSERT_TRUE(net.run_until_complete(net.send(0, 0, 1, data)));
+    for (const auto& [at, line, f] : trace)
+      if (line == 1) {
+        ack = f;
+        ack_end = at + wire_time_ps(f, t.hdlc_bit_rate_bps);
+        break;
+      }
+    for (const auto& [at, line, f] : trace) sent += line == 0 && at < ack_end;
+  }
+  ASSERT_EQ(ack.control, Control::super(Supervisory::RR, 1).octet());
+  ASSERT_EQ(sent, 2u);  // frame 1 is on the line; N(R) 0..2 are in the window
+  Frame forged = ack;
+  forged.control = Control::super(Supervisory::RR, static_cast<std::uint8_t>(sent + 1)).octet();
+  const Bits a = encode(ack), b = encode(forged);
+  ASSERT_EQ(a.size(), b.size());
+  LinkFaults f;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i] != b[i]) f.flip_bits.push_back(i);  // NC 1's first frame is bits 0..
+  ASSERT_FALSE(f.flip_bits.empty());
+
+  Network net(t, 1);
+  net.set_faults(Direction::Up, 1, f);
+  const MessageId id = net.send(0, 0, 1, data);
+  ASSERT_TRUE(net.run_until_complete(id, 1000 * kMs));
+  EXPECT_EQ(net.receive_stats(Direction::Up, 1).bits_flipped, f.flip_bits.size());
+  EXPECT_EQ(net.receive_stats(Direction::Up, 1).decoder.fcs_errors, 0u);  // taken as good
+  const auto d = net.take_deliveries();
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].data, data);
+  EXPECT_EQ(net.sender_to_nc(1).i_frames, 12u);
+  EXPECT_EQ(net.sender_to_nc(1).retransmissions, 0u);
+  EXPECT_EQ(net.receiver_at_nc(1).accepted, 12u);
+  EXPECT_TRUE(net.link_up(1));
 }
 
 // ---------------------------------------------------------------- supervision
