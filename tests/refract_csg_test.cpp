@@ -375,6 +375,42 @@ TEST(RefractCsg, LensRayByHand) {
   EXPECT_NEAR(glm::dot(R, rim.normal), -glm::dot(graze, rim.normal), 1e-12);
 }
 
+// Where the depth rule shows: with max_depth 5 and 10 the reference renderer
+// differs only on pixels whose path is totally reflected inside the glass
+// (rays trapped near a CSG edge, which run out of depth; the glass is
+// convex, so a path without TIR is done after 2 refractions), and with
+// index 1 nowhere. A peer renderer that ends or weighs deep rays otherwise
+// disagrees exactly there (docs/renderer.md "Refraction through CSG solids").
+int depth_sensitive(World w, int size) {
+  w.max_depth = 5;
+  const scene::Scene s5 = make_scene(w, size);
+  w.max_depth = 10;
+  const scene::Scene s10 = make_scene(w, size);
+  const refrender::Renderer r5(s5), r10(s10);
+  int moved = 0;
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      const dvec3 a = r5.pixel(i, j, size, size), b = r10.pixel(i, j, size, size);
+      if (glm::length(a - b) < 0.5 / 255) continue;
+      ++moved;
+      const refrender::Ray ray = refrender::eye_ray(s10.camera, i, j, size, size);
+      PathLog log;
+      analytic(w, ray.origin, ray.dir, 0, log);
+      EXPECT_GT(log.tirs, 0) << "pixel " << i << "," << j << " moved with max_depth and has no TIR";
+    }
+  return moved;
+}
+
+TEST(RefractCsg, DepthLimitMovesOnlyTotallyReflectedPaths) {
+  for (World w : {lens(), barrel(), ruby()}) {
+    const int moved = depth_sensitive(w, 120);
+    std::printf("index %.2f: %d of %d pixels move between max_depth 5 and 10\n", w.index, moved, 120 * 120);
+    EXPECT_GT(moved, 0);
+    w.index = 1;
+    EXPECT_EQ(depth_sensitive(w, 120), 0);
+  }
+}
+
 TEST(RefractCsg, LensImageIsTheAnalyticOne) { expect_settled(compare_image(lens(), 160)); }
 TEST(RefractCsg, BarrelImageIsTheAnalyticOne) { expect_settled(compare_image(barrel(), 160)); }
 TEST(RefractCsg, RubyImageIsTheAnalyticOne) { expect_settled(compare_image(ruby(), 160)); }
