@@ -31,7 +31,6 @@
 #include "fp24_rtl.hpp"
 #include "fp24_vectors.hpp"
 #include "json.hpp"
-#include "scene.hpp"
 #include "shard_report.hpp"
 
 namespace {
@@ -563,7 +562,7 @@ std::string text_report(const Options& o, const Run& run) {
   return t.str();
 }
 
-using mc1::scene::json::quote;  // the project's one JSON string escaper
+using mc1::json::quote;  // the project's one JSON string escaper
 
 std::string json_number(double v) {
   if (!std::isfinite(v)) return "null";
@@ -630,7 +629,7 @@ int merge(const CLI::App& app, const Options& o) {
     std::vector<mc1::shard::Report> reports;
     for (const std::string& f : o.merge) reports.push_back(mc1::shard::read_report(f, "fp24-regress/1"));
     mc1::shard::check_items(reports, ops);
-  } catch (const mc1::scene::SceneError& e) {
+  } catch (const mc1::json::JsonError& e) {
     std::fprintf(stderr, "fp24-regress: --merge: %s\n", e.what());
     return cli::kExitUsage;
   } catch (const cli::UsageError& e) {

@@ -6,13 +6,12 @@
 #include <iterator>
 
 #include "json.hpp"
-#include "scene.hpp"
 #include "shard_report.hpp"
 
 namespace mc1::fp24::tb {
 namespace {
 
-namespace json = mc1::scene::json;
+namespace json = mc1::json;
 namespace cli = mc1::cmdline;
 using json::Type;
 using json::Value;
@@ -154,7 +153,7 @@ int merge_reports(const CLI::App& app, const std::vector<std::string>& files, co
     for (const std::string& f : files) reports.push_back(read(f));
     check_same_run(reports);
     merged = merge(reports);
-  } catch (const mc1::scene::SceneError& e) {
+  } catch (const json::JsonError& e) {
     std::fprintf(stderr, "fp24-regress: --merge: %s\n", e.what());
     return cli::kExitUsage;
   } catch (const cli::UsageError& e) {

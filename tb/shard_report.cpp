@@ -9,7 +9,6 @@
 #include <stdexcept>
 
 #include "atomic_file.hpp"
-#include "scene.hpp"
 
 namespace mc1::shard {
 

@@ -15,7 +15,7 @@
 
 namespace mc1::shard {
 
-namespace json = mc1::scene::json;
+namespace json = mc1::json;
 
 // "K/N" with 1 <= K <= N < 2^32; a UsageError naming `option` otherwise.
 std::pair<std::uint64_t, std::uint64_t> parse_shard(const std::string& option, const std::string& text);
@@ -36,7 +36,7 @@ struct Report {
 };
 
 // A shard's report: `schema`, and "shard" K/N (a merged report, "all/N", is
-// not one). Errors (cmdline::UsageError, scene::SceneError for bad JSON)
+// not one). Errors (cmdline::UsageError, json::JsonError for bad JSON)
 // name FILE:LINE; a file over kMaxReportBytes is refused unread beyond that.
 Report read_report(const std::string& file, const std::string& schema);
 // Every report a shard of the same N, with the `run_keys` of the first, each

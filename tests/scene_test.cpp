@@ -11,7 +11,6 @@
 #include <sstream>
 #include <string>
 
-#include "json.hpp"
 #include "scene.hpp"
 
 using namespace mc1::scene;
@@ -217,21 +216,6 @@ TEST(SceneErrors, DuplicateKeyInALargeObject) {
   for (int i = 0; i < 40000; ++i) text += "\"k" + std::to_string(i) + "\": " + std::to_string(i) + ",\n";
   text += "\"k39999\": 0}";
   EXPECT_EQ(error_of(text), "t.json:40001:1: JSON syntax: duplicate key \"k39999\"");
-}
-
-TEST(SceneJson, ValuesKeepTheirPlaceAndNegativeZero) {
-  json::Value v = json::parse("{\"a\": [1,\n  -0, \"s\"], \"b\": {}}", "t");
-  const json::Value& a = *v.find("a");
-  EXPECT_EQ(a.items[1].line, 2);
-  EXPECT_EQ(a.items[1].column, 3);
-  EXPECT_TRUE(std::signbit(a.items[1].number));  // "-0" stays -0 (its FP24 sign bit)
-  EXPECT_EQ(a.items[2].string, "s");
-  EXPECT_EQ(v.find("b")->column, 18);
-}
-
-TEST(SceneJson, QuoteEscapesForJsonReports) {
-  EXPECT_EQ(json::quote("a\"b\\c\n\x01"), "\"a\\\"b\\\\c\\n\\u0001\"");
-  EXPECT_EQ(json::quote("\xff"), "\"\xEF\xBF\xBD\"");  // not UTF-8: U+FFFD
 }
 
 TEST(SceneErrors, UnknownMaterialAndType) {

@@ -59,8 +59,8 @@ ALLOWED = {
     # The machine: every unit, wired.
     "hw/mc1": HW_ALL,
     # Plain data and tools that know no machine.
-    "host/common": set(),  # output files written whole or not at all; command lines
-    "host/scene": set(),
+    "host/common": set(),  # output files written whole or not at all; command lines; JSON
+    "host/scene": {"host/common"},  # JSON (host/common/json.hpp)
     "host/imgcmp": {"host/common"},
     "host/apuasm": HW_BASE | {"host/common"},
     "host/refrender": {"host/common", "host/scene", "host/imgcmp"},

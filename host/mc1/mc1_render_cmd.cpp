@@ -338,7 +338,7 @@ int cmd_render(const CLI::App& cmd) {
   if (stall_profile) {
     profiler.profile().finish();
     out.add(profile, profiler.profile().json(profiler.kernels(), "mc1 render",
-                                             ", \"scene\": " + scene::json::quote(r.scene) + ", \"engine\": \"" + r.engine +
+                                             ", \"scene\": " + json::quote(r.scene) + ", \"engine\": \"" + r.engine +
                                                  "\", \"nodes\": " + std::to_string(r.nodes) +
                                                  ", \"frame_time_ps\": " + std::to_string(r.frame_time)));
     if (!quiet) std::fputs(profiler.profile().text(profiler.kernels(), 10).c_str(), stdout);
@@ -636,7 +636,7 @@ int cmd_bench_render(const CLI::App& cmd) {
   BenchTimes t = run_bench(bench, o);
 
   std::ostringstream json;
-  json << "{\"schema\": \"mc1-bench-render/1\", \"scene\": " << mc1::scene::json::quote(o.scene)
+  json << "{\"schema\": \"mc1-bench-render/1\", \"scene\": " << mc1::json::quote(o.scene)
        << ", \"block\": " << base.block_w << ", \"runs\": [";
   runs_json(json, bench.runs());
   speedup_summary(json, o, t);

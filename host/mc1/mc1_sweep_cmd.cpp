@@ -58,7 +58,7 @@ void add_sweep_options(CLI::App& cmd) {
 
 namespace {
 
-namespace json = mc1::scene::json;
+namespace json = mc1::json;
 using json::Type;
 using json::Value;
 
@@ -432,7 +432,7 @@ int cmd_sweep(const CLI::App& cmd) {
   if (cmd.count("--merge")) {
     try {
       return merge_sweep(cmd, a);
-    } catch (const scene::SceneError& e) {
+    } catch (const json::JsonError& e) {
       throw CliError(std::string("--merge: ") + e.what());
     } catch (const CliError& e) {
       throw CliError(std::string("--merge: ") + e.what());

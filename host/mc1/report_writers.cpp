@@ -19,7 +19,7 @@ std::string num(double v) {
 
 double ratio(Picos part, Picos whole) { return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0; }
 
-using scene::json::quote;  // the one JSON string escaper (host/scene/json.hpp)
+using json::quote;  // the one JSON string escaper (host/common/json.hpp)
 
 }  // namespace
 

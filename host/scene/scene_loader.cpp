@@ -8,11 +8,12 @@
 #include <sstream>
 
 #include "fp24_range.hpp"
-#include "json.hpp"
+#include "json.hpp"  // host/common: mc1::json
 #include "scene.hpp"
 
 namespace mc1::scene {
 
+namespace json = mc1::json;
 using json::Type;
 using json::Value;
 
@@ -639,7 +640,12 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
       {{"objects"}, kMaxPrimitiveIds, "more than 65535 objects (each holds a primitive), the NC's limit"},
       {{"lights"}, kMaxLights, "more than " + std::to_string(kMaxLights) + " lights, the NC's limit"},
       {{"materials"}, kMaxMaterials, "more than " + std::to_string(kMaxMaterials) + " materials, the NC's limit"}};
-  Value root = json::parse(text, name, limits);
+  Value root;
+  try {
+    root = json::parse(text, name, limits);
+  } catch (const json::JsonError& e) {  // already "name:line[:column]: ...", as every SceneError
+    throw SceneError(e.what());
+  }
   return Loader(name, base_dir).scene(root);
 }
 

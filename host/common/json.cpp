@@ -6,9 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene.hpp"
-
-namespace mc1::scene::json {
+namespace mc1::json {
 
 const Value* Value::find(const std::string& key) const {
   for (const auto& m : members)
@@ -122,8 +120,8 @@ class Builder : public nlohmann::json::json_sax_t {
   bool separator_taken_ = false;  // at an error: the parser took a ',' or ':' first
 
   [[noreturn]] void fail(int line, int column, const std::string& msg) const {
-    throw SceneError(name_ + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                     ": JSON syntax: " + msg);
+    throw JsonError(name_ + ":" + std::to_string(line) + ":" + std::to_string(column) + ": JSON syntax: " + msg,
+                    line, column);
   }
 
   bool at_end() const { return pos_ >= text_.size(); }
@@ -251,8 +249,8 @@ class Builder : public nlohmann::json::json_sax_t {
 
   void count_item(int limit) {
     if (++counts_[limit] <= limits_[limit].max) return;
-    throw SceneError(name_ + ":" + std::to_string(start_line_) + ": " + path_here() + ": " +
-                     limits_[limit].message);
+    throw JsonError(name_ + ":" + std::to_string(start_line_) + ": " + path_here() + ": " + limits_[limit].message,
+                    start_line_, start_column_);
   }
 
   // The JSON path of the newest value, as the scene loader writes it.
@@ -341,4 +339,4 @@ Value parse(const std::string& text, const std::string& name, const std::vector<
   return b.take_root();
 }
 
-}  // namespace mc1::scene::json
+}  // namespace mc1::json

@@ -1,14 +1,27 @@
-// JSON documents as the scene loader reads them: nlohmann-json parses (its SAX
-// interface), and this layer keeps the file line and column where each value
-// starts, so that the loader can name them in its messages.
+// JSON documents as the programs read them (scenes, shard reports):
+// nlohmann-json parses (its SAX interface), and this layer keeps the file
+// line and column where each value starts, so that a reader can name them in
+// its messages. Also the one JSON string escaper of the reports (quote).
 #pragma once
 
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace mc1::scene::json {
+namespace mc1::json {
+
+// A document refused by parse: what() is the whole message, "name:line:column:
+// JSON syntax: message", or "name:line: json.path: message" for an element
+// beyond an ItemLimit; line and column say where the offending token starts.
+class JsonError : public std::runtime_error {
+ public:
+  JsonError(const std::string& what, int at_line, int at_column)
+      : std::runtime_error(what), line(at_line), column(at_column) {}
+  int line;
+  int column;
+};
 
 enum class Type { null, boolean, number, string, array, object };
 
@@ -38,12 +51,13 @@ struct ItemLimit {
 };
 
 // Parses one JSON document (RFC 8259; duplicate keys refused, nesting at most
-// 64 deep). Throws SceneError "name:line:column: JSON syntax: message" on a
-// syntax error, naming where the offending token starts.
+// 64 deep). Throws JsonError "name:line:column: JSON syntax: message" on a
+// syntax error, naming where the offending token starts, and "name:line:
+// json.path: message" on an element beyond an ItemLimit.
 Value parse(const std::string& text, const std::string& name, const std::vector<ItemLimit>& limits = {});
 
 // `s` as a JSON string literal, quotes included (RFC 8259 escapes; bytes that
 // are not UTF-8 become U+FFFD). For the writers of JSON reports.
 std::string quote(const std::string& s);
 
-}  // namespace mc1::scene::json
+}  // namespace mc1::json
