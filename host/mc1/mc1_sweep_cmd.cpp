@@ -15,6 +15,8 @@
 #include "report_writers.hpp"
 #include "scene.hpp"
 #include "shard_report.hpp"
+#include "sweep_svg.hpp"
+#include "sweep_table.hpp"
 
 namespace mc1::cli {
 
@@ -289,6 +291,42 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
   if (a.has("json")) out.add(a.get("json"), j.str());
   out.commit();
   return passed ? cmdline::kExitOk : cmdline::kExitFailed;
+}
+
+// A point of a report as a row of the table; figures an older report lacks
+// are not known (n/a).
+sweep::Row value_row(const Value& p) {
+  auto number = [&](const char* key) {
+    const Value* v = p.find(key);
+    return v && v->type == Type::number ? v->number : 0.0;
+  };
+  auto text = [&](const char* key) {
+    const Value* v = p.find(key);
+    return v && v->type == Type::string ? v->string : std::string();
+  };
+  sweep::Row r;
+  r.index = static_cast<std::uint64_t>(number("index"));
+  r.scene = text("scene");
+  r.frame = static_cast<unsigned>(number("frame"));
+  r.width = static_cast<unsigned>(number("width"));
+  r.height = static_cast<unsigned>(number("height"));
+  r.nodes = static_cast<unsigned>(number("nodes"));
+  r.schedule = text("schedule");
+  r.block = text("block");
+  r.frame_ps = static_cast<Picos>(number("simulated_time_ps"));
+  r.apu_utilization = number("apu_utilization");
+  if (const Value* c = p.find("critical_block"); c && c->type == Type::number) {
+    r.critical_block = static_cast<std::int64_t>(c->number);
+    r.critical_ps = static_cast<Picos>(number("critical_block_ps"));
+    const Value* path = p.find("critical_path");
+    r.critical_path = path && path->type == Type::boolean && path->boolean;
+  }
+  r.host_seconds = number("host_seconds");
+  r.image = text("image_fnv1a");
+  r.complete = p.find("complete")->boolean;
+  if (const Value* steps = p.find("step_shares"); steps && steps->type == Type::object)
+    for (const auto& [key, share] : steps->members) r.steps.emplace_back(key, share.number);
+  return r;
 }
 
 // The reports of the shards, each with the members the merge reads.
