@@ -45,9 +45,15 @@ void add_sweep_options(CLI::App& cmd) {
   add_threads_option(cmd);
   add_param_options(cmd);
   value_option(cmd, "shard", "K/N", "run slice K of N of the points (default 1/1)");
-  value_option(cmd, "out-dir", "DIR", "write point-I.json (statistics) there (default: .)");
+  value_option(cmd, "out-dir", "DIR", "write point-I.json (statistics) there: a directory that exists (default: .); checked before point 0");
   flag_option(cmd, "png", "also write each point's frame as point-I.png");
   f.output(value_option(cmd, "json", "FILE", "the report of the points run, or with --merge the merged report"));
+  f.output(value_option(cmd, "csv", "FILE.csv",
+                        "the table: a line a point (frame time, speedup and efficiency against 1 NC, APU "
+                        "utilization, critical block, steps' shares; docs/platform.md \"Sweeps\")"));
+  f.output(value_option(cmd, "plot", "FILE.svg",
+                        "the plots: frame time, speedup and efficiency against NCs per schedule and block size; "
+                        "each point's NC time by step"));
   f.input(cmd.add_option("--merge", "merge the --json reports of shards 1..N of one grid (nothing is run)")
               ->type_name("REPORT.json ...")
               ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
@@ -191,7 +197,7 @@ std::string times_so_far(std::chrono::steady_clock::time_point t0, std::uint64_t
 
 // --list: points [first, end) of the grid, a line each; nothing is run.
 int list_points(const Parsed& a, const Grid& g, std::uint64_t first, std::uint64_t end) {
-  for (const char* name : {"json", "png"})
+  for (const char* name : {"json", "png", "csv", "plot"})
     if (a.has(name)) throw CliError(std::string("--list runs nothing: --") + name + " would write nothing");
   for (std::uint64_t i = first; i < end; ++i) {
     const Point p = point(g, i);
@@ -222,18 +228,84 @@ void check_sweep_files(const CLI::App& cmd, const Parsed& a, const std::string& 
   f.check();
 }
 
+// Point p's row of the table (sweep_table.hpp), from its frame.
+sweep::Row point_row(const Point& p, const FrameReport& r) {
+  sweep::Row row;
+  row.index = p.index;
+  row.scene = p.scene;
+  row.frame = p.frame;
+  row.width = r.width;
+  row.height = r.height;
+  row.nodes = p.nodes;
+  row.schedule = rc::schedule_name(p.schedule);
+  row.block = block_name(p.block);
+  row.frame_ps = r.frame_time;
+  row.apu_utilization = apu_utilization_mean(r);
+  const sweep::CriticalBlock c = sweep::critical_block(r);
+  row.critical_block = c.block;
+  row.critical_ps = c.time;
+  row.critical_path = c.bounds_frame;
+  row.host_seconds = r.host_seconds;
+  row.image = image_hash(r.rgb);
+  row.complete = r.fm_pixels_written == std::uint64_t{r.width} * r.height;
+  row.steps = sweep::step_shares(r);
+  return row;
+}
+
 // One point's entry of the report.
-std::string point_json(const Grid& g, const Point& p, const FrameReport& r, bool complete) {
+std::string point_json(const Grid& g, const sweep::Row& p, Picos downloaded) {
   std::ostringstream s;
   s << "    {\"index\": " << p.index << ", \"scene\": " << quote(p.scene) << ", \"frame\": " << p.frame
     << ", \"orbit_deg\": " << num(orbit_deg(g, p.frame)) << ", \"nodes\": " << p.nodes
-    << ", \"schedule\": " << quote(rc::schedule_name(p.schedule)) << ", \"block\": " << quote(block_name(p.block))
-    << ", \"width\": " << r.width << ", \"height\": " << r.height << ", \"simulated_time_ps\": " << r.frame_time
-    << ", \"download_done_ps\": " << milestone_time(r, "downloaded")
-    << ", \"apu_utilization\": " << num(apu_utilization_mean(r)) << ", \"complete\": " << (complete ? "true" : "false")
-    << ", \"image_fnv1a\": " << quote(image_hash(r.rgb)) << ", \"stats\": " << quote(point_name(p.index) + ".json")
-    << ", \"host_seconds\": " << num(r.host_seconds) << "}";
+    << ", \"schedule\": " << quote(p.schedule) << ", \"block\": " << quote(p.block) << ", \"width\": " << p.width
+    << ", \"height\": " << p.height << ", \"simulated_time_ps\": " << p.frame_ps << ", \"download_done_ps\": "
+    << downloaded << ", \"apu_utilization\": " << num(p.apu_utilization);
+  if (p.critical_block >= 0)
+    s << ", \"critical_block\": " << p.critical_block << ", \"critical_block_ps\": " << p.critical_ps
+      << ", \"critical_path\": " << (p.critical_path ? "true" : "false");
+  s << ", \"step_shares\": {";
+  for (std::size_t k = 0; k < p.steps.size(); ++k) s << (k ? ", " : "") << quote(p.steps[k].first) << ": " << num(p.steps[k].second);
+  s << "}, \"complete\": " << (p.complete ? "true" : "false") << ", \"image_fnv1a\": " << quote(p.image)
+    << ", \"stats\": " << quote(point_name(p.index) + ".json") << ", \"host_seconds\": " << num(p.host_seconds) << "}";
   return s.str();
+}
+
+// What every sweep says and writes of its rows, a shard's or the merged
+// grid's: --csv, --plot, the frames that differ (stderr) and the summary
+// lines (on `say`). False when frames differ.
+bool answer(const Parsed& a, std::vector<sweep::Row>& rows, Outputs& out, bool quiet, std::FILE* say) {
+  sweep::add_speedups(rows);
+  if (a.has("csv")) out.add(a.get("csv"), sweep::csv(rows));
+  if (a.has("plot")) out.add(a.get("plot"), sweep::sweep_svg(rows));
+  const std::vector<sweep::FrameMismatch> differ = sweep::compare_frames(rows);
+  for (const sweep::FrameMismatch& m : differ) std::fprintf(stderr, "mc1 sweep: %s\n", sweep::mismatch_text(m).c_str());
+  if (!quiet) {
+    for (const std::string& line : sweep::summary(rows)) std::fprintf(say, "mc1 sweep: %s\n", line.c_str());
+    if (differ.empty() && !rows.empty())
+      std::fprintf(say, "mc1 sweep: every frame equal across its points (%zu points)\n", rows.size());
+  }
+  return differ.empty();
+}
+
+// Renders point p; its files staged in `out`, its entry of the report
+// appended to `points`.
+sweep::Row run_point(const SystemConfig& base, const Grid& g, const Point& p, const std::string& dir, bool png,
+                     Outputs& out, std::ostringstream& points, bool first) {
+  SystemConfig cfg = base;
+  cfg.nodes = p.nodes;
+  cfg.schedule = p.schedule;
+  cfg.block_w = p.block.w;
+  cfg.block_h = p.block.h;
+  cfg.engine = g.engine;
+  RenderJob job{p.scene, g.width, g.height};
+  job.orbit_deg = orbit_deg(g, p.frame);
+  const FrameReport r = run_render(job, cfg).report;
+  const std::string name = point_name(p.index);
+  out.add(dir + "/" + name + ".json", stats_json(r));
+  if (png) out.add(dir + "/" + name + ".png", encode_png_rgb8(r.width, r.height, r.rgb.data()));
+  sweep::Row row = point_row(p, r);
+  points << (first ? "" : ",\n") << point_json(g, row, milestone_time(r, "downloaded"));
+  return row;
 }
 
 int run_sweep(const CLI::App& cmd, const Parsed& a) {
@@ -253,35 +325,23 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
   // together at the end: a sweep that fails part way leaves none of them.
   Outputs out;
   std::ostringstream points;
-  bool passed = true, any = false;
+  std::vector<sweep::Row> rows;
+  bool passed = true;
   for (std::uint64_t i = first; i < end; ++i) {
     const Point p = point(g, i);
-    if (any) fresh_systemc_kernel();
-    any = true;
-    SystemConfig cfg = base;
-    cfg.nodes = p.nodes;
-    cfg.schedule = p.schedule;
-    cfg.block_w = p.block.w;
-    cfg.block_h = p.block.h;
-    cfg.engine = g.engine;
-    RenderJob job{p.scene, g.width, g.height};
-    job.orbit_deg = orbit_deg(g, p.frame);
-    const FrameReport r = run_render(job, cfg).report;
-    const bool complete = r.fm_pixels_written == std::uint64_t{r.width} * r.height;
-    passed = passed && complete;
-    const std::string name = point_name(i);
-    out.add(dir + "/" + name + ".json", stats_json(r));
-    if (a.has("png")) out.add(dir + "/" + name + ".png", encode_png_rgb8(r.width, r.height, r.rgb.data()));
-    points << (i > first ? ",\n" : "") << point_json(g, p, r, complete);
+    if (i > first) fresh_systemc_kernel();
+    const sweep::Row& r = rows.emplace_back(run_point(base, g, p, dir, a.has("png"), out, points, i == first));
+    passed = passed && r.complete;
     if (!quiet)
       std::printf("point %llu/%llu: %s frame %u, %u NCs, %s, blocks %s: %.3f ms simulated, %.2f s host%s (%s)\n",
                   static_cast<unsigned long long>(i), static_cast<unsigned long long>(g.points()),
                   p.scene.c_str(), p.frame, p.nodes, rc::schedule_name(p.schedule), block_name(p.block).c_str(),
-                  r.frame_time * 1e-9, r.host_seconds, complete ? "" : " INCOMPLETE",
+                  r.frame_ps * 1e-9, r.host_seconds, r.complete ? "" : " INCOMPLETE",
                   times_so_far(t0, i + 1 - first, end - first).c_str());
     std::fflush(stdout);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  passed = answer(a, rows, out, quiet, stdout) && passed;
   std::ostringstream j;
   j << "{\n  \"schema\": \"mc1-sweep/1\",\n  \"grid\": " << grid_json(g, base.timing)
     << ",\n  \"points_total\": " << g.points() << ",\n  \"shard\": \"" << k << "/" << n << "\",\n  \"threads\": "
@@ -450,15 +510,21 @@ int merge_sweep(const CLI::App& cmd, const Parsed& a) {
   const bool passed = merge_points(reports, total, points, wall);
   *shard::mutable_member(merged, "wall_seconds") = shard::number_value(wall);
   const Frames frames = frames_of(points);
+  std::vector<sweep::Row> rows;  // before "frames" is inserted: `points` refers into merged.members
+  for (const Value& p : points.items) rows.push_back(value_row(p));
   const bool ok = passed && frames.equal;
   shard::mutable_member(merged, "passed")->boolean = ok;
   merged.members.insert(merged.members.end() - 1, {"frames", frames.list});
   const std::string text = shard::layout(merged, {"points", "frames"});
-  if (a.has("json")) write_file_atomically(a.get("json"), text);
-  else std::fputs(text.c_str(), stdout);
+  std::FILE* say = a.has("json") ? stdout : stderr;
+  Outputs out;
+  answer(a, rows, out, a.has("quiet"), say);
+  if (a.has("json")) out.add(a.get("json"), text);
+  out.commit();
+  if (!a.has("json")) std::fputs(text.c_str(), stdout);
   if (!a.has("quiet"))
-    std::fprintf(a.has("json") ? stdout : stderr, "mc1 sweep: merged %zu shards, %llu points, %zu frames: %s\n",
-                 reports.size(), static_cast<unsigned long long>(total), frames.list.items.size(),
+    std::fprintf(say, "mc1 sweep: merged %zu shards, %llu points, %zu frames: %s\n", reports.size(),
+                 static_cast<unsigned long long>(total), frames.list.items.size(),
                  !passed ? "a point is incomplete" : frames.equal ? "every frame equal across its points" : "FRAMES DIFFER");
   return ok ? cmdline::kExitOk : cmdline::kExitFailed;
 }
