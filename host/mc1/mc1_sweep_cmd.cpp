@@ -32,7 +32,8 @@ const char* const kSweepDescription =
 
 void add_sweep_options(CLI::App& cmd) {
   cmdline::Files& f = files(cmd);
-  f.input(list_option(cmd, "scene", "FILE", "a scene of the grid; repeatable (default " + default_scene() + ")"),
+  f.input(list_option(cmd, "scene", "FILE", "a scene of the grid; repeatable (default: scenes/whitted.json of mc1's data directory, here " +
+                                  default_scene() + "; name it on a cluster, tools/slurm/mc1-sweep.sh)"),
           "the scene", default_scene());
   value_option(cmd, "nodes", "LIST", "node counts (default 16)");
   value_option(cmd, "schedules", "LIST", "schedules: lpt, fifo, static (default lpt)");
