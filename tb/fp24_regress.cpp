@@ -3,12 +3,14 @@
 // style structured set plus seeded random pairs; three engines compared:
 // verilated RTL == C++ model bit for bit, model == MPFR oracle (correctly
 // rounded ops) or faithful with measured ulp error (SIN/COS).
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -319,7 +321,7 @@ struct Stats {
   std::uint64_t unfaithful = 0;       // SIN/COS: error >= 1 ulp or flags differ
   std::uint64_t golden = 0;           // --vectors: model != the file's expected result
   double max_ulp = 0;
-  double cpu_seconds = 0;
+  double cpu_seconds = 0;  // the CPU time its workers spent on it (thread_cpu_seconds)
   std::vector<Failure> failures;
   std::string rtl_error;  // a timing-contract violation, if any
 
@@ -350,13 +352,23 @@ bool is_trig(Op op) { return op == Op::Sin || op == Op::Cos; }
 
 // ---- the work --------------------------------------------------------------------
 
+// The CPU time the calling thread has used (CLOCK_THREAD_CPUTIME_ID): a
+// job's share of the machine, not the wall time it took while the thread
+// waited for a core (with more threads than cores, or a loaded host, wall
+// time counts the waits of every thread over again).
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + double(t.tv_nsec) * 1e-9;
+}
+
 // One thread's engines and buffers; it runs whole jobs.
 class Worker {
  public:
   Worker(const Options& o, const VectorSet& set) : o_(o), set_(set), a_(kChunk), b_(kChunk), m_(kChunk), r_(kChunk) {}
 
   Stats run(const Job& j) {
-    const auto start = Clock::now();
+    const double start = thread_cpu_seconds();
     Stats s;
     s.vectors = j.count;
     set_.fill(j, a_.data(), b_.data());
@@ -364,7 +376,7 @@ class Worker {
     if (o_.rtl) check_rtl(j, &s);
     if (o_.oracle) check_oracle(j, &s);
     if (j.source == Source::File) check_golden(j, &s);
-    s.cpu_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    s.cpu_seconds = thread_cpu_seconds() - start;
     return s;
   }
 
@@ -458,9 +470,10 @@ Run run_all(const Options& o) {
 
   Run run;
   std::mutex merge;
+  std::condition_variable finished;  // the last worker is done: the wall time ends there
   std::atomic<std::uint64_t> next{0};
   std::atomic<std::uint64_t> done{0};
-  std::atomic<unsigned> running{o.threads};
+  unsigned running = o.threads;  // under `merge`
   auto work = [&] {
     Worker w(o, set);
     for (std::uint64_t k; (k = next.fetch_add(1)) < jobs.jobs;) {
@@ -470,7 +483,8 @@ Run run_all(const Options& o) {
       run.per_op[int(job.op)].merge(s, o.show);
       done += job.count;
     }
-    --running;
+    std::lock_guard<std::mutex> lock(merge);
+    if (--running == 0) finished.notify_all();
   };
   const auto start = Clock::now();
   std::vector<std::thread> threads;
@@ -483,10 +497,13 @@ Run run_all(const Options& o) {
                              std::to_string(threads.size()) + " threads and no more (" + e.what() + ")");
   }
   const bool tty = isatty(STDERR_FILENO) != 0;
-  while (running > 0) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  std::unique_lock<std::mutex> lock(merge);
+  while (!finished.wait_for(lock, std::chrono::milliseconds(500), [&] { return running == 0; })) {
+    lock.unlock();
     if (tty) show_progress(done, total, std::chrono::duration<double>(Clock::now() - start).count());
+    lock.lock();
   }
+  lock.unlock();
   for (std::thread& t : threads) t.join();
   if (tty) std::fputs("\n", stderr);
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
