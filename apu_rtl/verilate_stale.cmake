@@ -3,7 +3,7 @@
 # again only when its arguments change. Once a .sv file is removed, that list
 # names a file that no longer exists and the generate step fails. Dropping
 # such a stale list makes the next verilate() run Verilator afresh.
-# Included before the first verilate() call (apu_rtl, then tb/apu).
+# Included before the first verilate() call (apu_rtl, then hw/apu_rtl_engine).
 file(GLOB_RECURSE verilate_copies ${CMAKE_BINARY_DIR}/*_copy.cmake)
 foreach(copy ${verilate_copies})
   file(STRINGS ${copy} deps_line REGEX "_DEPS ")

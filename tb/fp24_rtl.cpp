@@ -242,7 +242,7 @@ class Clocked {
 
   ~Clocked() {
     // The model's scopes are erased from the thread's current context, which
-    // must be this one (~RtlEngine in tb/apu/apu_rtl_engine.cpp says why).
+    // must be this one (~RtlEngine in hw/apu_rtl_engine/apu_rtl_engine.cpp says why).
     Verilated::threadContextp(ctx_.get());
     if (fst_) fst_->close();
     model_->final();

@@ -1,4 +1,4 @@
-// The RTL engine's backdoor (tb/apu/apu_rtl_backdoor.hpp) against the core's
+// The RTL engine's backdoor (hw/apu_rtl_engine/apu_rtl_backdoor.hpp) against the core's
 // own ports: every internal signal it names is written or read through the
 // backdoor and checked through the normal path (the MPU ports, a program
 // run), so a renamed or re-shaped RTL instance fails here, naming the signal.

@@ -31,7 +31,7 @@ import sys
 HW_BASE = {"hw/platform", "hw/apu", "apu_rtl/rom", "apu_rtl/isa"}
 HW_ALL = {"hw/platform", "hw/apu", "hw/apu_tlm", "hw/hdlc", "hw/image_bus", "hw/dc", "hw/fm", "hw/rc", "hw/nc", "hw/mc1"}
 RTL = {"apu_rtl", "apu_rtl/rom", "apu_rtl/isa"}
-HOST_LIBS = {"host/common", "host/scene", "host/apuasm", "host/imgcmp", "host/refrender"}
+HOST_LIBS = {"host/common", "host/scene", "host/apuasm", "host/imgcmp", "host/refrender", "host/apu_profile"}
 
 # unit -> the units it may use (itself always). From the bottom up.
 ALLOWED = {
@@ -58,27 +58,36 @@ ALLOWED = {
     "hw/apu_tlm": HW_BASE,
     # The machine: every unit, wired.
     "hw/mc1": HW_ALL,
+    # The RTL engine: the verilated APU core (apu_rtl/) behind the model's
+    # ApuEngine interface, with its untraced models and trace signals; the
+    # engine of mc1, the Python module and the benches. Not a unit the
+    # machine uses: the application hands it to the machine (host/mc1).
+    "hw/apu_rtl_engine": HW_BASE | RTL,
     # Plain data and tools that know no machine.
     "host/common": set(),  # output files written whole or not at all; command lines; JSON
     "host/scene": {"host/common"},  # JSON (host/common/json.hpp)
     "host/imgcmp": {"host/common"},
     "host/apuasm": HW_BASE | {"host/common"},
     "host/refrender": {"host/common", "host/scene", "host/imgcmp"},
+    # The APU's cycle and stall profiles and the files beside a waveform,
+    # from ApuEngine's per-cycle records (either engine).
+    "host/apu_profile": HW_BASE,
     # Firmware runs on an NC and the RC's side of a frame; it reads scenes.
     "firmware": HW_ALL - {"hw/mc1"} | {"host/scene"},
     # Test benches: the RTL under test, the models, firmware and host libraries.
-    "tb": HW_ALL | RTL | {"firmware"} | HOST_LIBS,
-    # The application: the machine, firmware, both APU engines (the RTL one is
-    # a test bench's verilated core), reports.
-    "host/mc1": HW_ALL | RTL | {"firmware", "tb"} | HOST_LIBS,
+    "tb": HW_ALL | RTL | {"hw/apu_rtl_engine", "firmware"} | HOST_LIBS,
+    # The application: the machine, firmware, both APU engines, reports; of
+    # tb only the shard reports of `mc1 sweep --shard` (tb/shard_report.*).
+    "host/mc1": HW_ALL | RTL | {"hw/apu_rtl_engine", "firmware", "tb"} | HOST_LIBS,
     # Tests, the top-level build, tools and docs may use anything.
     "tests": None,
     # Fuzz harnesses: the libraries they drive, the FP24 vector reader of tb.
-    "fuzz": HW_ALL | RTL | {"firmware", "tb"} | HOST_LIBS,
+    "fuzz": HW_ALL | RTL | {"hw/apu_rtl_engine", "firmware", "tb"} | HOST_LIBS,
     "tools": None,
-    # The Python module: the FP24 model and units, the APU on both engines, the
-    # assembler, staged output files.
-    "python": HW_BASE | RTL | {"tb", "host/apuasm", "host/common"},
+    # The Python module: the FP24 model and units, the APU on both engines, its
+    # profile, the assembler, staged output files; of tb only the FP24 units'
+    # harness (tb/fp24_rtl.*, mc1.fp24's RTL engine).
+    "python": HW_BASE | RTL | {"hw/apu_rtl_engine", "host/apu_profile", "host/apuasm", "host/common", "tb"},
     # Consumers of the installed package (they include <mc1/...>, not the tree).
     "examples": None,
     "": None,

@@ -2,7 +2,7 @@
 # Installs the Debian packages the project needs, when they are missing.
 #   tools/setup.sh [EXTRA-PACKAGE...]   (gtkwave: the waveform viewer, and fst2vcd
 #   for the trace tests; clang: the untraced verilated APU models,
-#   tb/apu/CMakeLists.txt, and tools/test.sh --fuzz; the cluster
+#   hw/apu_rtl_engine/CMakeLists.txt, and tools/test.sh --fuzz; the cluster
 #   test needs slurm-wlm munge: tools/setup.sh slurm-wlm munge, docs/platform.md;
 #   chromium: the SVG tests open the plots in headless Chromium)
 set -eu

@@ -1,5 +1,5 @@
 // The APU engines a frame can run on: the ISS (hw/apu) and the verilated RTL
-// core (tb/apu/apu_rtl_engine). The machine model knows only the ISS; the
+// core (hw/apu_rtl_engine/apu_rtl_engine). The machine model knows only the ISS; the
 // application hands it this factory as SystemConfig::engines.
 #pragma once
 

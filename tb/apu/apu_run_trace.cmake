@@ -1,5 +1,5 @@
 # CTest check of the trace signals beside the core and the files beside a
-# trace (tb/apu/apu_trace_top.sv, apu_trace_files.cpp; docs/apu-tools.md):
+# trace (hw/apu_rtl_engine/apu_trace_top.sv, apu_trace_files.cpp; docs/apu-tools.md):
 # `apu-run --engine rtl --trace` of a loop with a RAW stall each round.
 #  1. The FST (through fst2vcd) has TOP.mc1.kernel_id and TOP.mc1.kpc; at
 #     every time, kpc is (kernel_id, pc of TOP.apu_core); kernel_id is 1

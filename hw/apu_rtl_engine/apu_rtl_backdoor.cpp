@@ -23,7 +23,7 @@ constexpr std::uint32_t kMask24 = 0xFFFFFF;
 // A model's internal names: the core's signals under the model's root, as
 // apu_core__DOT__u_pmem__DOT__bank0 (Vapu_core) or
 // apu_fast__DOT__apu_core__DOT__u_pmem__DOT__bank0 (Vapu_fast, the core as
-// instance apu_core of tb/apu/apu_fast.sv).
+// instance apu_core of hw/apu_rtl_engine/apu_fast.sv).
 template <class Top>
 struct Names;
 

@@ -1,9 +1,9 @@
-// Test-bench signals beside the verilated APU core, for its waveforms
+// Trace signals beside the verilated APU core, for its waveforms
 // (docs/apu-rtl.md "Waveforms"): a second top-level module, so the trace
 // shows them as TOP.mc1.* while the core stays TOP.apu_core.* (Verilator
 // instantiates every top module; no port of the core is touched).
 //
-// The engine (tb/apu/apu_rtl_engine.cpp) drives the kernel ids of the two
+// The engine (hw/apu_rtl_engine/apu_rtl_engine.cpp) drives the kernel ids of the two
 // program banks as it learns them at each program hand-over; kernel_id is
 // the id of the bank the core runs from this cycle, and kpc the pair
 // (kernel_id, pc) as one value, so that one GTKWave translate filter

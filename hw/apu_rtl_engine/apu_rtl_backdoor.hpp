@@ -4,9 +4,9 @@
 // MPU's banks through it (exact between two clock edges: apu_rtl_engine.hpp)
 // and reads the register arrays for the ISA's observers.
 //
-// Two models are verilated from apu_rtl/ (tb/apu/CMakeLists.txt): Vapu_core,
+// Two models are verilated from apu_rtl/ (hw/apu_rtl_engine/CMakeLists.txt): Vapu_core,
 // traced, with every port of the core, and Vapu_fast, untraced, the core
-// inside tb/apu/apu_fast.sv without the stall-cause ports (the engine's
+// inside hw/apu_rtl_engine/apu_fast.sv without the stall-cause ports (the engine's
 // model when it writes no waveform). The backdoor is one template over the
 // two; RtlBackdoor is the traced model's.
 //
@@ -81,7 +81,7 @@ using RtlFastBackdoor = BasicRtlBackdoor<Vapu_fast>;
 
 // Vapu_fast's function unit: fp24_func verilated on its own
 // (Vapu_fast_func), clocked in the place of the stand-in that Vapu_fast has
-// for it (tb/apu/fast/fp24_func.sv) only while it has work: from a cycle
+// for it (hw/apu_rtl_engine/fast/fp24_func.sv) only while it has work: from a cycle
 // that issues to it until its last op has left the pipes. Idle, the unit's
 // registers hold (every stage loads only with its valid bit), and so do its
 // outputs: a clock of an idle unit changes nothing.

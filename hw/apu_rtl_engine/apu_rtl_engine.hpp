@@ -10,9 +10,9 @@
 // backdoor (apu_rtl_backdoor.hpp; a write there cannot be seen by the APU
 // before a swap, so writing it between two clock edges is exact).
 //
-// Two verilated models of the same RTL (tb/apu/CMakeLists.txt): with a
+// Two verilated models of the same RTL (hw/apu_rtl_engine/CMakeLists.txt): with a
 // waveform path, Vapu_core, traced, every port of the core; without,
-// Vapu_fast (tb/apu/apu_fast.sv), untraced and without the ports only
+// Vapu_fast (hw/apu_rtl_engine/apu_fast.sv), untraced and without the ports only
 // waveforms read, about a quarter less host time per cycle (docs/platform.md
 // "Rendering benchmark"). The engine's code is one template over the two
 // (apu_rtl_engine.cpp).
@@ -89,8 +89,8 @@ class RtlEngine final : public ApuEngine {
 
   // Dumps only simulated times in [from_ps, to_ps) (mc1 render --trace-from/--trace-to).
   void trace_window(std::uint64_t from_ps, std::uint64_t to_ps) override;
-  // Bank `bank` holds kernel `id`: input of the test bench's trace module
-  // (tb/apu/apu_trace_top.sv), whose TOP.mc1.kernel_id is the id of the
+  // Bank `bank` holds kernel `id`: input of the trace module
+  // (hw/apu_rtl_engine/apu_trace_top.sv), whose TOP.mc1.kernel_id is the id of the
   // bank the core runs from and TOP.mc1.kpc the pair (kernel_id, pc); 0
   // until one is named.
   void trace_kernel(int bank, std::uint16_t id) override;

@@ -34,7 +34,7 @@ class KernelTable {
   // GTKWave translate filter: the id (4 hex digits, as GTKWave prints
   // TOP.mc1.kernel_id[15:0]) to the kernel's name.
   std::string id_filter() const;
-  // GTKWave translate filter for TOP.mc1.kpc[27:0] (tb/apu/apu_trace_top.sv):
+  // GTKWave translate filter for TOP.mc1.kpc[27:0] (hw/apu_rtl_engine/apu_trace_top.sv):
   // the pair (kernel id, pc) in 7 hex digits, as GTKWave prints it (4 of id,
   // 3 of pc), to the word that kernel holds at pc, disassembled, for every
   // word of every kernel identify() found (all, if none).

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The compiler launcher of the untraced verilated APU models (tb/apu/CMakeLists.txt,
+# The compiler launcher of the untraced verilated APU models (hw/apu_rtl_engine/CMakeLists.txt,
 # apu_rtl_fast_models): CMake runs
 #   model_cxx.sh CXX [LAUNCHER...] -- BUILD_CXX ARGS...
 # and this runs [LAUNCHER...] CXX ARGS: the same compile line with CXX (clang++)

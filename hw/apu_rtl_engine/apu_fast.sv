@@ -1,7 +1,7 @@
 // The APU core as RtlEngine clocks it when it writes no waveform: apu_core,
 // untouched, as instance apu_core, with only the ports the engine reads or
 // drives (docs/apu-rtl.md "RtlEngine"). Verilated untraced (Vapu_fast,
-// tb/apu/CMakeLists.txt), beside the traced Vapu_core of every port.
+// hw/apu_rtl_engine/CMakeLists.txt), beside the traced Vapu_core of every port.
 //
 // Left out, so that Verilator drops the logic that only they need (a tenth of
 // the host time per cycle with the interlock's former compare matrices; less
@@ -9,7 +9,7 @@
 //   - the stall-cause ports dbg_raw_src/unit, dbg_waw_dst/unit (waveforms and
 //     tests/apu_rtl_test.cpp read them on Vapu_core);
 //   - the MPU's bank ports: the engine reads and writes the MPU's banks
-//     through the backdoor (tb/apu/apu_rtl_backdoor.hpp), so they are tied
+//     through the backdoor (hw/apu_rtl_engine/apu_rtl_backdoor.hpp), so they are tied
 //     off (no write, address 0) and the read port is left open.
 // Every other port has the core's name and type, so the engine drives both
 // models with the same code.

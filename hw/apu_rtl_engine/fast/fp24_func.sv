@@ -1,4 +1,4 @@
-// The function unit's place in Vapu_fast (tb/apu/CMakeLists.txt): a stand-in
+// The function unit's place in Vapu_fast (hw/apu_rtl_engine/CMakeLists.txt): a stand-in
 // with fp24_func's ports, in whose place the RTL engine clocks the real
 // apu_rtl/fp24_func.sv, verilated on its own (Vapu_fast_func), and only in
 // the cycles in which it has an op (docs/apu-rtl.md "RtlEngine"). Not
