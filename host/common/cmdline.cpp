@@ -201,6 +201,11 @@ CLI::Option* Files::output(CLI::Option* option, std::vector<std::string> side_su
   return option;
 }
 
+CLI::Option* Files::outputs_each(CLI::Option* option, std::vector<std::string> side_suffixes) {
+  outputs_.push_back({option, option->get_name(), std::move(side_suffixes), true});
+  return option;
+}
+
 void Files::add_input(const std::string& role, const std::string& path) { more_inputs_.emplace_back(role, path); }
 
 void Files::add_output(const std::string& name, const std::string& path) { more_outputs_.emplace_back(name, path); }
@@ -231,7 +236,7 @@ NamedPaths Files::outputs() const {
 void Files::check(bool writable) const {
   for (const Declared& d : outputs_) {
     const std::vector<std::string>& given = d.option->results();
-    if (given.size() < 2) continue;
+    if (given.size() < 2 || d.each) continue;
     std::string list;
     for (const std::string& path : given) list += (list.empty() ? "" : ", ") + path;
     throw UsageError(d.role + " is given " + std::to_string(given.size()) + " times (" + list +

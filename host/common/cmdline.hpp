@@ -93,7 +93,8 @@ void check_writable(const NamedPaths& outputs);
 //   ... cmdline::parse(app, argc, argv) ...
 //   files.check();  // before anything is read or written
 // check() throws UsageError, before the run, when
-// - an output option is given more than once (the first file would be lost);
+// - an output option is given more than once (the first file would be lost;
+//   outputs_each's options excepted);
 // - two outputs name one file, a side file an output implies (an FST's
 //   TRACE.gtkw) included, or an output names an input (standard input
 //   redirected from a file included, with reads_stdin()): through symbolic
@@ -112,6 +113,11 @@ class Files {
   // An option whose value names a file the program writes, and the side
   // files it implies: the value followed by each of `side_suffixes`.
   CLI::Option* output(CLI::Option* option, std::vector<std::string> side_suffixes = {});
+  // An output option that may be given more than once, each value a file
+  // of its own that the program writes (mc1 render --profile p.md --profile
+  // p.json): not refused as repeated; the files are still checked against
+  // each other, the inputs and the other outputs.
+  CLI::Option* outputs_each(CLI::Option* option, std::vector<std::string> side_suffixes = {});
   void add_input(const std::string& role, const std::string& path);
   void add_output(const std::string& name, const std::string& path);
   // Standard input is read: a regular file redirected to it is an input.
@@ -129,6 +135,7 @@ class Files {
     CLI::Option* option;
     std::string role;
     std::vector<std::string> sides;  // outputs: the side files' suffixes; inputs: {fallback} or {}
+    bool each = false;               // outputs: repeatable, a file per value (outputs_each)
   };
   std::vector<Declared> inputs_, outputs_;
   NamedPaths more_inputs_, more_outputs_;

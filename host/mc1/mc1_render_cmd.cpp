@@ -73,11 +73,11 @@ void add_render_options(CLI::App& cmd) {
   add_fault_options(cmd);
   add_param_options(cmd);
   add_report_options(cmd);
-  f.output(value_option(cmd, "profile", "FILE.md|FILE.json",
-               "FILE.md: the timing evaluation, per step and per kernel APU cycles, issue, bank stalls, MPU cycles "
-               "(docs/renderer.md \"Timing\"); FILE.json: the stall "
-               "profile per kernel and pc, over NCs and per NC (schema apu-profile/2, docs/apu-tools.md), its "
-               "summary on stdout"));
+  f.outputs_each(list_option(cmd, "profile", "FILE.md|FILE.json",
+                             "FILE.md: the timing evaluation, per step and per kernel APU cycles, issue, bank stalls, "
+                             "MPU cycles (docs/renderer.md \"Timing\"); FILE.json: the stall profile per kernel and "
+                             "pc, over NCs and per NC (schema apu-profile/2, docs/apu-tools.md), its summary on "
+                             "stdout; repeatable: every file written, each by its name's ending"));
   f.output(value_option(cmd, "trace", "FILE.fst",
                         "APU waveform of NC --trace-node (that NC runs the RTL core) on simulated time; also "
                         "FILE.fst.gtkw (the save file), .kpc.txt, .kernel.txt and .<enum>.txt (translate filters)"),
@@ -311,8 +311,9 @@ int cmd_render(const CLI::App& cmd) {
   } else if (a.has("trace-node") || a.has("trace-from") || a.has("trace-to")) {
     throw CliError("--trace-node, --trace-from and --trace-to need --trace FILE.fst");
   }
-  const std::string profile = a.get("profile");
-  const bool stall_profile = profile.size() > 5 && profile.compare(profile.size() - 5, 5, ".json") == 0;
+  const std::vector<std::string> profiles = a.all("profile");
+  auto is_json = [](const std::string& p) { return p.size() > 5 && p.compare(p.size() - 5, 5, ".json") == 0; };
+  const bool stall_profile = std::any_of(profiles.begin(), profiles.end(), is_json);
   FrameProfiler profiler(stall_profile, cfg.trace_node, cfg.trace_from, cfg.trace_to);
   if (stall_profile || cfg.trace_node) cfg.attach = [&profiler](nc::NodeComputer& n) { profiler.attach(n); };
   if ((a.has("diff") || a.has("min-psnr")) && !a.has("ref")) throw CliError("--diff and --min-psnr need --ref");
@@ -333,14 +334,17 @@ int cmd_render(const CLI::App& cmd) {
   if (a.has("out")) out.add(a.get("out"), encode_png_rgb8(r.width, r.height, r.rgb.data()));
   if (a.has("stats")) out.add(a.get("stats"), stats_json(r));
   if (a.has("gantt")) out.add(a.get("gantt"), gantt_svg(r));
-  if (a.has("profile") && !stall_profile) out.add(profile, profile_tables(r));
+  for (const std::string& p : profiles)
+    if (!is_json(p)) out.add(p, profile_tables(r));
   if (!quiet) print_summary(run);
   if (stall_profile) {
     profiler.profile().finish();
-    out.add(profile, profiler.profile().json(profiler.kernels(), "mc1 render",
+    const std::string json_profile = profiler.profile().json(profiler.kernels(), "mc1 render",
                                              ", \"scene\": " + json::quote(r.scene) + ", \"engine\": \"" + r.engine +
                                                  "\", \"nodes\": " + std::to_string(r.nodes) +
-                                                 ", \"frame_time_ps\": " + std::to_string(r.frame_time)));
+                                                 ", \"frame_time_ps\": " + std::to_string(r.frame_time));
+    for (const std::string& p : profiles)
+      if (is_json(p)) out.add(p, json_profile);
     if (!quiet) std::fputs(profiler.profile().text(profiler.kernels(), 10).c_str(), stdout);
   }
   if (cfg.trace_node)

@@ -1,8 +1,9 @@
 #!/bin/sh
-# Every output option of the mc1 commands given twice (--profile p.md
-# --profile p.json, --stats a --stats b, ...): refused with exit 2 and a
-# message naming the option and both files, before anything runs, and no
-# file written (the last would otherwise silently replace the first).
+# Every output option of the mc1 commands given twice (--stats a --stats b,
+# ...): refused with exit 2 and a message naming the option and both files,
+# before anything runs, and no file written (the last would otherwise
+# silently replace the first); but --profile, repeatable, writes every file
+# (p.md and p.json from one run), and refuses one file twice.
 #   repeated_outputs_test.sh MC1 SCENE WORK_DIR
 set -u
 mc1=$1 scene=$2 dir=$3
@@ -25,13 +26,23 @@ small="--size 16x16 --nodes 2"
 for opt in --out:png --stats:json --gantt:svg --vcd:vcd --trace:fst --diff:png; do
   twice render "${opt%%:*}" "${opt#*:}" "$scene" $small --ref
 done
-# The two kinds of --profile (a table, a stall profile): still one file per run.
+# --profile is the one repeatable output: p.md (the tables) and p.json (the
+# stall profile) from one run, each file by its name's ending.
 cases=$((cases + 1))
-"$mc1" render "$scene" $small --profile "$dir/p.md" --profile "$dir/p.json" >"$dir/out" 2>"$dir/err"
+"$mc1" render "$scene" $small --quiet --profile "$dir/p.md" --profile "$dir/p.json" --profile "$dir/q.json" \
+  >"$dir/out" 2>"$dir/err"
 rc=$?
-if [ "$rc" -ne 2 ] || ! grep -q -- "--profile is given 2 times ($dir/p.md, $dir/p.json)" "$dir/err" ||
-  [ -e "$dir/p.md" ] || [ -e "$dir/p.json" ]; then
-  echo "repeated_outputs_test: mc1 render --profile p.md --profile p.json: exit $rc: $(cat "$dir/err")" >&2
+if [ "$rc" -ne 0 ] || ! grep -q "^| step | APU cycles" "$dir/p.md" || ! grep -q '"schema": "apu-profile/2"' "$dir/p.json" ||
+  ! cmp -s "$dir/p.json" "$dir/q.json"; then
+  echo "repeated_outputs_test: mc1 render --profile p.md --profile p.json --profile q.json: exit $rc: $(cat "$dir/err")" >&2
+  fails=$((fails + 1))
+fi
+rm -f "$dir/p.md" "$dir/p.json" "$dir/q.json"
+cases=$((cases + 1))
+"$mc1" render "$scene" $small --profile "$dir/p.md" --profile "$dir/p.md" >"$dir/out" 2>"$dir/err"
+rc=$?
+if [ "$rc" -ne 2 ] || ! grep -q -- "--profile and --profile name one file: $dir/p.md" "$dir/err" || [ -e "$dir/p.md" ]; then
+  echo "repeated_outputs_test: mc1 render --profile p.md twice: exit $rc: $(cat "$dir/err")" >&2
   fails=$((fails + 1))
 fi
 for opt in --out:png --stats:json --gantt:svg --vcd:vcd; do
