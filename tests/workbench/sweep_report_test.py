@@ -3,7 +3,8 @@
 with a 1-NC point run with --csv and --plot; the CSV's columns and values
 (the 1-NC point's speedup and efficiency 1, efficiency = speedup / NCs,
 n/a where the grid has no 1-NC point, every frame's hash equal); the merge of
-the run's report writes the same table; the SVG opened in headless
+the run's report writes the same table, and of a report whose point claims
+another image names the points of each image (exit 1); the SVG opened in headless
 Chromium: its DOM has a line per series in each panel and a bar per point,
 and its screenshot is not blank. Also --out-dir missing refused before point
 0 (exit 2, nothing written).
@@ -140,6 +141,18 @@ def main():
     if strip(os.path.join(work, "s.csv")) != strip(os.path.join(work, "m.csv")):
         fail("the merge's table differs from the run's")
     check_svg(os.path.join(work, "s.svg"), chromium, work, series=2, points=6)
+    # A report whose point 2 claims another image: the merge names the points of each image, exit 1.
+    text = open(os.path.join(work, "s.json")).read()
+    image = rows[2]["image_fnv1a"]
+    lines = text.split("\n")
+    at = next(i for i, l in enumerate(lines) if '"index": 2,' in l)
+    lines[at] = lines[at].replace(image, "0123456789abcdef")
+    open(os.path.join(work, "bad.json"), "w").write("\n".join(lines))
+    p = run([mc1, "sweep", "--merge", os.path.join(work, "bad.json"), "--json", os.path.join(work, "bad-m.json")], 1)
+    want = (f"frames differ: tiny.json frame 0: points 0, 1, 3, 4, 5 give image {image}, "
+            "point 2 gives image 0123456789abcdef")
+    if want not in p.stderr:
+        fail("the merge of a report with a differing frame did not say which points:\n" + p.stdout + p.stderr)
     # No 1-NC point: n/a, said.
     out = run([mc1, "sweep", *grid[:5], "2,4", *grid[6:], "--out-dir", os.path.join(work, "pts"),
                "--csv", os.path.join(work, "n.csv")]).stdout
