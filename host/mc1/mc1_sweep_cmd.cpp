@@ -281,6 +281,7 @@ bool answer(const Parsed& a, std::vector<sweep::Row>& rows, Outputs& out, bool q
   const std::vector<sweep::FrameMismatch> differ = sweep::compare_frames(rows);
   for (const sweep::FrameMismatch& m : differ) std::fprintf(stderr, "mc1 sweep: %s\n", sweep::mismatch_text(m).c_str());
   if (!quiet) {
+    if (rows.size() <= 200) std::fputs(sweep::text_table(rows).c_str(), say);
     for (const std::string& line : sweep::summary(rows)) std::fprintf(say, "mc1 sweep: %s\n", line.c_str());
     if (differ.empty() && !rows.empty())
       std::fprintf(say, "mc1 sweep: every frame equal across its points (%zu points)\n", rows.size());

@@ -142,6 +142,43 @@ std::string csv(const std::vector<Row>& rows) {
   return o.str();
 }
 
+std::string text_table(const std::vector<Row>& rows) {
+  bool scenes = false, frames = false;
+  for (const Row& r : rows) {
+    scenes = scenes || r.scene != rows.front().scene;
+    frames = frames || r.frame != rows.front().frame;
+  }
+  std::vector<std::vector<std::string>> cells = {{"point", "scene", "frame", "NCs", "schedule", "block", "frame ms",
+                                                  "speedup", "efficiency", "APU util", "critical block"}};
+  for (const Row& r : rows) {
+    const std::string critical =
+        r.critical_block < 0 ? "n/a"
+                             : std::to_string(r.critical_block) + " (" +
+                                   percent(static_cast<double>(r.critical_ps) / static_cast<double>(r.frame_ps)) +
+                                   (r.critical_path ? ") *" : ")");
+    cells.push_back({std::to_string(r.index), base_name(r.scene), std::to_string(r.frame), std::to_string(r.nodes),
+                     r.schedule, r.block, fmt("%.3f", static_cast<double>(r.frame_ps) * 1e-9),
+                     r.speedup ? fmt("%.2f", *r.speedup) : "n/a", r.efficiency ? fmt("%.3f", *r.efficiency) : "n/a",
+                     percent(r.apu_utilization), critical});
+  }
+  std::vector<std::size_t> width(cells.front().size(), 0);
+  for (const auto& line : cells)
+    for (std::size_t c = 0; c < line.size(); ++c) width[c] = std::max(width[c], line[c].size());
+  std::string out;
+  for (const auto& line : cells) {
+    std::string text;
+    for (std::size_t c = 0; c < line.size(); ++c) {
+      if ((c == 1 && !scenes) || (c == 2 && !frames)) continue;
+      const std::string pad(width[c] - line[c].size(), ' ');
+      text += (text.empty() ? "" : "  ") + (c == 1 || c == 4 || c == 5 || c == 10 ? line[c] + pad : pad + line[c]);
+    }
+    out += text.substr(0, text.find_last_not_of(' ') + 1) + "\n";
+  }
+  if (std::any_of(rows.begin(), rows.end(), [](const Row& r) { return r.critical_path; }))
+    out += "*: the block is the frame's critical path\n";
+  return out;
+}
+
 std::vector<FrameMismatch> compare_frames(const std::vector<Row>& rows) {
   std::map<std::pair<std::string, unsigned>, FrameMismatch> groups;
   std::vector<std::pair<std::string, unsigned>> order;

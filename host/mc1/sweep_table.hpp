@@ -62,6 +62,12 @@ void add_speedups(std::vector<Row>& rows);
 std::string csv(const std::vector<Row>& rows);
 extern const char* const kCsvHeader;
 
+// The table for a person, aligned columns: scene and camera frame (when the
+// rows have more than one), NCs, schedule, block, frame ms, speedup,
+// efficiency, APU utilization, the critical block and its share ("*": the
+// critical path).
+std::string text_table(const std::vector<Row>& rows);
+
 // Points of one scene and camera frame whose images differ: the points of
 // each distinct image, in order of first appearance.
 struct FrameMismatch {

@@ -137,6 +137,20 @@ TEST(SweepSummary, SaysWhenOneBlockBoundsEverySchedule) {
   EXPECT_TRUE(summary(rows).empty());
 }
 
+TEST(SweepTable, TheTextTableHasAlignedColumnsAndMarksTheCriticalPath) {
+  std::vector<Row> rows = {row(0, 1, "lpt", 8000000000), row(1, 64, "static", 1136089000000)};
+  rows[1].critical_block = 36;
+  rows[1].critical_ps = 1032462000000;
+  rows[1].critical_path = true;
+  rows[1].apu_utilization = 0.169;
+  add_speedups(rows);
+  EXPECT_EQ(text_table(rows),
+            "point  NCs  schedule  block  frame ms  speedup  efficiency  APU util  critical block\n"
+            "    0    1  lpt       16x16     8.000     1.00       1.000     0.0 %  n/a\n"
+            "    1   64  static    16x16  1136.089      n/a         n/a    16.9 %  36 (90.9 %) *\n"
+            "*: the block is the frame's critical path\n");
+}
+
 TEST(SweepSvg, HasTitleAPolylinePerSeriesInEachPanelAndAStepBarPerPoint) {
   std::vector<Row> rows = {row(0, 1, "lpt", 8000), row(1, 4, "lpt", 2500), row(2, 1, "fifo", 9000),
                            row(3, 4, "fifo", 3000)};
