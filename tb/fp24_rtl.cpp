@@ -10,6 +10,7 @@
 #include "Vfp24_func.h"
 #include "Vfp24_mul.h"
 #include "Vfp24_units.h"
+#include "rtl_coverage.hpp"
 #include "verilated.h"
 #include "verilated_fst_c.h"
 
@@ -246,6 +247,7 @@ class Clocked {
     Verilated::threadContextp(ctx_.get());
     if (fst_) fst_->close();
     model_->final();
+    mc1::rtl_coverage::collect(*ctx_);  // a coverage build's counts (apu_rtl/rtl_coverage.hpp)
   }
 
  private:

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "Vfp24_round.h"
+#include "rtl_coverage.hpp"
 #include "fp24_bits.hpp"
 #include "verilated.h"
 
@@ -59,6 +60,7 @@ class RtlRound {
   RtlRound() : ctx_(std::make_unique<VerilatedContext>()), m_(std::make_unique<Vfp24_round>(ctx_.get(), "TOP")) {
     m_->en = 1;
   }
+  ~RtlRound() { mc1::rtl_coverage::collect(*ctx_); }  // a coverage build's counts (apu_rtl/rtl_coverage.hpp)
   Result operator()(const Input& in) {
     m_->sign = in.sign;
     m_->exp = static_cast<std::uint32_t>(in.exp) & ((1u << kSexpW) - 1);

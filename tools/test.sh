@@ -5,8 +5,18 @@
 #   tools/test.sh --fuzz         libFuzzer harnesses (clang) in build-fuzz/, the fuzz label
 #   tools/test.sh --cluster      the cluster label: a local single-node SLURM (root;
 #                                installs slurm-wlm and munge; docs/platform.md)
+#   tools/test.sh --coverage     code and functional coverage of the APU: a
+#                                coverage build in build-cov/, the regressions
+#                                that feed it, build-cov/reports/ (coverage.json,
+#                                coverage.txt, coverage-html/), the goals checked
+#                                (tools/coverage.py; docs/fp24-verification.md)
 set -eu
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = --coverage ]; then
+  shift
+  tools/setup.sh
+  exec python3 tools/coverage.py run "$@"
+fi
 case "${1:-}" in
   --asan|--fuzz)
     preset=${1#--}

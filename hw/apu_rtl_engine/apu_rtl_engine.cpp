@@ -10,6 +10,7 @@
 
 #include "Vapu_core.h"
 #include "Vapu_fast.h"
+#include "rtl_coverage.hpp"
 #include "verilated.h"
 #include "verilated_fst_c.h"
 
@@ -233,6 +234,9 @@ RtlEngine::ModelOf<Top, kTraced>::~ModelOf() {
     fst_->close();
   }
   top_->final();
+  // A coverage build's counts of the model (and of Vapu_fast_func, in the
+  // same context) while they are alive (apu_rtl/rtl_coverage.hpp).
+  rtl_coverage::collect(*ctx_);
 }
 
 // ---- MPU side -----------------------------------------------------------------
