@@ -85,6 +85,17 @@ class CheckLayers(unittest.TestCase):
                            "hw/apu/iss.cpp": '#include "layout.hpp"\n'},
                           'hw/apu/iss.cpp:1: #include "layout.hpp" (generated): hw/apu must not use firmware')
 
+    def test_the_application_does_not_use_the_test_benches(self):
+        # host/mc1 sits above tb in the table but uses none of it: the shard
+        # reports it shares with fp24-regress are host/common's.
+        self.assert_fails({"tb/shard_report.hpp": "#pragma once\n",
+                           "host/mc1/sweep.cpp": '#include "scene.hpp"\n#include "shard_report.hpp"\n'},
+                          'host/mc1/sweep.cpp:2: #include "shard_report.hpp" (tb/shard_report.hpp): '
+                          "host/mc1 must not use tb")
+        rc, out = check(dict(BASE, **{"host/common/shard_report.hpp": "#pragma once\n",
+                                      "host/mc1/sweep.cpp": '#include "shard_report.hpp"\n'}))
+        self.assertEqual(rc, 0, out)
+
     def test_a_unit_without_a_rule_is_an_error(self):
         self.assert_fails({"hw/gpu/gpu.cpp": '#include "microword.hpp"\n'},
                           "hw/gpu/gpu.cpp:1:", "unit hw/gpu has no rule")

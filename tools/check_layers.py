@@ -64,7 +64,7 @@ ALLOWED = {
     # machine uses: the application hands it to the machine (host/mc1).
     "hw/apu_rtl_engine": HW_BASE | RTL,
     # Plain data and tools that know no machine.
-    "host/common": set(),  # output files written whole or not at all; command lines; JSON
+    "host/common": set(),  # output files written whole or not at all; command lines; JSON; shard reports
     "host/scene": {"host/common"},  # JSON (host/common/json.hpp)
     "host/imgcmp": {"host/common"},
     "host/apuasm": HW_BASE | {"host/common"},
@@ -76,9 +76,8 @@ ALLOWED = {
     "firmware": HW_ALL - {"hw/mc1"} | {"host/scene"},
     # Test benches: the RTL under test, the models, firmware and host libraries.
     "tb": HW_ALL | RTL | {"hw/apu_rtl_engine", "firmware"} | HOST_LIBS,
-    # The application: the machine, firmware, both APU engines, reports; of
-    # tb only the shard reports of `mc1 sweep --shard` (tb/shard_report.*).
-    "host/mc1": HW_ALL | RTL | {"hw/apu_rtl_engine", "firmware", "tb"} | HOST_LIBS,
+    # The application: the machine, firmware, both APU engines, reports.
+    "host/mc1": HW_ALL | RTL | {"hw/apu_rtl_engine", "firmware"} | HOST_LIBS,
     # Tests, the top-level build, tools and docs may use anything.
     "tests": None,
     # Fuzz harnesses: the libraries they drive, the FP24 vector reader of tb.
