@@ -7,14 +7,18 @@
 #include <dirent.h>
 #include <fstream>
 #include <iterator>
+#include <list>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 #include <utility>
+#include <vector>
 
 #include "atomic_file.hpp"
 
@@ -299,6 +303,47 @@ TEST(AtomicFile, SignalRemovesStagedFiles) {
   ASSERT_TRUE(WIFSIGNALED(status)) << "exit " << WEXITSTATUS(status);
   EXPECT_EQ(WTERMSIG(status), SIGTERM);
   EXPECT_TRUE(dir.names().empty()) << *dir.names().begin();
+}
+
+// However many files are staged at once, from however many threads, and
+// however long their paths, a signal removes every one (the handler's list
+// grows: blocks of 64 slots, path buffers from 256 bytes). Files staged and
+// dropped before leave their slots to the later ones; committed files stay.
+TEST(AtomicFile, SignalRemovesHundredsOfStagedFilesFromThreads) {
+  ScratchDir dir;
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    remove_staged_files_on_signals();
+    const std::string long_name(200, 'x');  // a temporary path over 256 bytes
+    std::mutex m;
+    std::list<StagedFile> staged;
+    auto stage = [&](int thread, int count) {
+      for (int i = 0; i < count; ++i) {
+        const std::string name = std::to_string(thread) + "-" + std::to_string(i) + (i % 3 ? "" : long_name);
+        StagedFile f(dir.file(name), "part");
+        const std::lock_guard<std::mutex> lock(m);
+        staged.push_back(std::move(f));
+      }
+    };
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t) threads.emplace_back(stage, t, 150);
+    for (std::thread& t : threads) t.join();
+    staged.erase(staged.begin(), std::next(staged.begin(), 300));  // their slots free again
+    stage(4, 200);
+    for (int i = 0; i < 5; ++i) StagedFile(dir.file("kept" + std::to_string(i)), "whole").commit();
+    if (staged.size() != 500 || dir.names().size() != 505) _exit(3);
+    raise(SIGTERM);
+    _exit(4);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "exit " << WEXITSTATUS(status);
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  const std::set<std::string> kept{"kept0", "kept1", "kept2", "kept3", "kept4"};
+  const std::set<std::string> left = dir.names();
+  ASSERT_EQ(left.size(), kept.size()) << "files left, among them " << *left.begin();
+  EXPECT_EQ(left, kept);
 }
 
 // SIGBUS (an FST writer's mapped file on a full disk): the staged files go,

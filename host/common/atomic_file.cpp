@@ -10,6 +10,7 @@
 #include <cstring>
 #include <map>
 #include <mutex>
+#include <new>
 #include <fcntl.h>
 #include <stdexcept>
 #include <string>
@@ -78,47 +79,107 @@ int create_temp(const std::string& target, std::string& temp, const std::string&
 }
 
 // The temporary files of the StagedFiles alive, for the signal handler
-// (remove_staged_files_on_signals): fixed slots, so that the handler reads
-// them without a lock or an allocation; a file that finds no free slot is
-// just not removed on a signal.
-constexpr int kSlots = 64;
+// (remove_staged_files_on_signals), which may neither lock nor allocate:
+// blocks of slots in a list that only grows. A StagedFile takes a free slot
+// (compare-and-swap); when every slot is taken, a new block is made under a
+// lock, outside the handler, and linked in whole (release) before it is
+// used, so the handler (acquire) walks every block there is. A slot keeps
+// its path buffer: one is replaced only by a larger one (powers of two from
+// 256 bytes), which links to the smaller (its first bytes), never freed, as
+// the handler of another thread may be reading it. Memory: a few hundred
+// bytes a slot for the usual paths, for as many slots as there were staged
+// files alive at once; nothing is freed, nothing is lost.
+constexpr std::size_t kBlockSlots = 64;
+constexpr std::size_t kMinBuffer = 256;
 struct Slot {
   std::atomic<bool> used{false};   // taken by a StagedFile
   std::atomic<bool> ready{false};  // `path` written whole: the handler may use it
-  char path[4096];
+  std::atomic<char*> path{nullptr};
+  // Only the slot's owner reads or changes these: the buffer `path` is in,
+  // after a link to the slot's previous buffer, and the bytes `path` has.
+  char* buffer = nullptr;
+  std::size_t capacity = 0;
 };
-Slot g_slots[kSlots];
+struct Block {
+  Slot slots[kBlockSlots];
+  std::atomic<Block*> next{nullptr};
+};
+static_assert(std::atomic<Block*>::is_always_lock_free && std::atomic<char*>::is_always_lock_free &&
+                  std::atomic<bool>::is_always_lock_free,
+              "the signal handler reads these without a lock");
+Block g_first_block;
+std::mutex g_grow;  // one thread at a time appends a block
 
-int register_temp(const std::string& temp) {
-  if (temp.size() + 6 > sizeof Slot::path) return -1;  // room for ".hier"
-  for (int i = 0; i < kSlots; ++i) {
-    bool expected = false;
-    if (!g_slots[i].used.load(std::memory_order_relaxed) &&
-        g_slots[i].used.compare_exchange_strong(expected, true, std::memory_order_acquire)) {
-      std::memcpy(g_slots[i].path, temp.c_str(), temp.size() + 1);
-      g_slots[i].ready.store(true, std::memory_order_release);
-      return i;
+// A free slot of the blocks, taken; nullptr when all are in use.
+Slot* take_free_slot() {
+  for (Block* b = &g_first_block; b != nullptr; b = b->next.load(std::memory_order_acquire))
+    for (Slot& s : b->slots) {
+      bool expected = false;
+      if (!s.used.load(std::memory_order_relaxed) &&
+          s.used.compare_exchange_strong(expected, true, std::memory_order_acquire))
+        return &s;
     }
-  }
-  return -1;
+  return nullptr;
 }
 
-void unregister_temp(int& slot) {
-  if (slot < 0) return;
-  g_slots[slot].ready.store(false, std::memory_order_release);
-  g_slots[slot].used.store(false, std::memory_order_release);
-  slot = -1;
+// A slot for one more staged file: a free one, else one of a new block
+// (nullptr if it cannot be made).
+Slot* take_slot() {
+  for (;;) {
+    if (Slot* s = take_free_slot()) return s;
+    const std::lock_guard<std::mutex> lock(g_grow);
+    Block* last = &g_first_block;
+    while (Block* next = last->next.load(std::memory_order_acquire)) last = next;
+    if (Slot* s = take_free_slot()) return s;  // freed or appended meanwhile
+    Block* block = new (std::nothrow) Block;
+    if (block == nullptr) return nullptr;
+    last->next.store(block, std::memory_order_release);
+  }
+}
+
+// `temp` known to the handler; its slot. Every staged file gets one, of any
+// length; nullptr only when memory runs out (the caller fails, ENOMEM).
+Slot* register_temp(const std::string& temp) {
+  Slot* s = take_slot();
+  if (s == nullptr) return nullptr;
+  const std::size_t need = temp.size() + 6;  // room for ".hier"
+  if (s->capacity < need) {
+    std::size_t size = kMinBuffer;
+    while (size - sizeof(char*) < need) size *= 2;
+    char* buffer = new (std::nothrow) char[size];
+    if (buffer == nullptr) {
+      s->used.store(false, std::memory_order_release);
+      return nullptr;
+    }
+    std::memcpy(buffer, &s->buffer, sizeof(char*));  // the smaller one kept (above)
+    s->buffer = buffer;
+    s->capacity = size - sizeof(char*);
+    s->path.store(buffer + sizeof(char*), std::memory_order_relaxed);
+  }
+  std::memcpy(s->path.load(std::memory_order_relaxed), temp.c_str(), temp.size() + 1);
+  s->ready.store(true, std::memory_order_release);
+  return s;
+}
+
+void unregister_temp(void*& slot) {
+  if (slot == nullptr) return;
+  Slot* s = static_cast<Slot*>(slot);
+  s->ready.store(false, std::memory_order_release);
+  s->used.store(false, std::memory_order_release);
+  slot = nullptr;
 }
 
 extern "C" void remove_staged_and_reraise(int sig) {
-  for (Slot& s : g_slots) {
-    if (!s.ready.load(std::memory_order_acquire)) continue;
-    ::unlink(s.path);
-    const std::size_t n = std::strlen(s.path);
-    std::memcpy(s.path + n, ".hier", 6);  // an FST writer's hierarchy, beside its file
-    ::unlink(s.path);
-    s.path[n] = '\0';
-  }
+  for (Block* b = &g_first_block; b != nullptr; b = b->next.load(std::memory_order_acquire))
+    for (Slot& s : b->slots) {
+      if (!s.ready.load(std::memory_order_acquire)) continue;
+      char* path = s.path.load(std::memory_order_relaxed);
+      ::unlink(path);
+      const std::size_t n = std::strlen(path);
+      std::memcpy(path + n, ".hier", 6);  // an FST writer's hierarchy, beside its file
+      ::unlink(path);
+      path[n] = '\0';
+    }
   if (sig == SIGBUS) {
     // A page of a mapped file that the file system could not back: an FST
     // writer's on a full disk. The outputs are gone; the run failed.
@@ -193,14 +254,22 @@ StagedFile::StagedFile(const std::string& path, std::string_view bytes) : path_(
   std::string temp;
   const int fd = create_temp(target_, temp);
   if (fd < 0) fail(path_, "cannot create a temporary file beside it", errno);
+  // Known to the signal handler before it is written: a signal in a long
+  // write removes it too.
+  slot_ = register_temp(temp);
+  if (slot_ == nullptr) {
+    ::close(fd);
+    ::unlink(temp.c_str());
+    fail(path_, "cannot register its temporary file for removal on a signal", ENOMEM);
+  }
   // A replaced file keeps its mode.
   if ((exists && ::fchmod(fd, st.st_mode & 07777) != 0) || !write_and_close(fd, bytes)) {
     const int err = errno;
     ::unlink(temp.c_str());
+    unregister_temp(slot_);
     fail(path_, "cannot write", err);
   }
   temp_ = std::move(temp);
-  slot_ = register_temp(temp_);
 }
 
 StagedFile::StagedFile(const std::string& path) : path_(path), target_(resolve(path)) {}
@@ -219,8 +288,12 @@ StagedFile StagedFile::for_writer(const std::string& path, const std::string& su
   const int fd = create_temp(f.target_, temp, suffix);
   if (fd < 0) fail(path, "cannot create a temporary file beside it", errno);
   ::close(fd);
+  f.slot_ = register_temp(temp);
+  if (f.slot_ == nullptr) {
+    ::unlink(temp.c_str());
+    fail(path, "cannot register its temporary file for removal on a signal", ENOMEM);
+  }
   f.temp_ = std::move(temp);
-  f.slot_ = register_temp(f.temp_);
   f.writer_ = true;
   return f;
 }
@@ -230,7 +303,7 @@ StagedFile::StagedFile(StagedFile&& other) noexcept
       target_(std::move(other.target_)),
       temp_(std::exchange(other.temp_, {})),
       mode_(other.mode_),
-      slot_(std::exchange(other.slot_, -1)),
+      slot_(std::exchange(other.slot_, nullptr)),
       writer_(other.writer_) {}
 
 bool same_file(const std::string& a, const std::string& b) {

@@ -53,7 +53,7 @@ class StagedFile {
   std::string target_;  // path_ with symbolic links resolved
   std::string temp_;    // the staged file; empty once committed or when written in place
   mode_t mode_ = 0;     // for_writer: the replaced file's mode (0: none)
-  int slot_ = -1;       // the signal handler's entry for temp_ (remove_staged_files_on_signals)
+  void* slot_ = nullptr;  // the signal handler's entry for temp_ (remove_staged_files_on_signals)
   bool writer_ = false;  // for_writer: commit() checks an FST is whole first
 };
 
