@@ -7,9 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <ostream>
+#include <string>
 
 #include "fp24.hpp"
+#include "fp24_convert.hpp"
 
 namespace mc1::fp24 {
 // Lets GoogleTest print a failing Result as "value/flags" in hex.
@@ -423,6 +426,26 @@ TEST(Fp24NegAbs, SignOnlyAndCanonicalNaN) {
       {0x810000, {0x010000, 0}},
       {0xFF8001, {kCanonicalNaN, 0}},
   });
+}
+
+// ---- the decimal text of reports and waveforms ------------------------------
+
+TEST(Fp24Decimal, ShortestTextThatReadsBack) {
+  EXPECT_EQ(fp24_decimal(0x3F8000), "1.5");
+  EXPECT_EQ(fp24_decimal(0xBD0000), "-0.25");
+  EXPECT_EQ(fp24_decimal(0x3F0001), "1.00002");  // 1 + 2^-16: 6 digits read back
+  EXPECT_EQ(fp24_decimal(0x000000), "0");
+  EXPECT_EQ(fp24_decimal(0x800000), "-0");
+  EXPECT_EQ(fp24_decimal(0x000123), "0 (DAZ)");
+  EXPECT_EQ(fp24_decimal(0xFF0000), "-inf");
+  EXPECT_EQ(fp24_decimal(0x7F8000), "nan");
+  // Every 4099th normal word reads back from its text.
+  for (std::uint32_t w = 0x010000; w < 0x7F0000; w += 4099) {
+    for (std::uint32_t s : {0u, 0x800000u}) {
+      const std::string t = fp24_decimal(w | s);
+      EXPECT_EQ(fp24_from_double(std::strtod(t.c_str(), nullptr)), w | s) << t;
+    }
+  }
 }
 
 }  // namespace

@@ -60,7 +60,8 @@ ALLOWED = {
     "hw/mc1": HW_ALL,
     # The RTL engine: the verilated APU core (apu_rtl/) behind the model's
     # ApuEngine interface, with its untraced models and trace signals; the
-    # engine of mc1, the Python module and the benches. Not a unit the
+    # engine of mc1, the Python module and the benches; and the FP24 units'
+    # harness (fp24_rtl.*: the verilated units one op a cycle). Not a unit the
     # machine uses: the application hands it to the machine (host/mc1).
     "hw/apu_rtl_engine": HW_BASE | RTL,
     # Plain data and tools that know no machine.
@@ -83,10 +84,10 @@ ALLOWED = {
     # Fuzz harnesses: the libraries they drive, the FP24 vector reader of tb.
     "fuzz": HW_ALL | RTL | {"hw/apu_rtl_engine", "firmware", "tb"} | HOST_LIBS,
     "tools": None,
-    # The Python module: the FP24 model and units, the APU on both engines, its
-    # profile, the assembler, staged output files; of tb only the FP24 units'
-    # harness (tb/fp24_rtl.*, mc1.fp24's RTL engine).
-    "python": HW_BASE | RTL | {"hw/apu_rtl_engine", "host/apu_profile", "host/apuasm", "host/common", "tb"},
+    # The Python module: the FP24 model and units (the units' harness,
+    # hw/apu_rtl_engine/fp24_rtl.*), the APU on both engines, its profile, the
+    # assembler, staged output files. No test bench.
+    "python": HW_BASE | RTL | {"hw/apu_rtl_engine", "host/apu_profile", "host/apuasm", "host/common"},
     # Consumers of the installed package (they include <mc1/...>, not the tree).
     "examples": None,
     "": None,

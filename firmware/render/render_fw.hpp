@@ -38,6 +38,10 @@ class ApuLink {
   // The firmware starts work of another step of fig. 3 (step_name()), for
   // the activity chart; costs no time.
   virtual void enter_step(const char* /*name*/) {}
+  // What the firmware does, for the NC's waveform and stall profile
+  // (nc::NcPort::mpu_activity): `code` activity_code(step), `detail` the
+  // batch of the step's stream in hand (0 outside one); costs no time.
+  virtual void activity(std::uint16_t /*code*/, std::uint32_t /*detail*/) {}
 };
 
 // Standalone: the MPU is infinitely fast; waiting clocks the APU.
@@ -56,7 +60,7 @@ class DirectLink final : public ApuLink {
 
 // APU and MPU work of one step of the frame algorithm.
 struct StepCost {
-  std::uint64_t apu_cycles = 0;   // start() to HALT, stalls included
+  std::uint64_t apu_cycles = 0;   // start() to HALT, stalls included, settle cycles not
   std::uint64_t apu_runs = 0;     // kernel runs (start .. HALT)
   std::uint64_t batches = 0;      // data banks handed over
   std::uint64_t word_copies = 0;  // MPU <-> APU bank words (program words count 8)
@@ -82,6 +86,8 @@ struct KernelCost {
 enum class Step { Transform, BlockLists, HiddenSurface, Shadows, Shading, Secondary, Output };
 constexpr int kSteps = 7;
 const char* step_name(Step s);
+// The firmware's activity codes (ApuLink::activity): a step's is its index + 1, named step_name().
+constexpr std::uint16_t activity_code(Step s) { return static_cast<std::uint16_t>(static_cast<int>(s) + 1); }
 
 struct RenderStats {
   std::array<StepCost, kSteps> step{};
@@ -152,6 +158,7 @@ class RenderFirmware {
     if (step_ == static_cast<int>(s)) return;
     step_ = static_cast<int>(s);
     link_.enter_step(step_name(s));
+    link_.activity(activity_code(s), 0);
   }
 
   // s1's Z-buffer for triangles (r_scan): per pixel of `block`, row-major,

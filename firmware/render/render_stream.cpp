@@ -148,6 +148,7 @@ void RenderFirmware::stream(const std::string& kernel, int items, Step step, con
   auto& c = cost(step);
   auto& drv = link_.apu();
   use_kernel(kernel, step);
+  link_.activity(activity_code(step), 0);  // batch 0 in hand
   fill(0);
   drv.hand_over_data();
   const std::uint64_t c0 = drv.engine().cycle();
@@ -159,6 +160,7 @@ void RenderFirmware::stream(const std::string& kernel, int items, Step step, con
   for (int i = 1; i <= items; ++i) {
     link_.wait_swap();
     mpu_bank_ ^= 1;
+    link_.activity(activity_code(step), static_cast<std::uint32_t>(i));  // batch i in hand (and i - 2's results)
     if (i >= 2) drain(i - 2);
     if (i < items) {
       fill(i);
@@ -173,7 +175,9 @@ void RenderFirmware::stream(const std::string& kernel, int items, Step step, con
   mpu_bank_ ^= 1;
   drain(items - 1);
   link_.wait_halt();
-  const std::uint64_t cycles = drv.engine().cycle() - c0;
+  // start() to the HALT, as the NC, apu-run and the profile count them:
+  // not the settle cycles after it (docs/apu-tools.md "Counting").
+  const std::uint64_t cycles = drv.engine().cycle() - c0 - apu::ApuDriver::kSettleCycles;
   c.apu_cycles += cycles;
   c.batches += static_cast<std::uint64_t>(items);
   KernelCost& k = stats_.kernels[kernel];

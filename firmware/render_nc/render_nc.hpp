@@ -41,6 +41,7 @@ class NcApuLink final : public render::ApuLink {
   void sort_compares(std::uint64_t n) override { port_.mpu_work(n * port_.timing().mpu_cycles_per_sort_compare); }
   void apu_commands(std::uint64_t n) override { port_.apu_commands(n); }
   void enter_step(const char* name) override { port_.phase(name); }
+  void activity(std::uint16_t code, std::uint32_t detail) override { port_.mpu_activity(code, detail); }
 
  private:
   nc::NcPort& port_;

@@ -113,7 +113,7 @@ void StallProfile::Counts::operator+=(const Counts& o) {
   for (int k = 0; k < kStallKinds; ++k) stalls[k] += o.stalls[k];
 }
 
-void StallProfile::NcState::add(unsigned kernel, const CycleRecord& r, std::uint64_t time_ps) {
+void StallProfile::NcState::add(unsigned kernel, const CycleRecord& r, std::uint64_t time_ps, unsigned mpu) {
   ++counts.cycles;
   if (kernel >= kernels.size()) kernels.resize(kernel + 1);
   std::vector<NcSite>& k = kernels[kernel];
@@ -136,7 +136,12 @@ void StallProfile::NcState::add(unsigned kernel, const CycleRecord& r, std::uint
   ++counts.stalls[static_cast<int>(r.stall)];
   ++site.counts.stalls[static_cast<int>(r.stall)];
   note_stall(site.first, nc, time_ps);
-  if (!window.on || (time_ps >= window.from && time_ps < window.to)) ++site.window_stalled;
+  const bool in_window = !window.on || (time_ps >= window.from && time_ps < window.to);
+  if (in_window) ++site.window_stalled;
+  if (r.stall == Stall::Bank && mpu != kNoMpu) {
+    ++site.bank_mpu[mpu];
+    if (in_window) ++site.window_bank_mpu[mpu];
+  }
   if (!run.on || run.kernel != kernel || run.pc != pc || run.next_cycle != r.cycle) {
     end_run();
     run = Run{true, kernel, pc, time_ps, 0, 0};
@@ -184,6 +189,7 @@ std::vector<std::vector<StallProfile::Site>> StallProfile::sites() const {
         Site& t = out[k][pc];
         t.counts += v[pc].counts;
         if (v[pc].first.seen) note_stall(t.first, s->nc, v[pc].first.time_ps);
+        for (const auto& [mpu, n] : v[pc].bank_mpu) t.bank_mpu[mpu] += n;
         note_worst(t.worst, v[pc].worst);
       }
     }
@@ -205,7 +211,40 @@ std::string word_text(const KernelTable& kernels, std::size_t id, std::size_t pc
   return pc < w.size() ? disassemble(w[pc]) : disassemble(Encoded{});
 }
 
+// The reason with the most stall cycles.
+Stall most_stalls(const StallProfile::Counts& c) {
+  int most = 1;
+  for (int k = 2; k < kStallKinds; ++k)
+    if (c.stalls[k] > c.stalls[most]) most = k;
+  return static_cast<Stall>(most);
+}
+
+// Shares by count, the largest first.
+std::vector<std::pair<unsigned, std::uint64_t>> by_share(const StallProfile::MpuShares& shares) {
+  std::vector<std::pair<unsigned, std::uint64_t>> v(shares.begin(), shares.end());
+  std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  return v;
+}
+
 }  // namespace
+
+std::string StallProfile::mpu_text(const MpuShares& shares, int n) const {
+  std::uint64_t total = 0;
+  for (const auto& [mpu, c] : shares) total += c;
+  if (total == 0) return "";
+  std::string s;
+  std::uint64_t rest = total;
+  int shown = 0;
+  for (const auto& [mpu, c] : by_share(shares)) {
+    if (shown == n) break;
+    const std::string name = mpu_name_ ? mpu_name_(mpu) : "mpu " + std::to_string(mpu);
+    s += format("%s%s %.0f%%", shown ? ", " : "", name.c_str(), 100.0 * static_cast<double>(c) / static_cast<double>(total));
+    rest -= c;
+    ++shown;
+  }
+  if (rest) s += format(", other %.0f%%", 100.0 * static_cast<double>(rest) / static_cast<double>(total));
+  return s;
+}
 
 std::string StallProfile::json(const KernelTable& kernels, const std::string& source, const std::string& extra) const {
   const std::vector<std::vector<Site>> all = sites();
@@ -236,6 +275,17 @@ std::string StallProfile::json(const KernelTable& kernels, const std::string& so
                   json_escape(word_text(kernels, k, pc)).c_str()) +
            counts_json(site.counts);
       first_site = false;
+      if (!site.bank_mpu.empty()) {  // its BANK stalls by MPU activity, the largest first
+        s += ", \"bank_mpu\": [";
+        bool first_mpu = true;
+        for (const auto& [mpu, c] : by_share(site.bank_mpu)) {
+          const std::string name = mpu_name_ ? mpu_name_(mpu) : "mpu " + std::to_string(mpu);
+          s += format("%s{\"activity\": %s, \"cycles\": %llu}", first_mpu ? "" : ", ", json_quote(name).c_str(),
+                      static_cast<ull>(c));
+          first_mpu = false;
+        }
+        s += "]";
+      }
       if (site.first.seen)
         s += format(", \"first\": {\"time_ps\": %llu, \"nc\": %u}, \"worst\": {\"time_ps\": %llu, \"nc\": %u, \"cycles\": %llu}",
                     static_cast<ull>(site.first.time_ps), site.first.nc, static_cast<ull>(site.worst.time_ps),
@@ -295,28 +345,31 @@ std::string StallProfile::text(const KernelTable& kernels, int top_n) const {
               "worst (cycles in a row)", "word");
   for (const Hot& h : hot) {
     const Site& site = all[h.kernel][h.pc];
-    int most = 1;
-    for (int k = 2; k < kStallKinds; ++k)
-      if (site.counts.stalls[k] > site.counts.stalls[most]) most = k;
+    const int most = static_cast<int>(most_stalls(site.counts));
     s += format("%-12s 0x%03zx %9llu %5.1f%% %-6s %-22s %-30s  %s\n", kernel_name(kernels, h.kernel).c_str(), h.pc,
                 static_cast<ull>(h.n), pct(h.n, t.stalled()), stall_name(static_cast<Stall>(most)),
                 (us(site.first.time_ps) + " NC " + std::to_string(site.first.nc)).c_str(),
                 (us(site.worst.time_ps) + " NC " + std::to_string(site.worst.nc) + " x" +
                  std::to_string(site.worst.cycles)).c_str(),
                 word_text(kernels, h.kernel, h.pc).c_str());
+    if (!site.bank_mpu.empty())
+      s += format("%-12s   the MPU in its %llu BANK stall cycles: ", "",
+                  static_cast<ull>(site.counts.stalls[static_cast<int>(Stall::Bank)])) +
+           mpu_text(site.bank_mpu) + "\n";
   }
   return s;
 }
 
 std::string StallProfile::gtkw_markers(const KernelTable& kernels, unsigned nc, int top_n) const {
   top_n = std::min(top_n, 26);
-  struct Hot { std::size_t kernel, pc; std::uint64_t n; Event worst; };
+  struct Hot { std::size_t kernel, pc; std::uint64_t n; Event worst; const NcSite* site; };
   std::vector<Hot> hot;
   if (nc < ncs_.size() && ncs_[nc])
     for (std::size_t k = 0; k < ncs_[nc]->kernels.size(); ++k)
       for (std::size_t pc = 0; pc < ncs_[nc]->kernels[k].size(); ++pc) {
         const NcSite& site = ncs_[nc]->kernels[k][pc];
-        if (site.window_stalled && site.window_worst.seen) hot.push_back({k, pc, site.window_stalled, site.window_worst});
+        if (site.window_stalled && site.window_worst.seen)
+          hot.push_back({k, pc, site.window_stalled, site.window_worst, &site});
       }
   std::stable_sort(hot.begin(), hot.end(), [](const Hot& a, const Hot& b) { return a.n > b.n; });
   if (static_cast<int>(hot.size()) > top_n) hot.resize(static_cast<std::size_t>(top_n));
@@ -324,19 +377,27 @@ std::string StallProfile::gtkw_markers(const KernelTable& kernels, unsigned nc, 
                          hot.size(), nc);
   // Zoom -19: one 250 ns cycle is about 100 pixels, wide enough for a word's disassembly (TOP.mc1.kpc).
   std::string line = "*-19.000000 " + (hot.empty() ? std::string("-1") : std::to_string(hot[0].worst.time_ps));
+  std::string names;  // [markername] lines: the viewer shows them at the markers
   for (int i = 0; i < 26; ++i) {
     if (i < static_cast<int>(hot.size())) {
       const Hot& h = hot[static_cast<std::size_t>(i)];
+      const std::string mpu = mpu_text(h.site->window_bank_mpu, 3);
       s += format("[*] %c %llu ps (%s): %s pc 0x%03zx, %llu stalled cycles, %llu in a row: %s\n", 'A' + i,
                   static_cast<ull>(h.worst.time_ps), us(h.worst.time_ps).c_str(), kernel_name(kernels, h.kernel).c_str(),
                   h.pc, static_cast<ull>(h.n), static_cast<ull>(h.worst.cycles),
                   word_text(kernels, h.kernel, h.pc).c_str());
+      if (!mpu.empty()) s += "[*]   the MPU in its BANK stalls there: " + mpu + "\n";
+      std::string word = word_text(kernels, h.kernel, h.pc);
+      word = word.substr(0, word.find(' ', word.find_first_not_of(' ')));  // the first op
+      names += format("[markername] %c%s 0x%03zx %s %s", 'A' + i, kernel_name(kernels, h.kernel).c_str(), h.pc,
+                      word.c_str(), stall_name(most_stalls(h.site->counts))) +
+               (mpu.empty() ? "" : ": MPU " + mpu) + "\n";
       line += " " + std::to_string(h.worst.time_ps);
     } else {
       line += " -1";
     }
   }
-  return s + line + "\n";
+  return s + line + "\n" + names;
 }
 
 }  // namespace mc1::apu

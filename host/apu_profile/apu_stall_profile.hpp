@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -56,11 +57,21 @@ std::string json_quote(const std::string& text);
 class StallProfile {
  public:
   // One clocked cycle of NC `nc` (1..), running kernel `kernel` (0: not
-  // known), which starts at simulated time `time_ps`.
-  void add(unsigned nc, unsigned kernel, const CycleRecord& r, std::uint64_t time_ps) {
+  // known), which starts at simulated time `time_ps`; `mpu` (for a BANK
+  // stall) what the MPU did in it, an id set_mpu_names() names (kNoMpu: not
+  // known).
+  static constexpr unsigned kNoMpu = ~0u;
+  void add(unsigned nc, unsigned kernel, const CycleRecord& r, std::uint64_t time_ps, unsigned mpu = kNoMpu) {
     NcState& s = nc_state(nc);
-    s.add(kernel, r, time_ps);
+    s.add(kernel, r, time_ps, mpu);
   }
+  // The names of the MPU's activities (add()'s `mpu`), for the reports: the
+  // time shares by MPU activity of each top bank stall site.
+  void set_mpu_names(std::function<std::string(unsigned)> name) { mpu_name_ = std::move(name); }
+  // BANK stall cycles by MPU activity (add()'s `mpu`).
+  using MpuShares = std::map<unsigned, std::uint64_t>;
+  // "copy, s3 shading 71.0%, wait_rc 20.0%, ...": the top `n` shares.
+  std::string mpu_text(const MpuShares& shares, int n = 4) const;
 
   struct Counts {
     std::uint64_t cycles = 0, issued = 0, faulted = 0;  // faulted: running, neither issued nor stalled (a faulting word)
@@ -76,6 +87,7 @@ class StallProfile {
   struct Site {  // one word of one kernel
     Counts counts;
     Event first, worst;
+    MpuShares bank_mpu;  // its BANK stalls by MPU activity
   };
 
   // Makes NC nc's counters before the frame runs (add() then changes no
@@ -107,6 +119,7 @@ class StallProfile {
     Event first, worst;
     std::uint64_t window_stalled = 0;  // stalled cycles in the NC's window
     Event window_worst;
+    MpuShares bank_mpu, window_bank_mpu;  // BANK stalls by MPU activity (all, in the window)
   };
   struct NcState {
     unsigned nc = 0;
@@ -119,7 +132,7 @@ class StallProfile {
       std::size_t pc = 0;
       std::uint64_t time_ps = 0, cycles = 0, next_cycle = 0;
     } run;
-    void add(unsigned kernel, const CycleRecord& r, std::uint64_t time_ps);
+    void add(unsigned kernel, const CycleRecord& r, std::uint64_t time_ps, unsigned mpu);
     void end_run();
   };
   NcState& nc_state(unsigned nc) {
@@ -131,6 +144,7 @@ class StallProfile {
     return *ncs_[nc];
   }
   std::vector<std::unique_ptr<NcState>> ncs_;  // by NC
+  std::function<std::string(unsigned)> mpu_name_;
 };
 
 }  // namespace mc1::apu

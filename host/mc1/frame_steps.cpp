@@ -62,4 +62,18 @@ std::vector<StepTime> step_times(const NcReport& n) {
   return t;
 }
 
+std::string engine_text(const FrameReport& r) {
+  std::string t = r.engine + " engine";
+  const std::vector<unsigned>& k = r.rtl_nodes;  // sorted, each once
+  if (k.empty()) return t;
+  t += k.size() == 1 ? ", RTL core on NC " : ", RTL core on NCs ";
+  for (std::size_t i = 0; i < k.size();) {
+    std::size_t j = i;
+    while (j + 1 < k.size() && k[j + 1] == k[j] + 1) ++j;
+    t += (i ? "," : "") + std::to_string(k[i]) + (j > i ? (j > i + 1 ? "-" : ",") + std::to_string(k[j]) : "");
+    i = j + 1;
+  }
+  return t;
+}
+
 }  // namespace mc1

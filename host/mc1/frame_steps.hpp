@@ -36,4 +36,9 @@ struct StepTime {
 // By step id; all zero for a frame without steps.
 std::vector<StepTime> step_times(const NcReport& n);
 
+// The engines a frame ran on, as the summary and the chart's title say it:
+// "iss engine", "rtl engine", "iss engine, RTL core on NCs 1-4,9" (the
+// NCs of --rtl-nodes and the traced NC: FrameReport::rtl_nodes).
+std::string engine_text(const FrameReport& r);
+
 }  // namespace mc1

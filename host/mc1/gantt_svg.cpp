@@ -149,6 +149,9 @@ std::vector<Legend> legend(const FrameReport& r) {
   return l;
 }
 
+// The window the chart is made to fit (a laptop's browser, GTKWave's default).
+constexpr double kWindowHeight = 900;
+
 // Geometry of the chart.
 struct Frame {
   double left = 70, plot_w = 1000, right = 20;
@@ -294,8 +297,14 @@ double footer(std::ostringstream& o, const FrameReport& r, const Frame& f) {
 std::string gantt_svg(const FrameReport& r) {
   const unsigned n = static_cast<unsigned>(r.ncs.size());
   Frame f;
-  f.row_h = n <= 16 ? 22 : std::max(2.0, std::min(22.0, std::floor(768.0 / n)));
   f.rows_y = f.rc_y + f.rc_h + 10;
+  // The rows as tall as let the whole chart, the footer below the rows (phase
+  // labels, legend) included, fit a 1400x900 window (22 px at most, 2 at
+  // least: beyond 400 or so NCs it is taller).
+  std::ostringstream scratch;
+  const double footer_h = footer(scratch, r, f);  // below axis_y = 0
+  const double room = kWindowHeight - f.rows_y - footer_h;
+  f.row_h = n == 0 ? 22 : std::max(2.0, std::min(22.0, std::floor(room / n)));
   f.axis_y = f.rows_y + f.row_h * n;
   f.T = static_cast<double>(std::max<Picos>(r.frame_time, 1));
 
@@ -316,6 +325,9 @@ std::string gantt_svg(const FrameReport& r) {
   row_marks(body, r, f);
   const double height = footer(body, r, f);
 
+  // The engines: "iss", or the RTL NCs beside it (their count when the list is long).
+  std::string engines = r.rtl_nodes.empty() ? r.engine : engine_text(r);
+  if (engines.size() > 80) engines = r.engine + " engine, RTL core on " + std::to_string(r.rtl_nodes.size()) + " NCs";
   std::ostringstream o;
   std::snprintf(buf, sizeof buf,
                 "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
@@ -325,7 +337,8 @@ std::string gantt_svg(const FrameReport& r) {
   std::snprintf(buf, sizeof buf,
                 "<text x=\"%.0f\" y=\"18\" font-size=\"14\">MC-1 frame%s%s: %u NCs (%s%s%s), %ux%u pixels, %u blocks "
                 "of %ux%u, %.3f ms simulated</text>\n",
-                f.left, r.scene.empty() ? "" : " ", scene_name(r.scene).c_str(), r.nodes, r.engine.c_str(),
+                f.left, r.scene.empty() ? "" : " ", scene_name(r.scene).c_str(), r.nodes,
+                engines.c_str(),
                 r.schedule.empty() ? "" : ", ", r.schedule.c_str(), r.width, r.height, r.blocks, r.block_w,
                 r.block_h, r.frame_time * 1e-9);
   o << buf;

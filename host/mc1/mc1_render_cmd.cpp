@@ -24,6 +24,7 @@
 #include "png_writer.hpp"
 #include "refrender.hpp"
 #include "frame_profile.hpp"
+#include "frame_steps.hpp"
 #include "report_profile.hpp"
 #include "report_writers.hpp"
 #include "scene.hpp"
@@ -223,11 +224,7 @@ imgcmp::Image frame_image(const FrameReport& r) {
 void print_summary(const RenderRun& run) {
   const FrameReport& r = run.report;
   const Picos T = r.frame_time;
-  std::string engine = r.engine + " engine";
-  if (!r.rtl_nodes.empty()) {
-    engine += ", RTL core on NC";
-    for (std::size_t i = 0; i < r.rtl_nodes.size(); ++i) engine += (i ? "," : " ") + std::to_string(r.rtl_nodes[i]);
-  }
+  const std::string engine = engine_text(r);
   std::printf("mc1 render: %s, %u NCs (%s, %s), %ux%u pixels, %u blocks of %ux%u\n", r.scene.c_str(), r.nodes,
               engine.c_str(), r.schedule.c_str(), r.width, r.height, r.blocks, r.block_w, r.block_h);
   const Picos dl = milestone_time(r, "downloaded"), s1 = milestone_time(r, "step1");
@@ -250,6 +247,43 @@ void print_summary(const RenderRun& run) {
     std::printf("  %llu late reports ignored, %llu duplicate pixel runs dropped by the DC\n",
                 static_cast<unsigned long long>(r.rc.late_reports),
                 static_cast<unsigned long long>(r.bus.duplicate_runs));
+}
+
+// --trace's window [from, to) when the traced NC's APU does not run in it:
+// the waveform would show an idle core and the save file no stall site, so
+// say so on stderr, with when that APU did run (its first start to its last
+// HALT, and the run nearest the window). Returns true if it warned.
+bool warn_idle_trace_window(const FrameReport& r, unsigned nc, Picos from, Picos to) {
+  if (nc == 0 || nc > r.ncs.size()) return false;
+  const std::vector<nc::ApuSpan>& runs = r.ncs[nc - 1].apu;
+  const Picos end = std::min(to, r.frame_time);
+  for (const nc::ApuSpan& a : runs)
+    if (a.begin < end && a.end > from) return false;
+  const std::string window = ms(from) + " to " + (to == ~Picos{0} ? "the end" : ms(to));
+  std::fprintf(stderr, "mc1 render: warning: --trace: NC %u's APU does not run in the window %s: the waveform shows "
+               "an idle core and the save file marks no stall site\n", nc, window.c_str());
+  if (from >= r.frame_time)
+    std::fprintf(stderr, "  the frame ends at %s, before the window starts\n", ms(r.frame_time).c_str());
+  if (runs.empty()) {
+    std::fprintf(stderr, "  NC %u's APU did not run in this frame\n", nc);
+    return true;
+  }
+  const nc::ApuSpan* near = &runs.front();
+  auto gap = [&](const nc::ApuSpan& a) { return a.end <= from ? from - a.end : a.begin - end; };
+  for (const nc::ApuSpan& a : runs)
+    if (gap(a) < gap(*near)) near = &a;
+  std::fprintf(stderr, "  NC %u's APU runs from %s to %s (%zu runs); the nearest run: %s to %s\n", nc,
+               ms(runs.front().begin).c_str(), ms(runs.back().end).c_str(), runs.size(), ms(near->begin).c_str(),
+               ms(near->end).c_str());
+  return true;
+}
+
+// --trace's side files into `out`, after the warning of a window the traced
+// NC's APU does not run in.
+void trace_files(const std::string& trace, const FrameReport& r, const SystemConfig& cfg, FrameProfiler& profiler,
+                 Outputs& out) {
+  warn_idle_trace_window(r, cfg.trace_node, cfg.trace_from, cfg.trace_to);
+  for (const auto& [path, text] : trace_side_files(trace, profiler, cfg.trace_node)) out.add(path, text);
 }
 
 // --ref: the double-precision reference at the same size, its PSNR, and with
@@ -347,8 +381,7 @@ int cmd_render(const CLI::App& cmd) {
       if (is_json(p)) out.add(p, json_profile);
     if (!quiet) std::fputs(profiler.profile().text(profiler.kernels(), 10).c_str(), stdout);
   }
-  if (cfg.trace_node)
-    for (const auto& [path, text] : trace_side_files(a.get("trace"), profiler, cfg.trace_node)) out.add(path, text);
+  if (cfg.trace_node) trace_files(a.get("trace"), r, cfg, profiler, out);
   int status = 0;
   if (r.fm_pixels_written != std::uint64_t{r.width} * r.height) {
     std::fprintf(stderr, "mc1 render: the frame memory got %llu pixel writes for %u pixels\n",

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "microword.hpp"
@@ -123,6 +124,16 @@ class ApuEngine {
   // APU's program bank).
   virtual void trace_window(std::uint64_t from_ps, std::uint64_t to_ps) { (void)from_ps, (void)to_ps; }
   virtual void trace_kernel(int bank, std::uint16_t id) { (void)bank, (void)id; }
+  // The MPU's side on the same time axis (TOP.mc1.mpu_*): before each
+  // traced cycle the engine asks `source` for the MPU's state at the
+  // cycle's start (ps). Numbers only: their names are the trace's filters.
+  struct MpuTraceInputs {
+    std::uint8_t doing = 0;   // what the MPU does (nc::MpuDoing)
+    std::uint16_t code = 0;   // the firmware's activity code
+    std::uint32_t detail = 0, block = 0xFFFFFFFF;
+    std::uint16_t words_left = 0;  // of a copy into a bank
+  };
+  virtual void trace_mpu(std::function<MpuTraceInputs(std::uint64_t ps)> source) { (void)source; }
 
  private:
   std::uint64_t time_ps_ = 0, time_cycle_ = 0, cycle_ps_ = 250000;  // 4 MHz (paper section 2)

@@ -1,5 +1,8 @@
 #include "fp24_convert.hpp"
 
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "fp24_bits.hpp"
@@ -36,6 +39,19 @@ double fp24_to_double(std::uint32_t bits) {
   double x;
   std::memcpy(&x, &u, sizeof x);
   return x;
+}
+
+std::string fp24_decimal(std::uint32_t w) {
+  const double d = fp24_to_double(w);
+  if (std::isnan(d)) return "nan";
+  if (std::isinf(d)) return d < 0 ? "-inf" : "inf";
+  if (d == 0) return std::string((w & 0x800000) ? "-0" : "0") + ((w & 0xFFFF) ? " (DAZ)" : "");
+  char buf[32];
+  for (int digits = 1; digits <= 7; ++digits) {  // 17 bits: 7 digits always read back
+    std::snprintf(buf, sizeof buf, "%.*g", digits, d);
+    if (fp24_from_double(std::strtod(buf, nullptr)) == w) break;
+  }
+  return buf;
 }
 
 }  // namespace mc1::fp24

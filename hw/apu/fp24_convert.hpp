@@ -8,12 +8,18 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 namespace mc1::fp24 {
 
 std::uint32_t fp24_from_double(double x);
 // Exact: every FP24 value is a double. For host-side checks and reports.
 double fp24_to_double(std::uint32_t bits);
+// A word as a person reads it, for reports and waveforms: the fewest
+// decimal digits that read back to the same word ("0.1", "-3", "inf",
+// "nan"); "0 (DAZ)" or "-0 (DAZ)" for a zero exponent with a fraction (the
+// APU reads it as zero).
+std::string fp24_decimal(std::uint32_t bits);
 
 }  // namespace mc1::fp24
 

@@ -75,6 +75,7 @@ class RtlEngine::ModelOf final : public Model {
   const ApuCounters& counters() const override;
   void trace_window(std::uint64_t from_ps, std::uint64_t to_ps) override;
   void trace_kernel(int bank, std::uint16_t id) override;
+  void trace_mpu(std::function<MpuTraceInputs(std::uint64_t ps)> source) override { mpu_source_ = std::move(source); }
   bool unit_mismatch() const override { return top_->dbg_unit_mismatch; }
 
  private:
@@ -87,6 +88,7 @@ class RtlEngine::ModelOf final : public Model {
   void dump(std::uint64_t ps);  // at simulated time ps, if in the window (times strictly increase)
   void dump_requests();         // the MPU's requests, before the edge that takes them
   void note_banks();            // mpu_dbank_ after a call that clocks or evaluates
+  void mpu_inputs(std::uint64_t ps);  // the trace module's MPU inputs at time ps (trace_mpu)
   int mpu_dbank() const { return mpu_dbank_.load(std::memory_order_relaxed); }
   std::uint64_t time_of(std::uint64_t cycle) const { return time_.time_of(cycle); }
 
@@ -120,6 +122,7 @@ class RtlEngine::ModelOf final : public Model {
   // port. It changes only with a swap, which no cycle makes while no data
   // hand-over is pending, and that is when those calls overlap a clock.
   std::atomic<std::uint8_t> mpu_dbank_{1};
+  std::function<MpuTraceInputs(std::uint64_t ps)> mpu_source_;  // kTraced only
 };
 
 namespace {
@@ -177,6 +180,22 @@ void RtlEngine::ModelOf<Top, kTraced>::trace_kernel(int bank, std::uint16_t id) 
 }
 
 template <class Top, bool kTraced>
+void RtlEngine::ModelOf<Top, kTraced>::mpu_inputs(std::uint64_t ps) {
+  if constexpr (kTraced) {
+    if (!mpu_source_) return;
+    const MpuTraceInputs m = mpu_source_(ps);
+    Top& t = *top_;
+    t.mpu_doing = m.doing;
+    t.mpu_step = m.code;
+    t.mpu_detail = m.detail;
+    t.mpu_block = m.block;
+    t.mpu_words_left = m.words_left;
+  } else {
+    (void)ps;
+  }
+}
+
+template <class Top, bool kTraced>
 void RtlEngine::ModelOf<Top, kTraced>::trace_window(std::uint64_t from_ps, std::uint64_t to_ps) {
   from_ = from_ps;
   to_ = to_ps;
@@ -196,6 +215,7 @@ void RtlEngine::ModelOf<Top, kTraced>::dump(std::uint64_t ps) {
       const auto program = t.mpu2apu_hand_over_program, data = t.mpu2apu_hand_over_data, start = t.mpu2apu_start,
                  fresh = t.mpu2apu_start_new_program;
       t.mpu2apu_hand_over_program = t.mpu2apu_hand_over_data = t.mpu2apu_start = t.mpu2apu_start_new_program = 0;
+      mpu_inputs(from_);
       t.eval();
       fst_->dump(from_);
       t.mpu2apu_hand_over_program = program;
@@ -335,6 +355,7 @@ void RtlEngine::ModelOf<Top, kTraced>::clock() {
   const std::uint16_t pc = t.dbg_pc;  // the word of the cycle, for an assertion's report
   if constexpr (!kTraced) func_->before_rising_edge();
   // Time in ps (Verilator's default precision): 250 ns cycles, 4 MHz.
+  if (traced) mpu_inputs(time_of(cycle_));  // the MPU's side in this cycle
   if (changed_ || traced) {
     t.clk = 1;
     t.eval();
@@ -356,6 +377,7 @@ void RtlEngine::ModelOf<Top, kTraced>::clock() {
     t.mpu2apu_hand_over_data = 0;
     t.mpu2apu_start = 0;
     t.mpu2apu_start_new_program = 0;
+    if (traced) mpu_inputs(time_of(cycle_ + 1));  // ... and in the next, from its start
     t.clk = 0;
     t.eval();
   } else {
@@ -525,6 +547,9 @@ std::uint8_t RtlEngine::cc() const { return model_->cc(); }
 const ApuCounters& RtlEngine::counters() const { return model_->counters(); }
 void RtlEngine::trace_window(std::uint64_t from_ps, std::uint64_t to_ps) { model_->trace_window(from_ps, to_ps); }
 void RtlEngine::trace_kernel(int bank, std::uint16_t id) { model_->trace_kernel(bank, id); }
+void RtlEngine::trace_mpu(std::function<MpuTraceInputs(std::uint64_t ps)> source) {
+  model_->trace_mpu(std::move(source));
+}
 bool RtlEngine::unit_mismatch() const { return model_->unit_mismatch(); }
 
 }  // namespace mc1::apu

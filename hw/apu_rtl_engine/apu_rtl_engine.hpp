@@ -94,6 +94,9 @@ class RtlEngine final : public ApuEngine {
   // bank the core runs from and TOP.mc1.kpc the pair (kernel_id, pc); 0
   // until one is named.
   void trace_kernel(int bank, std::uint16_t id) override;
+  // The MPU's side (TOP.mc1.mpu_*, apu_trace_top.sv): asked before each
+  // traced cycle for the MPU's state at its start.
+  void trace_mpu(std::function<MpuTraceInputs(std::uint64_t ps)> source) override;
 
   // True if a unit's out_valid / out_trig_valid ever disagreed with the core's
   // interlock mirror of the pipelines (a unit latency other than the doc's).

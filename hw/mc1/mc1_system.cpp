@@ -166,6 +166,7 @@ void config_into(FrameReport& r, const SystemConfig& cfg) {
   r.engine = engine_name(cfg.engine);
   if (cfg.engine != EngineKind::Rtl) {
     r.rtl_nodes = cfg.rtl_nodes;
+    if (cfg.trace_node) r.rtl_nodes.push_back(cfg.trace_node);  // the traced NC runs the RTL core
     std::sort(r.rtl_nodes.begin(), r.rtl_nodes.end());
     r.rtl_nodes.erase(std::unique(r.rtl_nodes.begin(), r.rtl_nodes.end()), r.rtl_nodes.end());
   }

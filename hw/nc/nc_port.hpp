@@ -29,8 +29,20 @@ class NcPort {
 
   // MPU work of `cycles` MPU clock cycles (the APU runs meanwhile).
   virtual void mpu_work(std::uint64_t cycles) = 0;
-  void copy_words(std::uint64_t n) { mpu_work(n * timing().mpu_cycles_per_word_copy); }
-  void apu_commands(std::uint64_t n) { mpu_work(n * timing().mpu_cycles_per_apu_command); }
+  // The same, of a kind the NC records for waveforms and the stall profile
+  // (the MPU's side, mpu_activity.hpp); the same time as mpu_work.
+  enum class Work : std::uint8_t { Compute, Copy, Command };
+  virtual void mpu_work_as(Work kind, std::uint64_t cycles) {
+    (void)kind;
+    mpu_work(cycles);
+  }
+  void copy_words(std::uint64_t n) { mpu_work_as(Work::Copy, n * timing().mpu_cycles_per_word_copy); }
+  void apu_commands(std::uint64_t n) { mpu_work_as(Work::Command, n * timing().mpu_cycles_per_apu_command); }
+  // What the firmware is doing, for waveforms and the stall profile: `code`
+  // one of its own activities (it names them where the trace's names are
+  // made: host/mc1/frame_profile.cpp; 0: none), `detail` a number of its
+  // choosing (the batch in hand). Takes no time.
+  virtual void mpu_activity(std::uint16_t code, std::uint32_t detail) { (void)code, (void)detail; }
 
   // The HDLC link: posted send (the controller sends while the MPU goes on);
   // receive blocks until a message from the RC is there.

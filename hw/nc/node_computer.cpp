@@ -100,6 +100,9 @@ NodeComputer::NodeComputer(sc_core::sc_module_name name, const TimingParams& t, 
 
 NodeComputer::~NodeComputer() {
   if (job_) job_->cancel();  // the simulation ended while the NC waited: no more of the run
+  // The engine outlives mpu_ (members go in reverse order) and its trace's
+  // last dump, in its destructor, would read it: no MPU side from here on.
+  if (engine_) engine_->trace_mpu({});
 }
 
 // The APU run the MPU waits for, from apu_time_ on, clocked by the pool's
@@ -304,9 +307,32 @@ void NodeComputer::advance(Picos ps, Picos t) {
   qk_.sync();
 }
 
-void NodeComputer::mpu_work(std::uint64_t cycles) {
+void NodeComputer::mpu_is(MpuDoing d, Picos at, std::uint32_t copy_words) {
+  if (!mpu_.on()) return;
+  mpu_now_.doing = d;
+  mpu_now_.since = at;
+  mpu_now_.words = copy_words;
+  mpu_now_.word_ps = copy_words ? t_.mpu_cycles_ps(t_.mpu_cycles_per_word_copy) : 0;
+  mpu_.change(mpu_now_);
+}
+
+void NodeComputer::mpu_activity(std::uint16_t code, std::uint32_t detail) {
+  mpu_now_.code = code;
+  mpu_now_.detail = detail;
+  mpu_is(mpu_now_.doing, now(), mpu_now_.words_left(now()));
+}
+
+void NodeComputer::mpu_work(std::uint64_t cycles) { work(MpuDoing::Compute, cycles); }
+
+void NodeComputer::mpu_work_as(Work kind, std::uint64_t cycles) {
+  work(kind == Work::Copy ? MpuDoing::Copy : kind == Work::Command ? MpuDoing::Command : MpuDoing::Compute, cycles);
+}
+
+void NodeComputer::work(MpuDoing d, std::uint64_t cycles) {
   const Picos t = now();
   mark(Activity::Busy, t);
+  const std::uint64_t per_word = std::max<std::uint64_t>(1, t_.mpu_cycles_per_word_copy);
+  mpu_is(d, t, d == MpuDoing::Copy ? static_cast<std::uint32_t>(cycles / per_word) : 0);
   const Picos ps = t_.mpu_cycles_ps(cycles);
   stats_.mpu_busy += ps;
   advance(ps, t);
@@ -315,7 +341,7 @@ void NodeComputer::mpu_work(std::uint64_t cycles) {
 void NodeComputer::send_to_rc(const std::vector<std::uint8_t>& msg) {
   // Copy into the controller's buffer and start it; the controller sends
   // while the MPU goes on (a posted write on the HDLC channel).
-  mpu_work((msg.size() + 1) / 2 * t_.mpu_cycles_per_word_copy);
+  work(MpuDoing::HdlcIo, (msg.size() + 1) / 2 * t_.mpu_cycles_per_word_copy);
   check_alive();
   std::vector<std::uint8_t> data = msg;
   tlm::tlm_generic_payload p;
@@ -338,6 +364,7 @@ std::vector<std::uint8_t> NodeComputer::receive_from_rc() {
   check_alive();
   if (inbox_.empty()) qk_.sync();  // everything due up to our local time has arrived
   if (inbox_.empty()) mark(Activity::WaitRc, now());
+  if (inbox_.empty()) mpu_is(MpuDoing::WaitRc, now());
   std::optional<HdlcMailbox::Message> got =
       kill_at_ == ~Picos{0} ? std::optional<HdlcMailbox::Message>(inbox_.take()) : inbox_.take_until(kill_at_);
   if (!got) throw Killed{};
@@ -345,7 +372,7 @@ std::vector<std::uint8_t> NodeComputer::receive_from_rc() {
   catch_up();  // the APU ran while the MPU waited
   ++stats_.messages_received;
   // Receive interrupt, then copy the message out of the controller's buffer.
-  mpu_work(t_.mpu_cycles_per_interrupt + (m.data.size() + 1) / 2 * t_.mpu_cycles_per_word_copy);
+  work(MpuDoing::HdlcIo, t_.mpu_cycles_per_interrupt + (m.data.size() + 1) / 2 * t_.mpu_cycles_per_word_copy);
   return std::move(m.data);
 }
 
@@ -361,6 +388,7 @@ void NodeComputer::b_transport(tlm::tlm_generic_payload& p, sc_core::sc_time& de
 
 void NodeComputer::apu_wait_swap() {
   mark(Activity::Busy, now());
+  mpu_is(MpuDoing::WaitSwap, now());
   catch_up();
   if (driver_.data_ready() && engine_->state() != apu::RunState::Running)
     throw std::runtime_error("NC " + std::to_string(id_) +
@@ -398,6 +426,7 @@ void NodeComputer::apu_wait_swap() {
 
 void NodeComputer::apu_wait_halt() {
   mark(Activity::Busy, now());
+  mpu_is(MpuDoing::WaitHalt, now());
   catch_up();
   if (engine_->state() != apu::RunState::Running) return;
   std::string runaway;  // the driver's account of a run the watchdog stops
@@ -441,6 +470,7 @@ void NodeComputer::send_pixels(const PixelRun& run) {
   pixel_bytes_ = encode_run(run);
   const Picos requested = now();
   mark(Activity::WaitBus, requested);
+  mpu_is(MpuDoing::WaitBus, requested);
   pixels_.set_command(tlm::TLM_WRITE_COMMAND);
   pixels_.set_address(0);
   pixels_.set_data_ptr(pixel_bytes_.data());
@@ -461,6 +491,7 @@ void NodeComputer::send_pixels(const PixelRun& run) {
                              pixels_.get_response_string());
   // Waiting until the grant, busy while the run is on the bus.
   mark(Activity::Busy, pixel_ext_.granted_known ? pixel_ext_.granted : now());
+  mpu_is(MpuDoing::BusOut, pixel_ext_.granted_known ? pixel_ext_.granted : now());
   catch_up();
   ++stats_.runs;
   stats_.pixels += run.pixels.size();
@@ -468,11 +499,13 @@ void NodeComputer::send_pixels(const PixelRun& run) {
 
 void NodeComputer::block_begin(std::uint32_t block) {
   block_ = block;
+  mpu_now_.block = block;
   mark(Activity::Busy, now());
 }
 
 void NodeComputer::block_end() {
   block_ = 0xFFFFFFFF;
+  mpu_now_.block = block_;
   ++stats_.blocks;
   mark(current_, now());
 }
@@ -483,6 +516,7 @@ void NodeComputer::finished() {
   qk_.sync();
   block_ = 0xFFFFFFFF;
   mark(Activity::Idle, now());
+  mpu_is(MpuDoing::Done, now());
   stats_.finished_at = now();
   finished_ = true;
 }
@@ -496,6 +530,7 @@ void NodeComputer::die() {
   apu_stopped(std::max(apu_begin_, std::min(apu_time_, t)));
   block_ = 0xFFFFFFFF;
   mark(Activity::Dead, t);
+  mpu_is(MpuDoing::Dead, t);
   stats_.killed = true;
   stats_.killed_at = t;
 }

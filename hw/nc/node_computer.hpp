@@ -46,6 +46,7 @@
 #include "apu_engine.hpp"
 #include "apu_pool.hpp"
 #include "hdlc_mailbox.hpp"
+#include "mpu_activity.hpp"
 #include "nc_extension.hpp"
 #include "nc_port.hpp"
 #include "timing_params.hpp"
@@ -133,11 +134,17 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   const NcStats& stats() const { return stats_; }
   bool is_finished() const { return finished_; }
   apu::ApuEngine& engine() { return *engine_; }
+  // The MPU's side on simulated time (mpu_activity.hpp), recorded from the
+  // start if asked before sc_start() (a waveform, the stall profile).
+  void record_mpu(bool on) { mpu_.set_on(on); }
+  MpuTimeline& mpu_timeline() { return mpu_; }
 
   // NcPort.
   unsigned id() const override { return id_; }
   const TimingParams& timing() const override { return t_; }
   void mpu_work(std::uint64_t cycles) override;
+  void mpu_work_as(Work kind, std::uint64_t cycles) override;
+  void mpu_activity(std::uint16_t code, std::uint32_t detail) override;
   void send_to_rc(const std::vector<std::uint8_t>& msg) override;
   std::vector<std::uint8_t> receive_from_rc() override;
   apu::ApuDriver& apu() override { return driver_; }
@@ -165,6 +172,8 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   void apu_stopped(Picos at);
   void check_fault() const;
   void mark(Activity a, Picos at);     // from `at` on, the NC does `a`
+  void work(MpuDoing d, std::uint64_t cycles);  // mpu_work, recorded as `d`
+  void mpu_is(MpuDoing d, Picos at, std::uint32_t copy_words = 0);  // the MPU's side (record_mpu)
   void check_alive();                  // throws Killed at or after the kill time
   void die();
   [[noreturn]] void watchdog_expired(const std::string& what);
@@ -212,6 +221,8 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
   tlm::tlm_generic_payload pixels_;
   std::vector<std::uint8_t> pixel_bytes_;
   NcIdExtension pixel_ext_;
+  MpuTimeline mpu_;
+  MpuState mpu_now_;
 };
 
 }  // namespace mc1::nc

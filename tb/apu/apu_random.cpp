@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 namespace mc1::apu {
 namespace {
@@ -24,6 +25,14 @@ constexpr int kWindow = 32;  // |disp| bound
 constexpr std::uint32_t kSpecials[] = {
     0x000000, 0x800000, 0x3F0000, 0xBF0000, 0x400000, 0x7F0000, 0xFF0000, 0x7F8000, 0x7EFFFF,
     0x010000, 0x810000, 0x00ABCD, 0x3E8000, 0x40C90F, 0x41C90F, 0x3FFFFF, 0x000007, 0x00FFFF,
+};
+
+// Values at the edges of the format: negative denormal encodings, -max,
+// -1, the smallest normals (whose differences underflow), the largest
+// (whose sums overflow), 1 and its neighbours, 2^-17 (half an ulp of 1).
+constexpr std::uint32_t kEdges[] = {
+    0x80ABCD, 0x800001, 0xFEFFFF, 0x7EFFFF, 0xBF0000, 0x018000, 0x810001, 0x010001,
+    0x7E8000, 0xFE8000, 0x3F0001, 0xBEFFFF, 0x2E0000, 0xAE8000, 0x7F8001, 0xFF0000,
 };
 
 std::uint32_t random_value(Rng& rng) {
@@ -46,7 +55,7 @@ std::uint16_t random_imm(Rng& rng) {
 
 class ProgramGen {
  public:
-  ProgramGen(Rng& rng, int budget) : rng_(rng), budget_(budget) {}
+  ProgramGen(Rng& rng, const RandomOptions& opt) : rng_(rng), opt_(opt), budget_(opt.max_words) {}
 
   std::vector<MicroWord> words;
   struct CallFixup { std::size_t at; int sub; };
@@ -56,15 +65,15 @@ class ProgramGen {
   MicroWord body(bool allow_mem = true) {
     MicroWord w;
     std::uint64_t used = 0;
-    if (rng_.chance(50)) w.m = {true, dst(used), src(), src()};
-    if (rng_.chance(50)) {
+    if (rng_.chance(opt_.mul_percent)) w.m = {true, dst(used), src(), src()};
+    if (rng_.chance(opt_.add_percent)) {
       const auto op = static_cast<AddOp>(rng_.below(7));
       const bool two = op == AddOp::Add || op == AddOp::Sub || op == AddOp::Cmp;
       const std::uint8_t a = src();
       w.a = {true, op, op == AddOp::Cmp ? std::uint8_t(0) : dst(used), a, two ? src() : std::uint8_t(0)};
     }
-    if (rng_.chance(35)) w.f = {true, static_cast<FuncOp>(rng_.below(4)), dst(used), src()};
-    if (allow_mem && rng_.chance(40)) {
+    if (rng_.chance(opt_.func_percent)) w.f = {true, static_cast<FuncOp>(rng_.below(4)), dst(used), src()};
+    if (allow_mem && rng_.chance(opt_.mem_percent)) {
       const int which = rng_.below(4);
       const std::uint8_t base = which == 0 ? 0 : static_cast<std::uint8_t>(kBaseRegs[which - 1]);
       const int disp = which == 0 ? rng_.range(0, kWindow - 1) : rng_.range(-kWindow, kWindow - 1);
@@ -73,7 +82,7 @@ class ProgramGen {
       else
         w.d = {MemOp::St, src(), base, static_cast<std::int8_t>(disp)};
     }
-    if (rng_.chance(55)) w.i = int_op(used);
+    if (rng_.chance(opt_.int_percent)) w.i = int_op(used);
     for (int i = 0; i < 64; ++i)
       if (used >> i & 1) remember(static_cast<std::uint8_t>(i));
     return w;
@@ -92,7 +101,7 @@ class ProgramGen {
     const std::size_t start = words.size();
     for (int i = 0; i < n; ++i) {
       MicroWord w = body();
-      if (rng_.chance(20)) {
+      if (rng_.chance(opt_.branch_percent)) {
         const int target = static_cast<int>(start) + rng_.range(i + 1, n);
         w.s = forward_branch(w, static_cast<std::uint16_t>(target));
       }
@@ -169,7 +178,7 @@ class ProgramGen {
   }
   // Half the sources depend on a recent destination (this word's included).
   std::uint8_t src() {
-    if (!recent_.empty() && rng_.chance(50)) return recent_[rng_.below(static_cast<unsigned>(recent_.size()))];
+    if (!recent_.empty() && rng_.chance(opt_.hazard_percent)) return recent_[rng_.below(static_cast<unsigned>(recent_.size()))];
     return static_cast<std::uint8_t>(rng_.below(64));
   }
   void remember(std::uint8_t r) {
@@ -198,13 +207,16 @@ class ProgramGen {
   }
 
   Rng& rng_;
+  const RandomOptions& opt_;
   int budget_;
   std::vector<std::uint8_t> recent_;
 };
 
 // A word ending the last image in a fault of the planned kind.
-Fault fault_ending(Rng& rng, ProgramGen& g) {
-  switch (rng.below(5)) {
+Fault fault_ending(Rng& rng, const RandomOptions& opt, ProgramGen& g) {
+  unsigned kind = rng.below(5);
+  if (opt.fault_kind >= 1 && opt.fault_kind <= 5) kind = static_cast<unsigned>(opt.fault_kind - 1);
+  switch (kind) {
     case 0: {
       MicroWord w = g.body();
       switch (rng.below(4)) {
@@ -260,7 +272,7 @@ namespace {
 // block, its ending (SWAPP to the next image, a planned fault, or HALT), then the
 // subroutines it calls. Appends the image and its entry to `c`.
 void random_image(Rng& rng, const RandomOptions& opt, bool last, bool fault, RandomCase& c) {
-  ProgramGen g(rng, opt.max_words);
+  ProgramGen g(rng, opt);
   const int entry = rng.range(0, 4);  // never executed
   for (int i = 0; i < entry; ++i) {
     MicroWord w;
@@ -280,7 +292,7 @@ void random_image(Rng& rng, const RandomOptions& opt, bool last, bool fault, Ran
     w.s = {SeqOp::Swapp, 0, 0};  // target patched by the caller: the next image's entry
     g.emit(w);
   } else if (fault) {
-    c.planned_fault = fault_ending(rng, g);
+    c.planned_fault = fault_ending(rng, opt, g);
   } else {
     MicroWord w = rng.chance(30) ? g.body() : MicroWord{};
     w.s = {SeqOp::Halt, 0, 0};
@@ -316,13 +328,18 @@ void random_image(Rng& rng, const RandomOptions& opt, bool last, bool fault, Ran
 // The data blocks (a window at 0 and around each base register) and the
 // per-transfer bus delays.
 void random_data(Rng& rng, const RandomOptions& opt, RandomCase& c) {
+  // An edge value in edge_percent of the words (no draw at 0: the default
+  // programs stay those of the same seed before the option).
+  const auto value = [&] {
+    if (opt.edge_percent && rng.chance(opt.edge_percent)) return kEdges[rng.below(sizeof kEdges / sizeof kEdges[0])];
+    return random_value(rng);
+  };
   const int nblocks = rng.range(2, 4);
   for (int b = 0; b < nblocks; ++b) {
     std::vector<std::pair<std::uint16_t, std::uint32_t>> block;
-    for (int a = 0; a < kWindow; ++a) block.emplace_back(static_cast<std::uint16_t>(a), random_value(rng));
+    for (int a = 0; a < kWindow; ++a) block.emplace_back(static_cast<std::uint16_t>(a), value());
     for (std::uint16_t base : kBaseValues)
-      for (int d = -kWindow; d < kWindow; ++d)
-        block.emplace_back(static_cast<std::uint16_t>(base + d), random_value(rng));
+      for (int d = -kWindow; d < kWindow; ++d) block.emplace_back(static_cast<std::uint16_t>(base + d), value());
     c.data_blocks.push_back(std::move(block));
   }
   for (int i = 0; i < 8; ++i) {
@@ -350,6 +367,8 @@ RandomCase make_random_case(std::uint64_t seed, const RandomOptions& opt) {
       }
     }
   random_data(rng, opt, c);
+  // Drawn only when asked for: the default programs stay those of the same seed before it.
+  c.late_handovers = opt.late_percent > 0 && rng.chance(opt.late_percent);
   return c;
 }
 
@@ -358,6 +377,80 @@ std::string RandomCase::describe() const {
   s << "seed 0x" << std::hex << seed << std::dec << ": " << images.size() << " image(s) of";
   for (const auto& im : images) s << ' ' << im.size();
   s << " words, ends in " << (planned_fault == Fault::None ? "halt" : fault_name(planned_fault));
+  return s.str();
+}
+
+namespace {
+
+struct WeightKey {
+  const char* name;
+  unsigned RandomOptions::*percent;
+};
+constexpr WeightKey kPercentKeys[] = {
+    {"mul", &RandomOptions::mul_percent},       {"add", &RandomOptions::add_percent},
+    {"func", &RandomOptions::func_percent},     {"mem", &RandomOptions::mem_percent},
+    {"int", &RandomOptions::int_percent},       {"branch", &RandomOptions::branch_percent},
+    {"hazard", &RandomOptions::hazard_percent}, {"fault", &RandomOptions::fault_percent},
+    {"late", &RandomOptions::late_percent},     {"edge", &RandomOptions::edge_percent},
+};
+
+// One key=value into opt.
+void set_weight(RandomOptions& opt, const std::string& key, const std::string& value) {
+  if (key == "fault-kind") {
+    for (int k = 1; k <= 5; ++k)
+      if (value == fault_name(static_cast<Fault>(k))) {
+        opt.fault_kind = k;
+        return;
+      }
+    if (value == "any") {
+      opt.fault_kind = 0;
+      return;
+    }
+    throw std::invalid_argument("fault-kind=" + value + ": not a fault name (reserved-op, data-address, ...)");
+  }
+  std::size_t used = 0;
+  unsigned long v = 0;
+  try {
+    v = std::stoul(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != value.size()) throw std::invalid_argument(key + "=" + value + ": not a number");
+  for (const auto& k : kPercentKeys)
+    if (key == k.name) {
+      if (v > 100) throw std::invalid_argument(key + "=" + value + ": a percentage, 0..100");
+      opt.*k.percent = static_cast<unsigned>(v);
+      return;
+    }
+  if (key == "delay" && v <= 10000) opt.max_delay = static_cast<int>(v);
+  else if (key == "words" && v >= 8 && v <= 240) opt.max_words = static_cast<int>(v);
+  else if (key == "delay" || key == "words")
+    throw std::invalid_argument(key + "=" + value + (key == "delay" ? ": 0..10000 cycles" : ": 8..240 words"));
+  else throw std::invalid_argument("unknown weight '" + key + "' (mul add func mem int branch hazard fault late edge delay words fault-kind)");
+}
+
+}  // namespace
+
+RandomOptions parse_weights(const std::string& text) {
+  RandomOptions opt;
+  std::size_t at = 0;
+  while (at <= text.size() && !text.empty()) {
+    const auto comma = text.find(',', at);
+    const std::string item = text.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) throw std::invalid_argument("'" + item + "': wants key=value");
+    set_weight(opt, item.substr(0, eq), item.substr(eq + 1));
+    if (comma == std::string::npos) break;
+    at = comma + 1;
+  }
+  return opt;
+}
+
+std::string weights_text(const RandomOptions& opt) {
+  std::ostringstream s;
+  for (const auto& k : kPercentKeys) s << k.name << '=' << opt.*k.percent << ',';
+  s << "delay=" << opt.max_delay << ",words=" << opt.max_words << ",fault-kind="
+    << (opt.fault_kind ? fault_name(static_cast<Fault>(opt.fault_kind)) : "any");
   return s.str();
 }
 
@@ -374,8 +467,32 @@ void RandomMpu::boot(ApuEngine* const* engines, std::size_t n) {
   next_block_ = next_image_ = 1;
 }
 
+// After the APU stopped (a case with late_handovers): the next data block
+// and program image handed over once each, to a halted or faulted APU.
+void RandomMpu::late(ApuEngine* const* engines, std::size_t n) {
+  ApuEngine& ref = *engines[0];
+  if (!late_data_ && !ref.data_ready()) {
+    const auto& block = c_.data_blocks[next_block_ % c_.data_blocks.size()];
+    for (std::size_t e = 0; e < n; ++e) {
+      for (const auto& [addr, v] : block) engines[e]->write_data(addr, v);
+      engines[e]->hand_over_data();
+    }
+    ++next_block_;
+  }
+  if (!late_program_ && !ref.program_ready()) {
+    const auto& image = c_.images[static_cast<std::size_t>(next_image_) % c_.images.size()];
+    for (std::size_t e = 0; e < n; ++e) {
+      for (std::size_t a = 0; a < image.size(); ++a) engines[e]->write_program(static_cast<std::uint16_t>(a), image[a]);
+      engines[e]->hand_over_program();
+    }
+    ++next_image_;
+  }
+  late_data_ = late_program_ = true;
+}
+
 void RandomMpu::before_cycle(ApuEngine* const* engines, std::size_t n) {
   ApuEngine& ref = *engines[0];
+  if (c_.late_handovers && ref.state() != RunState::Running) return late(engines, n);
   const std::uint64_t now = ref.cycle();
   if (!ref.data_ready()) {
     if (data_due_ == ~0ull) data_due_ = now + c_.data_delays[data_delay_i_++ % c_.data_delays.size()];

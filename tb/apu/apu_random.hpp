@@ -39,11 +39,25 @@ class Rng {
   std::uint64_t s_;
 };
 
+// The generator's weights and constraints (apu-cosim --weights; the
+// defaults make the programs of apu-cosim --random and the tests).
 struct RandomOptions {
   int max_words = 240;         // per program image, main part and subroutines
   unsigned fault_percent = 5;  // cases ending in a deliberate fault
   int max_delay = 32;          // MPU hand-over delay, cycles
+  // Per opcode class: the percentage of body words with an M, A, F, D, I op.
+  unsigned mul_percent = 50, add_percent = 50, func_percent = 35, mem_percent = 40, int_percent = 55;
+  unsigned branch_percent = 20;  // segment words ending in a forward branch
+  unsigned hazard_percent = 50;  // F sources drawn from the last words' destinations
+  int fault_kind = 0;            // the planned fault: 0 any, else its Fault code
+  unsigned late_percent = 0;     // cases whose MPU also hands banks over after the APU stopped
+  unsigned edge_percent = 0;     // data values drawn from the FP24 edge cases (-denormal, -max, tiny normals)
 };
+// "key=value,..." over the defaults: keys mul, add, func, mem, int, branch,
+// hazard, fault, late, edge (percentages), delay (cycles), words, fault-kind (a
+// fault name); a bad key or value throws std::invalid_argument naming it.
+RandomOptions parse_weights(const std::string& text);
+std::string weights_text(const RandomOptions& opt);  // the same form, every key
 
 struct RandomCase {
   std::uint64_t seed = 0;
@@ -57,6 +71,7 @@ struct RandomCase {
   std::vector<std::uint16_t> data_delays, program_delays;  // cycles, used in turn
   Fault planned_fault = Fault::None;  // the fault the program ends in, if any
   std::uint64_t max_cycles = 2'000'000;
+  bool late_handovers = false;        // the MPU also hands banks over after the APU stopped
   std::string describe() const;  // one line: seed, sizes, ending
 };
 
@@ -79,7 +94,9 @@ class RandomMpu {
 
  private:
   const RandomCase& c_;
+  void late(ApuEngine* const* engines, std::size_t n);
   int next_block_ = 0, next_image_ = 0;
+  bool late_data_ = false, late_program_ = false;
   std::uint64_t data_due_ = ~0ull, program_due_ = ~0ull;
   std::size_t data_delay_i_ = 0, program_delay_i_ = 0;
 };

@@ -1,6 +1,8 @@
 // apu-run: runs one APU program on the ISS or the RTL core through the MPU
 // driver, like firmware would, and prints the outcome, the registers and
 // (--profile) a cycle profile (docs/apu-tools.md).
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -11,6 +13,8 @@
 #include "apu_driver.hpp"
 #include "atomic_file.hpp"
 #include "disasm.hpp"
+#include "fp24.hpp"
+#include "fp24_convert.hpp"
 #include "apu_lockstep.hpp"
 #include "apu_profile.hpp"
 #include "apu_stall_profile.hpp"
@@ -25,9 +29,11 @@ namespace cli = mc1::cmdline;
 constexpr const char* kDescription =
     "apu-run: runs one APU program on the ISS or the RTL core through the MPU driver.\n"
     "Loads the program (and data) into the MPU's banks, hands them over, starts the APU and waits\n"
-    "for HALT. Prints cycles and the registers that are not zero; --read prints data words the\n"
-    "MPU sees after the run (the bank the APU left with its last SWAPD); --profile prints unit\n"
-    "utilization, stalls by reason and the top N stalling words.";
+    "for HALT. Prints the cycles (start to the HALT's issue, docs/apu-tools.md \"Counting\") and\n"
+    "the registers that are not zero, decoded (CC and FLAGS by name, F as FP24, A as integers);\n"
+    "--read prints data words the MPU sees after the run (the bank the APU left with its last\n"
+    "SWAPD) in hex and decoded (FP24, or an integer where FP24 reads a flushed zero); --profile\n"
+    "prints unit utilization, stalls by reason and the top N stalling words.";
 
 struct Options {
   std::string program, trace, engine = "iss";
@@ -51,6 +57,24 @@ std::pair<std::uint16_t, std::uint16_t> parse_read(const std::string& text) {
   return {static_cast<std::uint16_t>(addr), static_cast<std::uint16_t>(n)};
 }
 
+// The tool is the MPU of the run (it loads the banks and hands them over, at
+// once, polling every 16 cycles): what it does in a cycle, for the
+// waveform's TOP.mc1.mpu_doing and the stall profile's BANK stalls, in the
+// numbers of nc::MpuDoing (hw/nc/mpu_activity.hpp) with its own names.
+enum ToolDoing : std::uint8_t { kPoll = 1, kWaitSwap = 8, kWaitHalt = 9 };
+const MpuFilters& tool_filters() {
+  static const MpuFilters f{
+      "# what apu-run, the MPU of the run, does (GTKWave translate filter for TOP.mc1.mpu_doing)\n"
+      "0 idle\n1 poll\n8 wait_swap\n9 wait_halt\n",
+      "# apu-run has no firmware steps (TOP.mc1.mpu_step)\n0000 -\n"};
+  return f;
+}
+// poll: the next bank goes over at the next poll; wait_swap: a bank handed
+// over, not yet taken; wait_halt: no bank left to hand over.
+std::string tool_doing_name(unsigned d) {
+  return d == kPoll ? "poll" : d == kWaitSwap ? "wait_swap" : d == kWaitHalt ? "wait_halt" : "idle";
+}
+
 // Every file option is declared in `files` (cmdline::Files), checked after parsing.
 void add_options(CLI::App& app, Options& o, cli::Files& files) {
   files.input(tools::add_program_option(app, o.program)->required(), "the program");
@@ -59,8 +83,9 @@ void add_options(CLI::App& app, Options& o, cli::Files& files) {
       ->capture_default_str();
   files.input(tools::add_data_option(app, o.data), "the data file");
   files.output(app.add_option("--trace", o.trace,
-                              "rtl only: write an FST waveform of the core to FILE, and its GTKWave\n"
-                              "save file and filters beside it (FILE.gtkw, FILE.kpc.txt, ...)")
+                              "write an FST waveform of the RTL core to FILE (the run is on the RTL core,\n"
+                              "whatever --engine says), and its GTKWave save file and filters beside it\n"
+                              "(FILE.gtkw, FILE.kpc.txt, ...)")
                    ->type_name("FILE"),
                trace_side_suffixes());
   app.add_flag("--profile", o.profile, "print the cycle profile");
@@ -81,24 +106,64 @@ void add_options(CLI::App& app, Options& o, cli::Files& files) {
 // The checks CLI11 cannot make alone.
 void check_options(Options& o) {
   for (const std::string& r : o.read_texts) o.reads.push_back(parse_read(r));
-  if (!o.trace.empty() && o.engine != "rtl") throw cli::UsageError("--trace needs --engine rtl");
+  // The waveform is the RTL core's: --trace runs on it, as mc1 render's
+  // traced NC does, and says so when another engine was asked for.
+  if (!o.trace.empty() && o.engine != "rtl") {
+    std::cerr << "apu-run: --trace: running on the RTL core (the waveform is of it), not " << o.engine << "\n";
+    o.engine = "rtl";
+  }
 }
 
-void print_regs(const char* name, int first, int count, int per_line, int digits,
-                const std::function<std::uint32_t(int)>& value) {
+// A data word as a person reads it: FP24's value, or, for a word FP24 reads
+// as a flushed zero (exponent 0, a fraction: a count or an address the
+// kernels keep as an integer), the integer.
+std::string word_value(std::uint32_t w) {
+  if ((w & 0x7F0000) == 0 && (w & 0xFFFF)) return "int " + std::to_string(w & 0xFFFF);
+  return mc1::fp24::fp24_decimal(w);
+}
+
+// CC and FLAGS by name: "LT|UN", "NV|NX"; "-" for none.
+std::string bit_names(unsigned v, std::initializer_list<std::pair<unsigned, const char*>> names) {
+  std::string s;
+  for (const auto& [bit, name] : names)
+    if (v & bit) s += (s.empty() ? "" : "|") + std::string(name);
+  return s.empty() ? "-" : s;
+}
+
+void print_regs(const char* name, int first, int count, int per_line,
+                const std::function<std::uint32_t(int)>& value, const std::function<std::string(std::uint32_t)>& text) {
   int shown = 0;
   for (int i = first; i < count; ++i) {
     if (!value(i)) continue;
-    std::cout << (shown % per_line ? "  " : "") << name << i << "=" << hex_text(value(i), digits);
+    std::cout << (shown % per_line ? "  " : "") << name << i << "=" << text(value(i));
     if (++shown % per_line == 0) std::cout << "\n";
   }
   if (shown % per_line) std::cout << "\n";
 }
 
+// The registers decoded: CC and FLAGS by name, F registers as FP24, A
+// registers (16 bits) unsigned and, when the sign bit is set, signed.
 void print_state(const ApuEngine& e) {
-  std::cout << "CC " << hex_text(e.cc(), 1) << "  FLAGS " << hex_text(e.flags(), 2) << "\n";
-  print_regs("F", 0, kNumFRegs, 6, 6, [&](int i) { return e.freg(i); });
-  print_regs("A", 1, kNumARegs, 8, 4, [&](int i) { return std::uint32_t{e.areg(i)}; });
+  using namespace mc1::fp24;
+  std::cout << "CC " << hex_text(e.cc(), 1) << " (" << bit_names(e.cc(), {{kLT, "LT"}, {kEQ, "EQ"}, {kGT, "GT"}, {kUN, "UN"}})
+            << ")  FLAGS " << hex_text(e.flags(), 2) << " ("
+            << bit_names(e.flags(), {{kNV, "NV"}, {kDZ, "DZ"}, {kOF, "OF"}, {kUF, "UF"}, {kNX, "NX"}}) << ")\n";
+  print_regs("F", 0, kNumFRegs, 4, [&](int i) { return e.freg(i); },
+             [](std::uint32_t v) { return hex_text(v, 6) + " (" + mc1::fp24::fp24_decimal(v) + ")"; });
+  print_regs("A", 1, kNumARegs, 6, [&](int i) { return std::uint32_t{e.areg(i)}; }, [](std::uint32_t v) {
+    return hex_text(v, 4) + " (" + std::to_string(v) +
+           (v & 0x8000 ? ", " + std::to_string(static_cast<int>(v) - 0x10000) : std::string()) + ")";
+  });
+}
+
+// --read's words: four a line, each in hex and decoded (word_value).
+void print_words(std::uint16_t addr, const std::vector<std::uint32_t>& v) {
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const std::string cell = hex_text(v[i], 6) + " (" + word_value(v[i]) + ")";
+    std::cout << (i % 4 ? "  " : (i ? "\n" : "")) << (i % 4 ? "" : "[" + hex_text(addr + i, 3) + "] ") << cell
+              << std::string(i % 4 != 3 && i + 1 < v.size() && cell.size() < 22 ? 22 - cell.size() : 0, ' ');
+  }
+  std::cout << "\n";
 }
 
 // Runs `put`, an output's write or commit (host/common/atomic_file.hpp);
@@ -119,6 +184,17 @@ bool output_ok(const std::string& option, Put put) {
 bool stage_output(std::vector<mc1::StagedFile>& out, const std::string& option, const std::string& path,
                   const std::string& text) {
   return output_ok(option, [&] { out.emplace_back(path, text); });
+}
+
+// The tool's side in the waveform (TOP.mc1.mpu_*): what it does, and the
+// data blocks it has handed over so far (mpu_detail).
+void trace_tool(ApuEngine& engine, std::function<std::uint8_t()> doing, const std::size_t& handed) {
+  engine.trace_mpu([doing = std::move(doing), &handed](std::uint64_t) {
+    ApuEngine::MpuTraceInputs in;
+    in.doing = doing();
+    in.detail = static_cast<std::uint32_t>(handed);
+    return in;
+  });
 }
 
 // fst: the file the RTL engine writes --trace's waveform to (its staged
@@ -149,10 +225,18 @@ int run(const Options& o, const std::string& fst, std::vector<mc1::StagedFile>& 
     profile = std::make_unique<Profile>([&drv](int bank, std::uint16_t pc) { return drv.program_word(bank, pc); });
   // The stall profile: for --profile-json, and for a trace's markers.
   StallProfile stalls;
+  stalls.set_mpu_names(tool_doing_name);
+  // What the tool does in a cycle: waits for the APU to take the bank it
+  // handed over, or for the next poll to hand over the next, or for HALT.
+  const std::function<std::uint8_t()> doing = [&] {
+    return drv.data_ready() ? kWaitSwap : next_block < blocks.size() ? kPoll : kWaitHalt;
+  };
+  trace_tool(*engine, doing, next_block);
   if (profile || !o.trace.empty())
     drv.set_observer([&](const CycleRecord& r) {
       if (profile) profile->add(r);
-      stalls.add(1, 1, r, engine->time_of(r.cycle));
+      const bool bank = !r.issued && r.stall == Stall::Bank;
+      stalls.add(1, 1, r, engine->time_of(r.cycle), bank ? doing() : StallProfile::kNoMpu);
     });
   int rc = 0;
   try {
@@ -169,17 +253,11 @@ int run(const Options& o, const std::string& fst, std::vector<mc1::StagedFile>& 
     rc = 1;
   }
   print_state(*engine);
-  for (const auto& [addr, n] : o.reads) {
-    const auto v = drv.read_results(addr, n);
-    for (std::size_t i = 0; i < v.size(); ++i)
-      std::cout << (i % 8 ? " " : (i ? "\n" : "")) << (i % 8 ? "" : "[" + hex_text(addr + i, 3) + "] ")
-                << hex_text(v[i], 6);
-    std::cout << "\n";
-  }
+  for (const auto& [addr, n] : o.reads) print_words(addr, drv.read_results(addr, n));
   stalls.finish();
   if (!o.trace.empty()) {
     const std::string markers = stalls.nc_totals(1).cycles ? stalls.gtkw_markers(kernels, 1, 26) : "";
-    for (const auto& [path, text] : trace_side_files(o.trace, kernels, markers, "apu-run --trace"))
+    for (const auto& [path, text] : trace_side_files(o.trace, kernels, markers, "apu-run --trace", tool_filters()))
       if (!stage_output(out, "--trace", path, text)) rc = 1;
   }
   if (profile && o.profile) std::cout << profile->report(o.top);
