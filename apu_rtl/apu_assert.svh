@@ -34,7 +34,7 @@
 //     no label on an immediate assertion (`Name: assert ...` is a syntax
 //     error), so the rule's name is in the message. Verilator prints
 //     "%Error: file:line: Assertion failed in TOP...: APU_ASSERT <Name> ...";
-//     the C++ harnesses (hw/apu_rtl_engine/apu_rtl_engine.cpp, tb/fp24_rtl.cpp) run the
+//     the C++ harnesses (hw/apu_rtl_engine/apu_rtl_engine.cpp, hw/apu_rtl_engine/fp24_rtl.cpp) run the
 //     model with fatalOnError(false), see the error after the edge and fail
 //     the run with the cycle and the pc. Icarus prints "ERROR: file:line:
 //     APU_ASSERT <Name> ..." on stdout, which the benches treat as a failure.
