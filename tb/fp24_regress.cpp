@@ -258,11 +258,15 @@ struct Segment {
 struct Plan {
   std::vector<Segment> segments;
   std::uint64_t jobs = 0, vectors = 0;
+  // By op: its vectors in the whole run, all shards together (the report's
+  // "set_vectors": a merge checks its shards add up to it).
+  std::vector<std::uint64_t> set_vectors = std::vector<std::uint64_t>(kOpCount);
 
   // Shard K/N of a set of `total` vectors: [total(K-1)/N, total K/N), so the
   // N shards cover it exactly once, and each shard gets its share of every
   // op and source (their costs differ a hundredfold).
   void add(const Options& o, Op op, Source source, std::uint64_t total) {
+    set_vectors[int(op)] += total;
     const auto [first, end] = mc1::shard::shard_range(total, o.shard, o.shards);
     if (end == first) return;
     segments.push_back({op, source, first, end - first, jobs});
@@ -315,6 +319,7 @@ struct Failure {
 
 struct Stats {
   std::uint64_t vectors = 0;
+  std::uint64_t set_vectors = 0;  // the op's vectors in the whole run (Plan::set_vectors)
   std::uint64_t rtl_vs_model = 0;
   std::uint64_t model_vs_oracle = 0;  // correctly rounded ops
   std::uint64_t not_cr = 0;           // SIN/COS
@@ -469,6 +474,7 @@ Run run_all(const Options& o) {
   const std::uint64_t total = jobs.vectors;
 
   Run run;
+  for (int op = 0; op < kOpCount; ++op) run.per_op[op].set_vectors = jobs.set_vectors[op];
   std::mutex merge;
   std::condition_variable finished;  // the last worker is done: the wall time ends there
   std::atomic<std::uint64_t> next{0};
@@ -600,6 +606,7 @@ std::string json_op(const Options& o, Op op, const Stats& s) {
   auto opt = [](bool applies, std::uint64_t n) { return applies ? std::to_string(n) : std::string("null"); };
   std::string j = "    {\"op\": " + quote(std::string(info(op).name)) +
                   ", \"vectors\": " + std::to_string(s.vectors) +
+                  ", \"set_vectors\": " + std::to_string(s.set_vectors) +
                   ", \"rtl_vs_model\": " + opt(o.rtl, s.rtl_vs_model) +
                   ", \"model_vs_oracle\": " + opt(o.oracle && !is_trig(op), s.model_vs_oracle) +
                   ", \"not_correctly_rounded\": " + opt(trig, s.not_cr) +

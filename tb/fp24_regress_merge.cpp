@@ -35,6 +35,7 @@ Report read(const std::string& file) {
   Report r = shard::read_report(file, "fp24-regress/1");
   for (const Value& op : member(r, r.root, "ops", Type::array).items) {
     member(r, op, "op", Type::string);
+    member(r, op, "set_vectors", Type::number);
     for (const char* key : kCounts) member(r, op, key, Type::number);
     member(r, op, "max_ulp_error", Type::number);
     member(r, op, "cpu_seconds", Type::number);
@@ -60,6 +61,11 @@ void check_same_run(const std::vector<Report>& reports) {
       same = serialize(member(r, ops.items[i], "op", Type::string)) ==
              serialize(member(first, ops0.items[i], "op", Type::string));
     if (!same) throw cli::UsageError(r.file + ": ops differ from " + first.file + "'s: not the same run");
+    for (std::size_t i = 0; i < ops.items.size(); ++i)
+      if (serialize(member(r, ops.items[i], "set_vectors", Type::number)) !=
+          serialize(member(first, ops0.items[i], "set_vectors", Type::number)))
+        throw cli::UsageError(where(r, *ops.items[i].find("set_vectors")) + ": \"set_vectors\" differs from " +
+                              first.file + "'s: not the same run");
   }
 }
 
@@ -92,7 +98,9 @@ void add_op(const Report& r, Value& into, const Value& op) {
   }
 }
 
-Value merge(std::vector<Report>& reports) {
+// `problems`: an op whose shards do not hold its whole set (a shard missing
+// or cut short: vectors untested), which fails the merge.
+Value merge(std::vector<Report>& reports, std::vector<std::string>& problems) {
   std::sort(reports.begin(), reports.end(), [](const Report& a, const Report& b) { return a.shard < b.shard; });
   Value out = reports.front().root;
   *mutable_member(out, "shard") = string_value("all/" + std::to_string(reports.front().shards));
@@ -114,6 +122,13 @@ Value merge(std::vector<Report>& reports) {
       add_op(r, ops.items[i], r.root.find("ops")->items[i]);
       passed = passed && ops.items[i].find("passed")->boolean;
     }
+  for (Value& op : ops.items) {
+    if (op.find("vectors")->number == op.find("set_vectors")->number) continue;
+    problems.push_back(op.find("op")->string + ": the shards hold " + serialize(*op.find("vectors")) + " of the run's " +
+                       serialize(*op.find("set_vectors")) + " vectors (a shard is missing or cut short)");
+    mutable_member(op, "passed")->boolean = false;
+    passed = false;
+  }
   mutable_member(out, "passed")->boolean = passed;
   return out;
 }
@@ -147,19 +162,21 @@ std::string layout(const Value& merged) { return shard::layout(merged, {"ops"});
 int merge_reports(const CLI::App& app, const std::vector<std::string>& files, const std::string& json_path,
                   const std::string& text_path) {
   Value merged;
+  std::vector<std::string> problems;
   std::size_t shards = files.size();
   try {
     std::vector<Report> reports;
     for (const std::string& f : files) reports.push_back(read(f));
     check_same_run(reports);
-    merged = merge(reports);
+    merged = merge(reports, problems);
   } catch (const json::JsonError& e) {
     std::fprintf(stderr, "fp24-regress: --merge: %s\n", e.what());
     return cli::kExitUsage;
   } catch (const cli::UsageError& e) {
     return cli::usage_error(app, std::string("--merge: ") + e.what());
   }
-  const std::string text = summary(merged, shards);
+  std::string text = summary(merged, shards);
+  for (const std::string& p : problems) text += "fp24-regress: --merge: " + p + "\n";
   const std::string json = layout(merged);
   if (json_path.empty()) std::fputs(json.c_str(), stdout);
   std::fputs(text.c_str(), json_path.empty() ? stderr : stdout);

@@ -73,6 +73,20 @@ run(missing 2 "--merge: shard 2/3 missing" --merge builtin-1.json builtin-3.json
 run(twice 2 "--merge: builtin-1.json: shard 1 given twice" --merge builtin-1.json builtin-1.json builtin-3.json)
 run(other_run 2 "--merge: planted-2.json: \"vectors_file\" differs from builtin-1.json's: not the same run"
     --merge builtin-1.json planted-2.json builtin-3.json)
+# A shard that holds none of an op's vectors (its counts zeroed, as a shard
+# cut short would leave them): the shards no longer add up to the run's set,
+# and the merge fails (exit 1) naming the op, even with every count passing.
+foreach(k 1 2 3)
+  file(READ ${WORK_DIR}/builtin-${k}.json text)
+  string(REGEX REPLACE "\"op\": \"neg\", \"vectors\": [0-9]+" "\"op\": \"neg\", \"vectors\": 0" text "${text}")
+  file(WRITE ${WORK_DIR}/zero-${k}.json "${text}")
+endforeach()
+run(zero_vectors 1 "neg: the shards hold 0 of the run's 16777216 vectors" --merge zero-1.json zero-2.json zero-3.json)
+file(READ ${WORK_DIR}/builtin-2.json text)
+string(REGEX REPLACE "\"set_vectors\": 16777216" "\"set_vectors\": 65536" text "${text}")
+file(WRITE ${WORK_DIR}/other-set.json "${text}")
+run(other_set 2 "other-set.json:[0-9]+: \"set_vectors\" differs from builtin-1.json's: not the same run"
+    --merge builtin-1.json other-set.json builtin-3.json)
 run(merged_again 2 "builtin-merged.json:10: shard 'all/3' is not K/N" --merge builtin-merged.json)
 file(WRITE ${WORK_DIR}/other.json "{\"schema\": \"mc1-stats/1\"}\n")
 run(schema 2 "other.json:1: schema 'mc1-stats/1', not fp24-regress/1" --merge other.json)

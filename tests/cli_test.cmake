@@ -184,6 +184,20 @@ elseif(PROGRAM STREQUAL "apu-run")
   expect(trace_directory RC 2 ERR "--trace: ${docs}: cannot open for writing: is a directory" ARGS halt.apu --engine rtl --trace ${docs})
   expect(trace_device RC 2 ERR "--trace: /dev/null: is not a regular file"
          ARGS halt.apu --engine rtl --trace /dev/null)
+  # A waveform cut short (the file size limit stands in for a full disk: the
+  # FST writer's writes fail past 100 KB): exit 1, and neither the FST nor
+  # any of its side files goes in place (the side files are committed after it).
+  file(WRITE ${WORK_DIR}/long.apu "  li a1, 3000\nouter:\n  li a2, 100\ninner:\n  add f1, f1, f2 | dbnz a2, inner\n  dbnz a1, outer\n  halt\n")
+  execute_process(COMMAND sh -c "trap '' XFSZ; ulimit -f 200; exec \"$0\" long.apu --engine rtl --trace cut.fst" ${P}
+                  WORKING_DIRECTORY ${WORK_DIR} OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 1 OR NOT err MATCHES "cut.fst: the waveform was not written whole")
+    message(SEND_ERROR "apu-run --trace past the file size limit: exit ${rc}, wanted 1; stderr: ${err}")
+  endif()
+  file(GLOB cut_files ${WORK_DIR}/cut.fst*)
+  if(cut_files)
+    message(SEND_ERROR "apu-run --trace cut short left: ${cut_files}")
+  endif()
+  expect_absent(trace_cut_short cut.fst)
   # The stall profile as JSON (apu-profile/2): a RAW stall at pc 3 each of 20
   # rounds, one cycle each; the start's fetch and decode and the loop exit's
   # branch miss are `fetch` stalls (docs/apu-isa.md "Timing").

@@ -291,8 +291,13 @@ int main(int argc, char** argv) {
     if (!o.trace.empty()) fst.emplace(cli::writer_output("--trace", o.trace));
     std::vector<mc1::StagedFile> out;
     int rc = run(o, fst ? fst->temp() : "", out);
-    if (rc == 0 && fst) out.push_back(std::move(*fst));
-    if (rc == 0 && !output_ok("the outputs", [&] { for (mc1::StagedFile& f : out) f.commit(); })) rc = 1;
+    // The waveform first: a writer's FST that is not whole (a full disk) is
+    // refused at its commit, and then no side file of it goes in place.
+    if (rc == 0 && !output_ok("the outputs", [&] {
+          if (fst) fst->commit();
+          for (mc1::StagedFile& f : out) f.commit();
+        }))
+      rc = 1;
     return cli::flush_stdout("apu-run", rc);
   } catch (const cli::UsageError& e) {
     return cli::usage_error(app, e.what());
