@@ -32,20 +32,10 @@ PART, BIN, SRC, WORK, FST2VCD = sys.argv[1:6]
 CYCLE_PS = 250000
 
 
-def fail(msg):
-    print(f"waveform {PART}: {msg}", file=sys.stderr)
-    sys.exit(1)
-
-
-def run(args, want=0):
-    p = subprocess.run(args, capture_output=True, text=True, timeout=900, cwd=WORK)
-    if p.returncode != want:
-        fail(f"{' '.join(args)}: exit {p.returncode} (wanted {want})\n{p.stdout}{p.stderr}")
-    return p
-
-
-def tool(name):
-    return os.path.join(BIN, name)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "testlib"))
+import mc1_testlib as lib  # noqa: E402
+lib.setup(f"waveform {PART}", work=WORK, bin_dir=BIN)
+fail, run, tool = lib.fail, lib.run, lib.tool
 
 
 def read(name):

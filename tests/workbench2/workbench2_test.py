@@ -25,29 +25,17 @@ import json
 import os
 import re
 import shutil
-import struct
 import subprocess
 import sys
-import zlib
 
 PART, BIN, SRC, WORK = sys.argv[1:5]
 CHROMIUM = sys.argv[5] if len(sys.argv) > 5 else ""
 
 
-def fail(msg):
-    print(f"workbench2 {PART}: {msg}", file=sys.stderr)
-    sys.exit(1)
-
-
-def run(args, want=0):
-    p = subprocess.run(args, capture_output=True, text=True, timeout=900, cwd=WORK)
-    if p.returncode != want:
-        fail(f"{' '.join(args)}: exit {p.returncode} (wanted {want})\n{p.stdout}{p.stderr}")
-    return p
-
-
-def tool(name):
-    return os.path.join(BIN, name)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "testlib"))
+import mc1_testlib as lib  # noqa: E402
+lib.setup(f"workbench2 {PART}", work=WORK, bin_dir=BIN)
+fail, run, tool, png_pixel = lib.fail, lib.run, lib.tool, lib.png_pixel
 
 
 def number(pattern, text, what):
@@ -217,37 +205,6 @@ def window():
     p = run(base + ["--trace-from", f"{start}ms", "--trace-to", f"{start + 1}ms"])
     if "warning" in p.stderr:
         fail(f"a window with APU work ({start} ms on) warned:\n{p.stderr}")
-
-
-def png_pixel(path, x, y):
-    """The RGB of pixel (x, y) of an 8-bit non-interlaced RGB/RGBA PNG."""
-    data = open(path, "rb").read()
-    at, idat = 8, b""
-    while at < len(data):
-        n, kind = struct.unpack(">I4s", data[at:at + 8])
-        body = data[at + 8:at + 8 + n]
-        if kind == b"IHDR":
-            w, h, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", body)
-            if depth != 8 or interlace or colour not in (2, 6):
-                fail(f"{path}: PNG kind not read here")
-            bpp = 4 if colour == 6 else 3
-        elif kind == b"IDAT":
-            idat += body
-        at += 12 + n
-    raw, prev, stride = zlib.decompress(idat), bytearray(w * bpp), w * bpp + 1
-    for row in range(y + 1):
-        f, line = raw[row * stride], bytearray(raw[row * stride + 1:(row + 1) * stride])
-        for i in range(len(line)):
-            a = line[i - bpp] if i >= bpp else 0
-            b, c = prev[i], prev[i - bpp] if i >= bpp else 0
-            if f == 1: line[i] = (line[i] + a) & 255
-            elif f == 2: line[i] = (line[i] + b) & 255
-            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
-            elif f == 4:
-                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        prev = line
-    return tuple(prev[x * bpp:x * bpp + 3])
 
 
 def gantt():
