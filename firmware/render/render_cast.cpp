@@ -47,6 +47,19 @@ std::vector<RenderFirmware::BatchPlan> RenderFirmware::plan_batches(
       if (static_cast<int>(chunk.size()) == kPrimSlots) p.chunks.push_back(std::move(chunk)), chunk.clear();
     }
     if (!chunk.empty() || (always_run && p.chunks.empty())) p.chunks.push_back(chunk);
+    // Each key's list split by chunk once (its positions in the chunk, in
+    // list order), not searched again for every chunk: a list of L
+    // primitives cost L log L per chunk, L^2 / kPrimSlots for the batch.
+    const std::vector<int> sorted(all.begin(), all.end());
+    p.split.resize(p.keys.size());
+    for (std::size_t k = 0; k < p.keys.size(); ++k) {
+      p.split[k].resize(p.chunks.size());
+      for (int prim : prims_of(p.keys[k])) {
+        const auto at = static_cast<std::size_t>(std::lower_bound(sorted.begin(), sorted.end(), prim) - sorted.begin());
+        p.split[k][at / kPrimSlots].push_back(static_cast<int>(at % kPrimSlots));
+      }
+      cost.list_elements += p.split[k].empty() ? 0 : prims_of(p.keys[k]).size();
+    }
     plans.push_back(std::move(p));
   }
   return plans;
@@ -76,16 +89,13 @@ std::vector<int> RenderFirmware::write_lists(
 // the rays as r_cast reads them.
 void RenderFirmware::fill_cast(const std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists,
                                const BatchPlan& p, std::size_t c, const std::vector<int>& slots, Step step) {
-  const auto& chunk = p.chunks[c];  // ascending (plan_batches), chunk[k] in slots[k]
+  // p.split[k][c]: list k's primitives in chunk c (ascending, chunk[i] in
+  // slots[i]) as positions i, in list order.
   const std::vector<int> list_n = write_lists(
       p.keys.size(),
       [&](std::size_t k, std::vector<std::uint32_t>& out) {
-        for (int prim : lists[p.keys[k]]) {
-          const auto it = std::lower_bound(chunk.begin(), chunk.end(), prim);
-          if (it != chunk.end() && *it == prim)
-            out.push_back(static_cast<std::uint32_t>(slots[static_cast<std::size_t>(it - chunk.begin())]));
-        }
-        cost(step).list_elements += lists[p.keys[k]].size();
+        for (int at : p.split[k][c]) out.push_back(static_cast<std::uint32_t>(slots[static_cast<std::size_t>(at)]));
+        cost(step).list_elements += p.split[k][c].size();
       },
       step);
   for (int j = 0; j < p.n; ++j) {

@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "apu_driver.hpp"
@@ -146,10 +147,17 @@ class RenderFirmware {
   // projection misses the block.
   std::vector<int> eye_candidates(const BlockList& list);
   // fig. 6: the objects that may block `light` for the points of `object`
-  // (r_slist on the view boxes, once per frame), in file order.
-  const std::vector<int>& shadow_list(int object, int light) const {
+  // (r_slist on the view boxes), in file order. Made when first needed
+  // (ensure_shadow_lists): the MPU passes r_slist only the objects whose box
+  // may meet the padded box of the object and the light.
+  const std::vector<int>& shadow_list(int object, int light) {
+    ensure_shadow_lists({{object, light}});
     return shadow_objects_.at(static_cast<std::size_t>(object) * view_.lights.size() + light);
   }
+  // The same lists by r_slist over every (object, light, object) (the
+  // method before issue 39), [object * lights + light]: for tests. Its
+  // work is booked to s2 like any other.
+  std::vector<std::vector<int>> exhaustive_shadow_lists();
   // Step 3, s1..s4 for one block: RGB8 pixels, row-major.
   std::vector<Rgb8> render_block(const BlockList& list);
   // Tells the link (ApuLink::enter_step) that work of step `s` begins, if
@@ -282,6 +290,7 @@ class RenderFirmware {
     int first = 0, n = 0;                  // items first .. first + n - 1
     std::vector<int> keys;                 // distinct candidate lists, in first use order
     std::vector<std::vector<int>> chunks;  // the keys' primitives, <= kPrimSlots per chunk
+    std::vector<std::vector<std::vector<int>>> split;  // [key][chunk]: the key's primitives' positions in it
     int key_index(int key) const;          // of a key among keys
   };
   std::vector<BatchPlan> plan_batches(int items, const std::function<int(int)>& key_of,
@@ -323,7 +332,10 @@ class RenderFirmware {
                              const std::vector<std::vector<int>>& lists, Step step);
 
   // ---- s2 (render_s2.cpp)
-  void build_shadow_lists();  // r_slist over every (object, light, object)
+  void build_shadow_lists();  // forgets the lists of the last scene
+  // The shadow lists of these (object, light) pairs that are not made yet,
+  // in one r_slist stream (the MPU's conservative box test first).
+  void ensure_shadow_lists(const std::vector<std::pair<int, int>>& pairs);
   std::vector<int> shadow_candidates(int object, int light, const Box& hits);
   std::vector<int> narrow_shadow_list(const std::vector<int>& candidates, int light, const Box& hits);
   struct ShadowGroups {
@@ -348,6 +360,8 @@ class RenderFirmware {
   std::vector<Box> prim_box_;               // per triangle: its padded view box (r_box)
   std::vector<Box> object_tri_box_;         // per object: the union of its triangles' prim_box_
   std::vector<std::vector<int>> shadow_objects_;  // [object * lights + light]
+  std::vector<char> shadow_known_;                // [object * lights + light]: shadow_objects_ made
+  std::vector<int> shadow_holding_;               // the objects that hold a primitive, in file order
   std::vector<std::vector<int>> solid_regions_;   // [object]: build_solid_regions
   std::vector<char> prim_combined_;  // per primitive: of an intersection or difference (build_solid_regions)
   bool any_combined_ = false;        // some object is an intersection or difference

@@ -1,40 +1,137 @@
 // s2 of fig. 3, shadows: fig. 6's shadow lists (r_slist on the view boxes,
 // once per frame), narrowed per group of hits, and the shadow rays toward
 // every light cast against them (r_cast), R_SHADOW's bits.
+#include <cmath>
 #include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
 
+#include "fp24_convert.hpp"
 #include "render_internal.hpp"
 
 namespace mc1::render {
 
 using namespace layout;
 
-// fig. 6, once per frame after step 1: for each object A and light L, the
-// objects B whose view box meets the box of A's box and L (r_slist); then
-// the primitives of those objects as candidate lists.
+// fig. 6: for each object A and light L, the objects B whose view box meets
+// the box of A's box and L, padded (r_slist); then the primitives of those
+// objects as candidate lists. A list is made when a hit on A first needs it
+// (ensure_shadow_lists), not for every pair of objects at once: with N
+// objects the lists of all pairs hold up to N^2 L entries (issue 39).
 void RenderFirmware::build_shadow_lists() {
+  const std::size_t nobj = view_.objects.size();
+  const std::size_t nlights = view_.lights.size();
+  shadow_objects_.assign(nobj * nlights, {});
+  shadow_known_.assign(nobj * nlights, 0);
+  shadow_holding_.clear();
+  for (int o = 0; o < static_cast<int>(nobj); ++o)
+    if (view_.objects[o].prim_count != 0) shadow_holding_.push_back(o);
+  cost(Step::Shadows).list_elements += nobj;
+  link_.list_elements(nobj);
+}
+
+namespace {
+
+// The MPU's side of r_slist's test, in doubles: may box(B) meet H = box(A u
+// {L}) padded by 16 C_EPS as r_slist computes it in FP24? Conservative: the
+// pad is doubled and widened by 2^-10 of the bound (FP24 rounds to 2^-16 of
+// it), plus an absolute 1e-30 (DAZ); a NaN bound never excludes.
+struct PaddedBox {
+  std::array<double, 6> h;  // min xyz, max xyz
+  bool may_meet(const std::array<double, 6>& b) const {
+    for (int c = 0; c < 3; ++c)
+      if (b[c] > h[3 + c] || b[3 + c] < h[c]) return false;
+    return true;
+  }
+};
+
+std::array<double, 6> box_doubles(const std::array<std::uint32_t, 6>& box) {
+  std::array<double, 6> d{};
+  for (int k = 0; k < 6; ++k) d[k] = fp24_to_double(box[k]);
+  return d;
+}
+
+PaddedBox padded_box(const std::array<double, 6>& a, const std::array<double, 3>& l, double pad) {
+  PaddedBox p;
+  const double margin = 2 * std::fabs(pad) + 1e-30;
+  for (int c = 0; c < 3; ++c) {
+    const double lo = std::min(a[c], l[c]), hi = std::max(a[3 + c], l[c]);
+    p.h[c] = lo - margin - std::ldexp(std::fabs(lo), -10);
+    p.h[3 + c] = hi + margin + std::ldexp(std::fabs(hi), -10);
+    if (std::isnan(a[c]) || std::isnan(l[c])) p.h[c] = -HUGE_VAL;
+    if (std::isnan(a[3 + c]) || std::isnan(l[c])) p.h[3 + c] = HUGE_VAL;
+  }
+  return p;
+}
+
+}  // namespace
+
+// r_slist over the items (A, L, B) of the pairs (A, L) not made yet, B every
+// object holding a primitive that the MPU's box test (PaddedBox, a superset
+// of r_slist's) keeps, in file order: the lists are exactly those of r_slist
+// over every B. MPU work: one list element per B looked at.
+void RenderFirmware::ensure_shadow_lists(const std::vector<std::pair<int, int>>& pairs) {
   constexpr Step step = Step::Shadows;
-  const int nobj = static_cast<int>(view_.objects.size());
+  const std::size_t nlights = view_.lights.size();
+  const double pad = 16.0 * fp24_to_double(scene_words_.at(C_EPS - C_D0));
+  std::vector<std::array<int, 3>> items;  // (A, L, B)
+  std::uint64_t looked = 0;
+  std::vector<std::array<double, 6>> b_box;  // of shadow_holding_, made on first use
+  for (const auto& [a, l] : pairs) {
+    const std::size_t at = static_cast<std::size_t>(a) * nlights + l;
+    if (shadow_known_.at(at)) continue;
+    shadow_known_[at] = 1;
+    if (b_box.empty() && !shadow_holding_.empty()) {
+      b_box.reserve(shadow_holding_.size());
+      for (int b : shadow_holding_) b_box.push_back(box_doubles(view_.objects[b].box));
+      looked += shadow_holding_.size();
+    }
+    std::array<double, 3> lp{};
+    for (int c = 0; c < 3; ++c) lp[c] = fp24_to_double(view_.lights[l][L_POS + c]);
+    const PaddedBox h = padded_box(box_doubles(view_.objects[a].box), lp, pad);
+    for (std::size_t k = 0; k < shadow_holding_.size(); ++k)
+      if (h.may_meet(b_box[k])) items.push_back({a, l, shadow_holding_[k]});
+    looked += shadow_holding_.size();
+  }
+  cost(step).list_elements += looked;
+  link_.list_elements(looked);
+  if (items.empty()) return;
+  if (items.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw std::length_error("render: " + std::to_string(items.size()) + " shadow-list pairs: more than one stream takes");
+  ItemStream s{static_cast<int>(items.size()), S_PER_BATCH, S_ITEMS, S_SIZE, true};
+  s.put = [&](int k, std::uint16_t addr) {
+    const auto [a, l, b] = items[k];
+    std::array<std::uint32_t, S_IN> w{};
+    std::copy(view_.objects[a].box.begin(), view_.objects[a].box.end(), w.begin() + S_A);
+    std::copy(view_.lights[l].begin() + L_POS, view_.lights[l].begin() + L_POS + 3, w.begin() + S_L);
+    std::copy(view_.objects[b].box.begin(), view_.objects[b].box.end(), w.begin() + S_B);
+    write(addr, w.data(), S_IN, step);
+  };
+  s.get = [&](int k, std::uint16_t addr) {
+    if (read(static_cast<std::uint16_t>(addr + S_OUT), 1, step)[0]) {
+      const auto [a, l, b] = items[k];
+      shadow_objects_[static_cast<std::size_t>(a) * nlights + l].push_back(b);
+    }
+  };
+  stream_items("r_slist", step, s);
+}
+
+// The method before issue 39: r_slist over every (A, L, B), made one item at
+// a time.
+std::vector<std::vector<int>> RenderFirmware::exhaustive_shadow_lists() {
+  constexpr Step step = Step::Shadows;
   const int nlights = static_cast<int>(view_.lights.size());
-  std::vector<int> holding;  // the objects that hold a primitive, in order
-  for (int o = 0; o < nobj; ++o)
-    if (view_.objects[o].prim_count != 0) holding.push_back(o);
-  // Item k is the pair (A, L, B) = (holding[k / per_a], k / per_l % nlights,
-  // holding[k % per_l]): made when r_slist takes it, so that the MPU holds
-  // one pair at a time, not all N^2 L of them.
+  const std::vector<int>& holding = shadow_holding_;
   const std::int64_t per_l = static_cast<std::int64_t>(holding.size());
   const std::int64_t per_a = per_l * nlights;
   const std::int64_t count = per_a * per_l;
   if (count > std::numeric_limits<int>::max())
-    throw std::length_error("render: " + std::to_string(count) + " shadow-list pairs (" + std::to_string(per_l) +
-                            " objects squared, times " + std::to_string(nlights) + " lights): more than one stream takes");
+    throw std::length_error("render: " + std::to_string(count) + " shadow-list pairs: more than one stream takes");
   auto pair = [&](int k) {
     return std::array<int, 3>{holding[k / per_a], static_cast<int>(k / per_l % nlights), holding[k % per_l]};
   };
-  shadow_objects_.assign(static_cast<std::size_t>(nobj) * nlights, {});
+  std::vector<std::vector<int>> out(view_.objects.size() * static_cast<std::size_t>(nlights));
   ItemStream s{static_cast<int>(count), S_PER_BATCH, S_ITEMS, S_SIZE, true};
   s.put = [&](int k, std::uint16_t addr) {
     const auto [a, l, b] = pair(k);
@@ -47,10 +144,11 @@ void RenderFirmware::build_shadow_lists() {
   s.get = [&](int k, std::uint16_t addr) {
     if (read(static_cast<std::uint16_t>(addr + S_OUT), 1, step)[0]) {
       const auto [a, l, b] = pair(k);
-      shadow_objects_[static_cast<std::size_t>(a) * nlights + l].push_back(b);
+      out[static_cast<std::size_t>(a) * nlights + l].push_back(b);
     }
   };
   stream_items("r_slist", step, s);
+  return out;
 }
 
 // fig. 6's shadow list of (object A, light L), narrowed to these rays: a
@@ -123,6 +221,10 @@ RenderFirmware::ShadowGroups RenderFirmware::shadow_groups(const std::vector<Ray
   // Two levels: fig. 6's list narrowed to the generation's hits on the
   // object, then to the group's (a subset of the first: the MPU scans the
   // short list once per group).
+  std::vector<std::pair<int, int>> needed;  // (object, light): the shadow lists these hits use
+  for (const auto& [o, box] : hit_box)
+    for (int l = 0; l < lights; ++l) needed.emplace_back(o, l);
+  ensure_shadow_lists(needed);
   std::map<std::pair<int, int>, std::vector<int>> block_list;  // (object, light)
   for (const auto& [o, box] : hit_box)
     for (int l = 0; l < lights; ++l) block_list[{o, l}] = shadow_candidates(o, l, box);
