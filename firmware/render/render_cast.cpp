@@ -87,8 +87,7 @@ std::vector<int> RenderFirmware::write_lists(
 
 // Chunk c of batch p: the keys' lists restricted to the chunk's slots, and
 // the rays as r_cast reads them.
-void RenderFirmware::fill_cast(const std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists,
-                               const BatchPlan& p, std::size_t c, const std::vector<int>& slots, Step step) {
+void RenderFirmware::fill_cast(const std::vector<Ray>& rays, const BatchPlan& p, std::size_t c, const std::vector<int>& slots, Step step) {
   // p.split[k][c]: list k's primitives in chunk c (ascending, chunk[i] in
   // slots[i]) as positions i, in list order.
   const std::vector<int> list_n = write_lists(
@@ -143,7 +142,7 @@ void RenderFirmware::cast(std::vector<Ray>& rays, const std::vector<std::vector<
       static_cast<int>(rays.size()), [&](int i) { return rays[i].list; },
       [&](int l) -> const std::vector<int>& { return lists[l]; }, true, cost(step));
   auto fill = [&](const BatchPlan& p, std::size_t c, const std::vector<int>& slots) {
-    fill_cast(rays, lists, p, c, slots, step);
+    fill_cast(rays, p, c, slots, step);
   };
   auto drain = [&](const BatchPlan& p) {
     for (int j = 0; j < p.n; ++j) {

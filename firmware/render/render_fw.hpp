@@ -305,8 +305,8 @@ class RenderFirmware {
   std::vector<int> write_lists(std::size_t keys,
                                const std::function<void(std::size_t, std::vector<std::uint32_t>&)>& slots_of, Step step);
   void write_plane_left(const Ray& ray, bool first_pass, std::uint16_t at, Step step);
-  void fill_cast(const std::vector<Ray>& rays, const std::vector<std::vector<int>>& lists, const BatchPlan& p,
-                 std::size_t c, const std::vector<int>& slots, Step step);
+  void fill_cast(const std::vector<Ray>& rays, const BatchPlan& p, std::size_t c, const std::vector<int>& slots,
+                 Step step);
 
   // ---- s1 (render_s1.cpp): r_scan's tiles
   struct ScanEntry {
