@@ -273,7 +273,7 @@ def cmd_run(args):
 
     bin_dir = os.path.join(build, "bin")
     exe = lambda name: os.path.join(bin_dir, name)
-    test_exe = lambda name: os.path.join(build, "tests", name)
+    test_exe = lambda name: os.path.join(bin_dir, name)  # the test programs are in bin/ too
     func = [os.path.join(data, "cosim.json"), os.path.join(data, "close.json")]
     random_pairs = "100000" if not args.quick else "1000"
     run("fp24-regress", [exe("fp24-regress"), "--random", random_pairs, "--threads", "2"]
