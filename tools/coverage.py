@@ -18,7 +18,9 @@ usage:
 The goals: every functional bin hit or waived with a reason (tb/coverage/
 waivers.txt); RTL (apu_rtl/*.sv) line >= 98 %, branch >= 95 %, toggle >= 90 %
 (toggles outside the bits waived as constant in the waiver file, lines
-"toggle:PATTERN REASON"). Exit status: 0 goals met, 1 a goal missed or a
+"toggle:MODULE.SIGNAL[BITS] REASON": shell wildcards in MODULE.SIGNAL, BITS
+a list of N, A-B and A-B/S, every S-th bit from A; a waived bit that toggles
+is reported and misses the goal). Exit status: 0 goals met, 1 a goal missed or a
 step failed, 2 usage error.
 """
 
@@ -100,14 +102,41 @@ def is_rtl(path):
     return os.path.dirname(os.path.abspath(path)) == os.path.join(ROOT, "apu_rtl")
 
 
-def code_figures(points, toggle_waivers):
-    """Per module and for the RTL as a whole: {kind: [hit, total]}; waived toggles left out."""
+def bit_set(spec):
+    """The bits of a toggle waiver's [BITS]: "1,3", "0-10", "1-31/2"."""
+    bits = set()
+    for item in spec.split(","):
+        rng, _, step = item.partition("/")
+        first, _, last = rng.partition("-")
+        bits.update(range(int(first), int(last or first) + 1, int(step or 1)))
+    return bits
+
+
+def toggle_waived(toggle_waivers, module, comment):
+    """Whether toggle point `comment` (SIGNAL[BIT]) of `module` is waived."""
+    name, _, bit = comment.partition("[")
+    for pattern, _reason, _n in toggle_waivers:
+        m = re.fullmatch(r"(.*)\[([0-9,/-]+)\]", pattern)
+        if not m:
+            if fnmatch.fnmatchcase(f"{module}.{comment}", pattern):
+                return True
+        elif fnmatch.fnmatchcase(f"{module}.{name}", m.group(1)) and bit.rstrip("]").isdigit() \
+                and int(bit.rstrip("]")) in bit_set(m.group(2)):
+            return True
+    return False
+
+
+def code_figures(points, toggle_waivers, toggled_waived=None):
+    """Per module and for the RTL as a whole: {kind: [hit, total]}; waived toggles
+    left out (a waived one that toggled is added to `toggled_waived`)."""
     modules, rtl, waived_bits = {}, {"line": [0, 0], "branch": [0, 0], "toggle": [0, 0]}, 0
     for (kind, path, _line, _col, comment), (count, module, _c, _f) in points.items():
         if kind not in rtl:
             continue
-        if kind == "toggle" and any(fnmatch.fnmatchcase(f"{module}.{comment}", p) for p, _r, _n in toggle_waivers):
+        if kind == "toggle" and toggle_waived(toggle_waivers, module, comment):
             waived_bits += 1
+            if count and toggled_waived is not None:
+                toggled_waived.append(f"{module}.{comment}")
             continue
         m = modules.setdefault((module, os.path.relpath(path, ROOT)), {"line": [0, 0], "branch": [0, 0],
                                                                          "toggle": [0, 0]})
@@ -156,7 +185,8 @@ def write_reports(out, dats, functional_jsons, waivers_path):
     all_waivers = read_waivers(waivers_path)
     toggle_waivers = [(p[len("toggle:"):], r, n) for p, r, n in all_waivers if p.startswith("toggle:")]
     bin_waivers = [w for w in all_waivers if not w[0].startswith("toggle:")]
-    modules, rtl, waived_bits = code_figures(read_dat([merged]), toggle_waivers)
+    toggled_waived = []
+    modules, rtl, waived_bits = code_figures(read_dat([merged]), toggle_waivers, toggled_waived)
     bins = merge_bins(functional_jsons)
     report = {"rtl": {k: pct(v) for k, v in rtl.items()},
               "functional": functional_figures(bins, bin_waivers),
@@ -164,7 +194,8 @@ def write_reports(out, dats, functional_jsons, waivers_path):
               "toggle_bits_waived": waived_bits,
               "modules": {f"{m} ({p})": {k: pct(v) for k, v in fig.items()} for (m, p), fig in sorted(modules.items())},
               "functional_empty": sorted(n for n, c in bins.items() if not c and not waived(bin_waivers, n)),
-              "functional_waived_but_hit": sorted(n for n, c in bins.items() if c and waived(bin_waivers, n))}
+              "functional_waived_but_hit": sorted(n for n, c in bins.items() if c and waived(bin_waivers, n)),
+              "toggle_waived_but_toggled": sorted(toggled_waived)}
     with open(os.path.join(out, "coverage.json.tmp"), "w") as f:
         json.dump(report, f, indent=1)
     os.replace(os.path.join(out, "coverage.json.tmp"), os.path.join(out, "coverage.json"))
@@ -191,6 +222,8 @@ def write_text(path, report, modules):
         lines.append(f"  empty: {n}")
     for n in report["functional_waived_but_hit"]:
         lines.append(f"  waived but hit: {n}")
+    for n in report.get("toggle_waived_but_toggled", []):
+        lines.append(f"  toggle waived as constant but toggled: {n}")
     with open(path, "w") as out:
         out.write("\n".join(lines) + "\n")
 
@@ -211,7 +244,10 @@ def check_goals(report):
           f"{f['waived']} waived: {'met' if met else 'MISSED'}")
     for n in report.get("functional_empty", [])[:40]:
         print(f"  empty: {n}")
-    return ok
+    wrong = report.get("toggle_waived_but_toggled", []) + report.get("functional_waived_but_hit", [])
+    for n in wrong[:40]:
+        print(f"  waived but hit or toggled: {n}")
+    return ok and not wrong
 
 
 def cmd_goals(args):

@@ -28,11 +28,13 @@ constexpr std::uint32_t kSpecials[] = {
 };
 
 // Values at the edges of the format: negative denormal encodings, -max,
-// -1, the smallest normals (whose differences underflow), the largest
-// (whose sums overflow), 1 and its neighbours, 2^-17 (half an ulp of 1).
+// -1, the smallest normals of both signs (whose sums and differences
+// underflow, to +0 and to -0), the largest (whose sums overflow), 1 and its
+// neighbours, 2^-17 (half an ulp of 1).
 constexpr std::uint32_t kEdges[] = {
     0x80ABCD, 0x800001, 0xFEFFFF, 0x7EFFFF, 0xBF0000, 0x018000, 0x810001, 0x010001,
     0x7E8000, 0xFE8000, 0x3F0001, 0xBEFFFF, 0x2E0000, 0xAE8000, 0x7F8001, 0xFF0000,
+    0x818000,
 };
 
 std::uint32_t random_value(Rng& rng) {

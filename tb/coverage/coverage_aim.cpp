@@ -49,6 +49,14 @@ const std::vector<Profile>& profiles() {
                  }});
     v.push_back({"sparse-words", {"core.slots.*"}, [](RandomOptions& o) { slots(o, 15); }});
     v.push_back({"dense-words", {"core.slots.*", "core.bypass.*"}, [](RandomOptions& o) { slots(o, 90); }});
+    // Sums and differences of the format's edges: the smallest normals'
+    // underflow to a signed zero, the largest's overflow.
+    v.push_back({"adder-edges", {"fp24.add.*", "fp24.sub.*"}, [](RandomOptions& o) {
+                   slots(o, 0);
+                   o.add_percent = 100;
+                   o.mem_percent = 30;
+                   o.edge_percent = 100;
+                 }});
     v.push_back({"unit-ops", {"fp24.*"}, [](RandomOptions& o) {
                    o.mul_percent = o.add_percent = o.func_percent = 90;
                    o.hazard_percent = 20;
