@@ -11,7 +11,10 @@
 // reference renderer (mc1-ref's code) must equal it to 1e-9, except the few
 // whose path passes within 1e-7 of a decision (a CSG edge, epsilon, the
 // critical angle, a checker line, a grazing hit), where the two may rightly
-// take different sides. docs/renderer.md "Refraction through CSG solids".
+// take different sides. A CSG edge includes the solid rule's band: a
+// crossing that lies outside another part by at most CSG_EPS (2^-10, in that
+// part's units) is on its boundary for the reference, a surface, but hidden
+// here (docs/renderer.md "CSG", "Refraction through CSG solids").
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -41,6 +44,18 @@ struct Part {  // a sphere (r > 0) or a quadric q(x) <= 0 in its box
     return a[0] * x.x * x.x + a[1] * x.y * x.y + a[2] * x.z * x.z + a[3] * x.x * x.y + a[4] * x.x * x.z +
            a[5] * x.y * x.z + a[6] * x.x + a[7] * x.y + a[8] * x.z + a[9];
   }
+  // Where x lies against the region's boundary in the units of the solid
+  // rule's band (refrender's kCsgEps), > 0 outside: |x - c|^2 / r^2 - 1 for a
+  // sphere; for a quadric the larger of q(x) / sum |a_i| and the distance
+  // outside the box over the sum of its extents (each < 0 inside).
+  double band_position(const dvec3& x) const {
+    if (r > 0) return glm::dot(x - c, x - c) / (r * r) - 1;
+    double sum = 0, out = -INFINITY;
+    for (double v : a) sum += std::abs(v);
+    const dvec3 e = hi - lo;
+    for (int k = 0; k < 3; ++k) out = std::max({out, lo[k] - x[k], x[k] - hi[k]});
+    return std::max(q(x) / sum, out / (e.x + e.y + e.z));
+  }
   dvec3 outward(const dvec3& x) const {
     if (r > 0) return (x - c) / r;
     return glm::normalize(dvec3(2 * a[0] * x.x + a[3] * x.y + a[4] * x.z + a[6],
@@ -48,6 +63,8 @@ struct Part {  // a sphere (r > 0) or a quadric q(x) <= 0 in its box
                                 2 * a[2] * x.z + a[4] * x.x + a[5] * x.y + a[8]));
   }
 };
+
+constexpr double kCsgBand = 0x1p-10;  // CSG_EPS
 
 struct End {
   double t;
@@ -135,6 +152,19 @@ double solid_hit(const World& w, const dvec3& o, const dvec3& d, int& part, Path
     for (const End& e : {x.lo, x.hi})
       if (e.t > w.eps && e.t < best.t) best = e;
   for (double t : ends) log.near(t - w.eps);
+  // The solid rule's band: a crossing before the hit that lies outside
+  // another part by at most kCsgBand is on that part's boundary for the
+  // reference (a surface) and hidden here; the decision is that interval.
+  for (int i = 0; i < static_cast<int>(w.parts.size()); ++i)
+    for (const Span& x : part_spans(w.parts[i], i, o, d))
+      for (const End& e : {x.lo, x.hi}) {
+        if (e.part < 0 || !(e.t > w.eps) || e.t > best.t) continue;
+        for (int k = 0; k < static_cast<int>(w.parts.size()); ++k) {
+          if (k == e.part) continue;
+          const double v = w.parts[k].band_position(o + e.t * d);
+          log.near(v < 0 ? v : std::max(0.0, v - kCsgBand));
+        }
+      }
   if (best.t == INFINITY) return INFINITY;
   int same = 0;  // the hit's own end is in `ends` once; any other one close by is an edge
   for (double t : ends) {
@@ -328,7 +358,7 @@ void expect_settled(const Tally& t) {
   EXPECT_EQ(t.wrong, 0);
   EXPECT_GT(t.through, t.pixels / 20);   // the solid fills a good part of the frame
   EXPECT_GT(t.tir, t.through / 50);      // total internal reflection is exercised
-  EXPECT_LT(t.skipped, t.through / 20);  // and nearly every path is compared
+  EXPECT_LT(t.skipped, t.through * 3 / 100);  // and nearly every path is compared
 }
 
 }  // namespace
@@ -397,6 +427,7 @@ int depth_sensitive(World w, int size) {
       const refrender::Ray ray = refrender::eye_ray(s10.camera, i, j, size, size);
       PathLog log;
       analytic(w, ray.origin, ray.dir, 0, log);
+      if (log.margin < 1e-7) continue;  // a decision (compare_image)
       EXPECT_GT(log.tirs, 0) << "pixel " << i << "," << j << " moved with max_depth and has no TIR";
     }
   return moved;

@@ -49,7 +49,7 @@ void expect_near_reference(const std::string& name, int width, int height, doubl
 // the pixels instead of rounding them drops whitted to 50.5 dB and room to
 // 51.4). Measured (docs/renderer.md "Tests"), 64x48 unless named: whitted
 // 67.40, room 73.97, smooth 50.00, teapot 32x24 75.74, teapot 76.31, csg
-// 55.41, lathe 78.75 dB.
+// 76.98 (55.41 before the solid rule's band, issue 39), lathe 78.75 dB.
 TEST(RenderScenes, WhittedNearTheReference) { expect_near_reference("whitted", 64, 48, 64.0); }
 TEST(RenderScenes, RoomNearTheReference) { expect_near_reference("room", 64, 48, 70.0); }
 TEST(RenderScenes, SmoothNearTheReference) { expect_near_reference("smooth", 64, 48, 47.0); }
@@ -57,7 +57,7 @@ TEST(RenderScenes, TeapotNearTheReference) { expect_near_reference("teapot", 32,
 TEST(RenderScenes, TeapotAt64x48NearTheReference) { expect_near_reference("teapot", 64, 48, 73.0); }
 
 // Section 7's scenes (docs/renderer.md "CSG and solids of revolution").
-TEST(RenderScenes, CsgNearTheReference) { expect_near_reference("csg", 64, 48, 52.0); }
+TEST(RenderScenes, CsgNearTheReference) { expect_near_reference("csg", 64, 48, 73.0); }
 TEST(RenderScenes, LatheNearTheReference) { expect_near_reference("lathe", 64, 48, 75.0); }
 
 // CSG on eye and shadow rays: csg.json at 64x48 as one block, s1 with the
@@ -104,7 +104,7 @@ TEST(RenderCsg, EyeHitsAndShadowFlagsMatchTheReference) {
   EXPECT_GT(eye_hidden, 100u);    // the lens's and the bores' hidden crossings
   EXPECT_GT(shadow_hidden, 10u);  // shadow rays past hidden crossings
   EXPECT_LE(other_object, 3);     // measured 0
-  EXPECT_LE(other_flags, 3);      // measured 1
+  EXPECT_LE(other_flags, 3);      // measured 0
 }
 
 TEST(RenderCost, CyclesPerRayOfTheSection7Primitives) {

@@ -140,12 +140,22 @@ bool meets_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& o, 
 
 namespace {
 
-// The region's margins (docs/scene-format.md "Objects"): 1e-9 of |A(x-b)|^2
-// = 1, of max |a_i| and of the box's diagonal.
-double coefficient_scale(const Primitive& p) {
-  double scale = 0;
-  for (double a : p.coefficients) scale = std::max(scale, std::abs(a));
-  return scale;
+// The solid rule's band about a region's boundary (docs/scene-format.md
+// "Objects", docs/renderer.md "CSG"): a point within kCsgEps of |A(x-b)|^2 = 1,
+// of kCsgEps sum |a_i| of q = 0 or of kCsgEps x the sum of the box's extents
+// of a box face is on the boundary, which hides neither way. The same band
+// as r_inside's (CSG_EPS), wide enough for FP24's rounding of the hit point.
+constexpr double kCsgEps = 0x1p-10;
+
+double coefficient_margin(const Primitive& p) {
+  double sum = 0;
+  for (double a : p.coefficients) sum += std::abs(a);
+  return kCsgEps * sum;
+}
+
+double box_pad(const Primitive& p) {
+  glm::dvec3 e = p.box_max - p.box_min;
+  return kCsgEps * (e.x + e.y + e.z);
 }
 
 }  // namespace
@@ -153,21 +163,19 @@ double coefficient_scale(const Primitive& p) {
 bool strictly_inside(const Primitive& p, const glm::dvec3& x) {
   if (p.kind == PrimitiveKind::ellipsoid) {
     glm::dvec3 u = p.A * (x - p.centre);
-    return glm::dot(u, u) < 1.0 - 1e-9;
+    return glm::dot(u, u) < 1.0 - kCsgEps;
   }
   if (p.kind != PrimitiveKind::quadric) return false;
-  return in_box(p, x, -1e-9 * glm::length(p.box_max - p.box_min)) &&
-         quadric_value(p, x) < -1e-9 * coefficient_scale(p);
+  return in_box(p, x, -box_pad(p)) && quadric_value(p, x) < -coefficient_margin(p);
 }
 
 bool strictly_outside(const Primitive& p, const glm::dvec3& x) {
   if (p.kind == PrimitiveKind::ellipsoid) {
     glm::dvec3 u = p.A * (x - p.centre);
-    return glm::dot(u, u) > 1.0 + 1e-9;
+    return glm::dot(u, u) > 1.0 + kCsgEps;
   }
   if (p.kind != PrimitiveKind::quadric) return false;
-  return !in_box(p, x, 1e-9 * glm::length(p.box_max - p.box_min)) ||
-         quadric_value(p, x) > 1e-9 * coefficient_scale(p);
+  return !in_box(p, x, box_pad(p)) || quadric_value(p, x) > coefficient_margin(p);
 }
 
 }  // namespace mc1::refrender
