@@ -232,18 +232,39 @@ def check_fresh(mutants, commit):
             raise SystemExit(f"mutant {m['id']}: {where(m)} does not hold {m['old']!r}: the list is stale")
 
 
+def check_lines(mutants):
+    """--check: the list against the checkout's files (test mutants_list_current),
+    so that a change that moves a listed line says so in the default suite."""
+    stale = []
+    for m in mutants:
+        with open(os.path.join(REPO, m["file"]), "rb") as f:
+            lines = f.read().split(b"\n")
+        if m["line"] > len(lines) or m["old"].encode() not in lines[m["line"] - 1]:
+            found = [str(i + 1) for i, x in enumerate(lines) if m["old"].encode() in x]
+            stale.append(f"mutant {m['id']}: {where(m)} does not hold {m['old']!r}"
+                         + (f" (it is on line {', '.join(found)})" if found else " (not in the file)"))
+    for line in stale:
+        print(line, file=sys.stderr)
+    print(f"mutate: {len(mutants)} mutants, {len(stale)} stale")
+    return 1 if stale else 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--list-file", default=os.path.join(REPO, "tools", "mutants.txt"))
     ap.add_argument("--workdir", default="/tmp/mc1-mutate")
     ap.add_argument("--only", help="comma-separated mutant ids")
     ap.add_argument("--list", action="store_true", help="print the mutants and exit")
+    ap.add_argument("--check", action="store_true",
+                    help="check that every mutant's old text is on its line of the checkout, and exit")
     ap.add_argument("--full", action="store_true", help="also run the default suite")
     ap.add_argument("--json", help="write a JSON report here")
     a = ap.parse_args()
     mutants = select(parse_list(a.list_file), a.only)
     if a.list:
         return list_only(mutants)
+    if a.check:
+        return check_lines(mutants)
     commit = head_commit()
     check_fresh(mutants, commit)
     results = campaign(mutants, commit, a)
