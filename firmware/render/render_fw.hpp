@@ -336,6 +336,8 @@ class RenderFirmware {
   // The shadow lists of these (object, light) pairs that are not made yet,
   // in one r_slist stream (the MPU's conservative box test first).
   void ensure_shadow_lists(const std::vector<std::pair<int, int>>& pairs);
+  void run_slist(std::int64_t count, const std::function<std::array<int, 3>(int)>& pair_of,
+                 const std::function<void(int, int, int)>& found);
   std::vector<int> shadow_candidates(int object, int light, const Box& hits);
   std::vector<int> narrow_shadow_list(const std::vector<int>& candidates, int light, const Box& hits);
   struct ShadowGroups {

@@ -97,11 +97,21 @@ void RenderFirmware::ensure_shadow_lists(const std::vector<std::pair<int, int>>&
   cost(step).list_elements += looked;
   link_.list_elements(looked);
   if (items.empty()) return;
-  if (items.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    throw std::length_error("render: " + std::to_string(items.size()) + " shadow-list pairs: more than one stream takes");
-  ItemStream s{static_cast<int>(items.size()), S_PER_BATCH, S_ITEMS, S_SIZE, true};
+  run_slist(
+      static_cast<std::int64_t>(items.size()), [&](int k) { return items[static_cast<std::size_t>(k)]; },
+      [&](int a, int l, int b) { shadow_objects_[static_cast<std::size_t>(a) * nlights + l].push_back(b); });
+}
+
+// One r_slist stream over `count` items (A, L, B) = pair_of(k): found(A, L,
+// B) for each B that may block L for A's points, in item order.
+void RenderFirmware::run_slist(std::int64_t count, const std::function<std::array<int, 3>(int)>& pair_of,
+                               const std::function<void(int, int, int)>& found) {
+  constexpr Step step = Step::Shadows;
+  if (count > std::numeric_limits<int>::max())
+    throw std::length_error("render: " + std::to_string(count) + " shadow-list pairs: more than one stream takes");
+  ItemStream s{static_cast<int>(count), S_PER_BATCH, S_ITEMS, S_SIZE, true};
   s.put = [&](int k, std::uint16_t addr) {
-    const auto [a, l, b] = items[k];
+    const auto [a, l, b] = pair_of(k);
     std::array<std::uint32_t, S_IN> w{};
     std::copy(view_.objects[a].box.begin(), view_.objects[a].box.end(), w.begin() + S_A);
     std::copy(view_.lights[l].begin() + L_POS, view_.lights[l].begin() + L_POS + 3, w.begin() + S_L);
@@ -110,8 +120,8 @@ void RenderFirmware::ensure_shadow_lists(const std::vector<std::pair<int, int>>&
   };
   s.get = [&](int k, std::uint16_t addr) {
     if (read(static_cast<std::uint16_t>(addr + S_OUT), 1, step)[0]) {
-      const auto [a, l, b] = items[k];
-      shadow_objects_[static_cast<std::size_t>(a) * nlights + l].push_back(b);
+      const auto [a, l, b] = pair_of(k);
+      found(a, l, b);
     }
   };
   stream_items("r_slist", step, s);
@@ -120,34 +130,17 @@ void RenderFirmware::ensure_shadow_lists(const std::vector<std::pair<int, int>>&
 // The method before issue 39: r_slist over every (A, L, B), made one item at
 // a time.
 std::vector<std::vector<int>> RenderFirmware::exhaustive_shadow_lists() {
-  constexpr Step step = Step::Shadows;
   const int nlights = static_cast<int>(view_.lights.size());
   const std::vector<int>& holding = shadow_holding_;
   const std::int64_t per_l = static_cast<std::int64_t>(holding.size());
   const std::int64_t per_a = per_l * nlights;
-  const std::int64_t count = per_a * per_l;
-  if (count > std::numeric_limits<int>::max())
-    throw std::length_error("render: " + std::to_string(count) + " shadow-list pairs: more than one stream takes");
-  auto pair = [&](int k) {
-    return std::array<int, 3>{holding[k / per_a], static_cast<int>(k / per_l % nlights), holding[k % per_l]};
-  };
   std::vector<std::vector<int>> out(view_.objects.size() * static_cast<std::size_t>(nlights));
-  ItemStream s{static_cast<int>(count), S_PER_BATCH, S_ITEMS, S_SIZE, true};
-  s.put = [&](int k, std::uint16_t addr) {
-    const auto [a, l, b] = pair(k);
-    std::array<std::uint32_t, S_IN> w{};
-    std::copy(view_.objects[a].box.begin(), view_.objects[a].box.end(), w.begin() + S_A);
-    std::copy(view_.lights[l].begin() + L_POS, view_.lights[l].begin() + L_POS + 3, w.begin() + S_L);
-    std::copy(view_.objects[b].box.begin(), view_.objects[b].box.end(), w.begin() + S_B);
-    write(addr, w.data(), S_IN, step);
-  };
-  s.get = [&](int k, std::uint16_t addr) {
-    if (read(static_cast<std::uint16_t>(addr + S_OUT), 1, step)[0]) {
-      const auto [a, l, b] = pair(k);
-      out[static_cast<std::size_t>(a) * nlights + l].push_back(b);
-    }
-  };
-  stream_items("r_slist", step, s);
+  run_slist(
+      per_a * per_l,
+      [&](int k) {
+        return std::array<int, 3>{holding[k / per_a], static_cast<int>(k / per_l % nlights), holding[k % per_l]};
+      },
+      [&](int a, int l, int b) { out[static_cast<std::size_t>(a) * nlights + l].push_back(b); });
   return out;
 }
 
