@@ -317,9 +317,11 @@ void NodeComputer::mpu_is(MpuDoing d, Picos at, std::uint32_t copy_words) {
 }
 
 void NodeComputer::mpu_activity(std::uint16_t code, std::uint32_t detail) {
+  if (!mpu_.on()) return;  // not recorded: nothing reads it
   mpu_now_.code = code;
   mpu_now_.detail = detail;
-  mpu_is(mpu_now_.doing, now(), mpu_now_.words_left(now()));
+  const Picos t = now();
+  mpu_is(mpu_now_.doing, t, mpu_now_.words_left(t));
 }
 
 void NodeComputer::mpu_work(std::uint64_t cycles) { work(MpuDoing::Compute, cycles); }
@@ -331,8 +333,10 @@ void NodeComputer::mpu_work_as(Work kind, std::uint64_t cycles) {
 void NodeComputer::work(MpuDoing d, std::uint64_t cycles) {
   const Picos t = now();
   mark(Activity::Busy, t);
-  const std::uint64_t per_word = std::max<std::uint64_t>(1, t_.mpu_cycles_per_word_copy);
-  mpu_is(d, t, d == MpuDoing::Copy ? static_cast<std::uint32_t>(cycles / per_word) : 0);
+  if (mpu_.on()) {
+    const std::uint64_t per_word = std::max<std::uint64_t>(1, t_.mpu_cycles_per_word_copy);
+    mpu_is(d, t, d == MpuDoing::Copy ? static_cast<std::uint32_t>(cycles / per_word) : 0);
+  }
   const Picos ps = t_.mpu_cycles_ps(cycles);
   stats_.mpu_busy += ps;
   advance(ps, t);
