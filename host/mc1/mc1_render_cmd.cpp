@@ -25,6 +25,7 @@
 #include "refrender.hpp"
 #include "frame_profile.hpp"
 #include "frame_steps.hpp"
+#include "host_clock.hpp"
 #include "report_profile.hpp"
 #include "report_writers.hpp"
 #include "scene.hpp"
@@ -228,9 +229,9 @@ void print_summary(const RenderRun& run) {
   std::printf("mc1 render: %s, %u NCs (%s, %s), %ux%u pixels, %u blocks of %ux%u\n", r.scene.c_str(), r.nodes,
               engine.c_str(), r.schedule.c_str(), r.width, r.height, r.blocks, r.block_w, r.block_h);
   const Picos dl = milestone_time(r, "downloaded"), s1 = milestone_time(r, "step1");
-  std::printf("  simulated %s: download done %s (%s), step 1 done %s, block lists done %s; host %.2f s\n",
+  std::printf("  simulated %s: download done %s (%s), step 1 done %s, block lists done %s; host %.2f s (CPU %.2f s)\n",
               ms(T).c_str(), ms(dl).c_str(), pct(T ? static_cast<double>(dl) / T : 0).c_str(), ms(s1).c_str(),
-              ms(r.rc.lists_done).c_str(), r.host_seconds);
+              ms(r.rc.lists_done).c_str(), r.host_seconds, r.host_cpu_seconds);
   std::uint64_t retx = 0;
   for (const LineReport& l : r.hdlc.down) retx += l.retransmissions;
   for (const LineReport& l : r.hdlc.up) retx += l.retransmissions;
@@ -429,17 +430,26 @@ struct HostTimes {
 
 // The double-precision reference renderer's host times for the frame,
 // `runs` of them (at least three: it is short).
-HostTimes reference_host_times(const std::string& scene, std::pair<unsigned, unsigned> size, unsigned runs) {
+// A frame's runs in wall-clock time and in the process's CPU time.
+struct HostRuns {
+  HostTimes wall, cpu;
+  HostRuns() = default;
+  HostRuns(std::vector<double> w, std::vector<double> c) : wall(std::move(w)), cpu(std::move(c)) {}
+};
+
+HostRuns reference_host_times(const std::string& scene, std::pair<unsigned, unsigned> size, unsigned runs) {
   const scene::Scene sc = scene::load_scene(scene);
   const refrender::Renderer ref(sc);
-  std::vector<double> times;
+  std::vector<double> wall, cpu;
   for (unsigned i = 0; i < runs; ++i) {
     const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = process_cpu_seconds();
     const imgcmp::Image img = ref.render(static_cast<int>(size.first), static_cast<int>(size.second));
-    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    cpu.push_back(process_cpu_seconds() - c0);
+    wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     if (img.width != static_cast<int>(size.first)) throw std::runtime_error("reference renderer: wrong size");
   }
-  return HostTimes(std::move(times));
+  return HostRuns(std::move(wall), std::move(cpu));
 }
 
 void runs_json(std::ostream& json, const std::vector<BenchRun>& runs) {
@@ -450,7 +460,8 @@ void runs_json(std::ostream& json, const std::vector<BenchRun>& runs) {
          << "\", \"engine\": \"" << engine_name(b.engine) << "\", \"rtl_nodes\": [";
     for (std::size_t k = 0; k < b.rtl_nodes.size(); ++k) json << (k ? ", " : "") << b.rtl_nodes[k];
     json << "], \"simulated_time_s\": " << b.r.frame_time * 1e-12
-         << ", \"host_seconds\": " << b.r.host_seconds << ", \"apu_utilization\": " << apu_utilization_mean(b.r)
+         << ", \"host_seconds\": " << b.r.host_seconds << ", \"host_cpu_seconds\": " << b.r.host_cpu_seconds
+         << ", \"apu_utilization\": " << apu_utilization_mean(b.r)
          << ", \"download_done_s\": " << milestone_time(b.r, "downloaded") * 1e-12 << "}";
   }
 }
@@ -484,8 +495,8 @@ BenchOptions bench_options(const Parsed& a, SystemConfig& base) {
 class BenchRuns {
  public:
   BenchRuns(const SystemConfig& base, std::string scene) : base_(base), scene_(std::move(scene)) {
-    std::printf("%-26s %5s %9s %7s %13s %9s %9s %9s %8s\n", "run", "NCs", "size", "sched", "simulated", "APU util",
-                "download", "host", "frame");
+    std::printf("%-26s %5s %9s %7s %13s %9s %9s %9s %9s %8s\n", "run", "NCs", "size", "sched", "simulated",
+                "APU util", "download", "host", "CPU", "frame");
   }
 
   const FrameReport& run(const std::string& label, unsigned n, std::pair<unsigned, unsigned> wh, rc::Schedule s,
@@ -506,10 +517,10 @@ class BenchRuns {
       ok = it->second == b.r.rgb;
     same_ = same_ && ok;
     const Picos T = b.r.frame_time;
-    std::printf("%-26s %5u %4ux%-4u %7s %10.3f ms %9s %9s %7.2f s %8s\n", label.c_str(), n, wh.first, wh.second,
-                rc::schedule_name(s), T * 1e-9, pct(apu_utilization_mean(b.r)).c_str(),
+    std::printf("%-26s %5u %4ux%-4u %7s %10.3f ms %9s %9s %7.2f s %7.2f s %8s\n", label.c_str(), n, wh.first,
+                wh.second, rc::schedule_name(s), T * 1e-9, pct(apu_utilization_mean(b.r)).c_str(),
                 pct(T ? static_cast<double>(milestone_time(b.r, "downloaded")) / T : 0).c_str(), b.r.host_seconds,
-                ok ? "same" : "DIFFERS");
+                b.r.host_cpu_seconds, ok ? "same" : "DIFFERS");
     if (!b.r.timeouts.empty())
       std::printf("  (%zu deadlines missed: the timing table's rc_timeout_* figures are too short here)\n",
                   b.r.timeouts.size());
@@ -534,23 +545,26 @@ struct BenchTimes {
   std::map<unsigned, Picos> t_size;  // --size, lpt, per node count
   Picos lpt_ref = 0, static_ref = 0;  // --size on --static-nodes
   Picos big1 = 0, bign = 0, bigs = 0, big_dl = 0;  // --big on 1 and --big-nodes NCs, static; the download
-  HostTimes rtl, iss, ref;
-  HostTimes rtl1;  // the RTL core on NC 1 only, the ISS on the others
+  HostRuns rtl, iss, ref;
+  HostRuns rtl1;  // the RTL core on NC 1 only, the ISS on the others
 };
 
 // The host times of --repeat runs of --size on --static-nodes NCs (lpt) on
 // `engine` (and the RTL engine on `rtl_nodes`): the benchmark's runs of that
 // frame so far, and as many more as it takes.
-HostTimes host_times(BenchRuns& b, const BenchOptions& o, EngineKind engine, const std::string& label,
-                     const std::vector<unsigned>& rtl_nodes = {}) {
-  std::vector<double> times;
+HostRuns host_times(BenchRuns& b, const BenchOptions& o, EngineKind engine, const std::string& label,
+                    const std::vector<unsigned>& rtl_nodes = {}) {
+  std::vector<double> wall, cpu;
+  const auto add = [&](const FrameReport& r) {
+    wall.push_back(r.host_seconds);
+    cpu.push_back(r.host_cpu_seconds);
+  };
   for (const BenchRun& r : b.runs())
     if (r.engine == engine && r.rtl_nodes == rtl_nodes && r.nodes == o.static_nodes &&
         r.schedule == rc::Schedule::Lpt && r.width == o.size.first && r.height == o.size.second)
-      times.push_back(r.r.host_seconds);
-  while (times.size() < o.repeat)
-    times.push_back(b.run(label, o.static_nodes, o.size, rc::Schedule::Lpt, engine, rtl_nodes).host_seconds);
-  return HostTimes(std::move(times));
+      add(r.r);
+  while (wall.size() < o.repeat) add(b.run(label, o.static_nodes, o.size, rc::Schedule::Lpt, engine, rtl_nodes));
+  return HostRuns(std::move(wall), std::move(cpu));
 }
 
 BenchTimes run_bench(BenchRuns& b, const BenchOptions& o) {
@@ -625,34 +639,42 @@ void host_times_json(std::ostream& json, const char* key, const HostTimes& h) {
        << "_worst\": " << h.worst;
 }
 
+// One compared frame's line: its best run over the other's (wall clock and
+// CPU time), then each frame's runs, so that a host whose load moved them
+// shows it. Returns the larger spread of the two frames' runs.
+double compare_line(std::ostream& json, const char* what, const char* key, const HostRuns& a, const char* a_key,
+                    const HostRuns& b, const char* b_key) {
+  const double wall = b.wall.best > 0 ? a.wall.best / b.wall.best : 0;
+  const double cpu = b.cpu.best > 0 ? a.cpu.best / b.cpu.best : 0;
+  const double medians = b.wall.median > 0 ? a.wall.median / b.wall.median : 0;
+  std::printf("%s: %.3f s over %.3f s wall: %.1fx; CPU %.3f s over %.3f s: %.1fx (best of %u, %u)\n", what,
+              a.wall.best, b.wall.best, wall, a.cpu.best, b.cpu.best, cpu, a.wall.runs, b.wall.runs);
+  std::printf("  runs, wall: %s over %s: %.1fx of the medians; CPU: %s over %s\n", runs_text(a.wall, 3).c_str(),
+              runs_text(b.wall, 3).c_str(), medians, runs_text(a.cpu, 3).c_str(), runs_text(b.cpu, 3).c_str());
+  for (const auto& [k, h] : {std::pair<const char*, const HostRuns*>{a_key, &a}, {b_key, &b}}) {
+    if (!k) continue;
+    host_times_json(json, (std::string(k) + "_host_seconds").c_str(), h->wall);
+    host_times_json(json, (std::string(k) + "_cpu_seconds").c_str(), h->cpu);
+  }
+  json << ", \"" << key << "\": " << wall << ", \"" << key << "_median\": " << medians << ", \"" << key
+       << "_cpu\": " << cpu;
+  return std::max({a.wall.spread(), b.wall.spread(), a.cpu.spread(), b.cpu.spread()});
+}
+
 // The host time of the co-simulation over the reference renderer's, and of
-// the RTL engine over the ISS: the best runs' ratios, then each frame's
-// runs, so that a host whose load moved them shows it.
+// the RTL engine over the ISS.
 void host_summary(std::ostream& json, const BenchOptions& o, const BenchTimes& t) {
-  const double over_ref = t.ref.best > 0 ? t.iss.best / t.ref.best : 0;
-  const double medians = t.ref.median > 0 ? t.iss.median / t.ref.median : 0;
-  std::printf("%ux%u on %u NCs: co-simulation (ISS) host %.2f s, reference renderer %.3f s (best of %u, %u): %.1fx\n",
-              o.size.first, o.size.second, o.static_nodes, t.iss.best, t.ref.best, t.iss.runs, t.ref.runs, over_ref);
-  std::printf("  runs: co-simulation %s, reference %s: %.1fx of the medians\n", runs_text(t.iss, 2).c_str(),
-              runs_text(t.ref, 3).c_str(), medians);
   json << ", \"repeat\": " << o.repeat;
-  host_times_json(json, "cosim_host_seconds", t.iss);
-  host_times_json(json, "reference_host_seconds", t.ref);
-  json << ", \"cosim_over_reference\": " << over_ref << ", \"cosim_over_reference_median\": " << medians;
-  double spread = std::max(t.iss.spread(), t.ref.spread());
+  char what[160];
+  std::snprintf(what, sizeof what, "%ux%u on %u NCs: co-simulation (ISS) over the reference renderer", o.size.first,
+                o.size.second, o.static_nodes);
+  double spread = compare_line(json, what, "cosim_over_reference", t.iss, "cosim", t.ref, "reference");
   if (o.rtl) {
-    const double rtl_over_iss = t.iss.best > 0 ? t.rtl.best / t.iss.best : 0;
-    const double rtl1_over_iss = t.iss.best > 0 ? t.rtl1.best / t.iss.best : 0;
-    std::printf("RTL engine, %u NCs: host %.1f s, %.1fx the ISS's\n", o.static_nodes, t.rtl.best, rtl_over_iss);
-    std::printf("  runs: %s\n", runs_text(t.rtl, 1).c_str());
-    std::printf("RTL core on NC 1 only (--rtl-nodes 1), the ISS on the other %u: host %.2f s, %.1fx the ISS's\n",
-                o.static_nodes - 1, t.rtl1.best, rtl1_over_iss);
-    std::printf("  runs: %s\n", runs_text(t.rtl1, 2).c_str());
-    host_times_json(json, "rtl_host_seconds", t.rtl);
-    json << ", \"rtl_over_iss\": " << rtl_over_iss;
-    host_times_json(json, "rtl_nc1_host_seconds", t.rtl1);
-    json << ", \"rtl_nc1_over_iss\": " << rtl1_over_iss;
-    spread = std::max({spread, t.rtl.spread(), t.rtl1.spread()});
+    std::snprintf(what, sizeof what, "RTL engine, %u NCs, over the ISS", o.static_nodes);
+    spread = std::max(spread, compare_line(json, what, "rtl_over_iss", t.rtl, "rtl", t.iss, nullptr));
+    std::snprintf(what, sizeof what, "RTL core on NC 1 only (--rtl-nodes 1), the ISS on the other %u, over the ISS",
+                  o.static_nodes - 1);
+    spread = std::max(spread, compare_line(json, what, "rtl_nc1_over_iss", t.rtl1, "rtl_nc1", t.iss, nullptr));
   }
   // A quiet host repeats a frame within a few per cent.
   if (spread > 0.2)

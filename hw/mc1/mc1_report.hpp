@@ -106,7 +106,8 @@ struct FrameReport {
   std::vector<rc::BlockListMsg> block_lists;  // step 2's block lists by block id (rendered frame)
   Picos frame_time = 0;
   Picos apu_cycle_ps = 0;  // from the timing table
-  double host_seconds = 0;
+  double host_seconds = 0;      // wall clock of the simulation
+  double host_cpu_seconds = 0;  // the process's CPU time over it, every thread's
   std::vector<NcReport> ncs;
   HdlcReport hdlc;
   BusReport bus;

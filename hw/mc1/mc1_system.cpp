@@ -6,6 +6,7 @@
 #include <tlm_utils/tlm_quantumkeeper.h>
 
 #include "apu_iss.hpp"
+#include "host_clock.hpp"
 #include "rc_protocol.hpp"
 #include "sc_kernel.hpp"
 #include "sc_time_conv.hpp"
@@ -253,11 +254,12 @@ BusReport bus_report(const ImageBus& bus, const ImageBusMonitor& monitor) {
 
 }  // namespace
 
-FrameReport Mc1System::report(double host_seconds) {
+FrameReport Mc1System::report(double host_seconds, double host_cpu_seconds) {
   FrameReport r;
   config_into(r, cfg_);
   r.blocks = static_cast<unsigned>(rc_->schedule().size());
   r.host_seconds = host_seconds;
+  r.host_cpu_seconds = host_cpu_seconds;
 
   // The frame ends when the RC has every block back and every live NC is
   // told (an NC that never asked: taken as dead, docs/platform.md).
@@ -330,6 +332,7 @@ FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_pa
     sys->trace(tf);
   }
   const auto t0 = std::chrono::steady_clock::now();
+  const double cpu0 = process_cpu_seconds();
   try {
     sc_run();
   } catch (const sc_core::sc_report& e) {  // a model's error: its words and time, not SystemC's source line
@@ -339,11 +342,12 @@ FrameReport run_system(std::unique_ptr<Mc1System> sys, const std::string& vcd_pa
     throw std::runtime_error(e.what() + nc_faults(*sys));
   }
   const double host = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double cpu = process_cpu_seconds() - cpu0;
   if (tf) sc_core::sc_close_vcd_trace_file(tf);
   if (!sys->rc().done())
     throw std::runtime_error("the simulation stopped before the frame was complete: " + sys->rc().status() +
                              " (see the SystemC report above, if any)" + nc_faults(*sys));
-  return sys->report(host);
+  return sys->report(host, cpu);
 }
 
 }  // namespace

@@ -99,7 +99,7 @@ class Mc1System : public sc_core::sc_module {
   void trace(sc_core::sc_trace_file* tf);
 
   // After sc_start(): closes every NC's timeline at the frame's end.
-  FrameReport report(double host_seconds);
+  FrameReport report(double host_seconds, double host_cpu_seconds);
 
  private:
   SystemConfig cfg_;

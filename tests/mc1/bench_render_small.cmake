@@ -5,7 +5,7 @@
 # speedup run, the static split, the compared frame's runs:
 # the speedup run counts as the first ISS one, so one more "lpt", two "RTL
 # engine", two "RTL core on NC 1" with rtl_nodes [1]), each with a positive
-# simulated time and host time; the same simulated time for every run of
+# simulated time, host time and CPU time; the same simulated time for every run of
 # the compared frame (lpt on 2 NCs) whatever the engine; positive host-time
 # ratios (no speed asserted).
 #   cmake -DMC1=<mc1> -DSCENE=<tiny.json> -DWORK_DIR=<dir> -P bench_render_small.cmake
@@ -43,12 +43,13 @@ foreach(i RANGE ${last})
   string(JSON rtl_nodes LENGTH "${json}" runs ${i} rtl_nodes)
   string(JSON sim GET "${json}" runs ${i} simulated_time_s)
   string(JSON host GET "${json}" runs ${i} host_seconds)
+  string(JSON cpu GET "${json}" runs ${i} host_cpu_seconds)
   list(GET want ${i} w)
   if(NOT "${label} ${nodes} ${engine} ${rtl_nodes}" STREQUAL w)
     message(SEND_ERROR "run ${i}: ${label} ${nodes} ${engine} rtl_nodes ${rtl_nodes} (${w} wanted)")
   endif()
-  if(NOT sim GREATER 0 OR NOT host GREATER 0)
-    message(SEND_ERROR "run ${i} (${label}): simulated ${sim} s, host ${host} s (both > 0 wanted)")
+  if(NOT sim GREATER 0 OR NOT host GREATER 0 OR NOT cpu GREATER 0)
+    message(SEND_ERROR "run ${i} (${label}): simulated ${sim} s, host ${host} s, CPU ${cpu} s (all > 0 wanted)")
   endif()
   if(NOT label STREQUAL "static split")  # the compared frame: lpt on 2 NCs
     if(compared_time STREQUAL "")
@@ -59,7 +60,8 @@ foreach(i RANGE ${last})
   endif()
 endforeach()
 
-foreach(key cosim_over_reference rtl_over_iss rtl_nc1_over_iss lpt_over_static)
+foreach(key cosim_over_reference cosim_over_reference_cpu rtl_over_iss rtl_over_iss_cpu rtl_nc1_over_iss
+            rtl_nc1_over_iss_cpu lpt_over_static cosim_cpu_seconds reference_cpu_seconds rtl_cpu_seconds)
   string(JSON v GET "${json}" ${key})
   if(NOT v GREATER 0)
     message(SEND_ERROR "${key}: ${v} (> 0 wanted)")
