@@ -3,7 +3,9 @@
 // time, and both APU engines compute a diag block alike.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <memory>
+#include <thread>
 
 #include "apu_iss.hpp"
 #include "apuasm.hpp"
@@ -291,3 +293,42 @@ TEST(NcEngines, IssAndRtlComputeADiagBlockAlike) {
 }
 
 MC1_SYSTEMC_GTEST_MAIN()
+
+// The default host thread count (ApuPool::default_threads): the host's idle
+// cores now, at least 1, at most the CPUs the process may use.
+TEST(ApuPoolThreads, CountsTheIdleCores) {
+  EXPECT_EQ(nc::ApuPool::threads_for(2, 0.0), 2u);
+  EXPECT_EQ(nc::ApuPool::threads_for(2, 0.2), 2u);  // a core busy now and then is idle
+  EXPECT_EQ(nc::ApuPool::threads_for(2, 0.3), 1u);  // busy over a quarter of the time: not
+  EXPECT_EQ(nc::ApuPool::threads_for(2, 1.0), 1u);  // one other busy process: one thread
+  EXPECT_EQ(nc::ApuPool::threads_for(2, 7.0), 1u);  // never fewer than one
+  EXPECT_EQ(nc::ApuPool::threads_for(8, 2.0), 6u);
+  EXPECT_EQ(nc::ApuPool::threads_for(1, 0.0), 1u);
+  EXPECT_EQ(nc::ApuPool::threads_for(4, -1.0), 4u);  // no load figure: every core
+}
+
+TEST(ApuPoolThreads, DefaultIsWithinTheUsableCpus) {
+  const unsigned cpus = nc::ApuPool::usable_cpus();
+  ASSERT_GE(cpus, 1u);
+  const unsigned n = nc::ApuPool::default_threads();
+  EXPECT_GE(n, 1u);
+  EXPECT_LE(n, cpus);
+}
+
+// A thread that is always runnable is seen as busy (each read of
+// /proc/loadavg counts it), so it takes a core from the default.
+TEST(ApuPoolThreads, ABusyThreadIsCountedAsRunnable) {
+  ASSERT_GE(nc::ApuPool::other_runnable(), 0.0) << "/proc/loadavg unreadable";
+  std::atomic<bool> stop{false};
+  std::atomic<bool> started{false};
+  std::thread spinner([&] {
+    started = true;
+    while (!stop.load(std::memory_order_relaxed)) {
+    }
+  });
+  while (!started) std::this_thread::yield();
+  const double others = nc::ApuPool::other_runnable();
+  stop = true;
+  spinner.join();
+  EXPECT_GE(others, 1.0);
+}

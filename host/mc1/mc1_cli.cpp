@@ -201,7 +201,7 @@ void add_report_options(CLI::App& cmd) {
 
 void add_threads_option(CLI::App& cmd) {
   value_option(cmd, "threads", "N",
-               "host threads clocking the NCs' APUs, 1..1024 (default: the machine's cores); the frame, the "
+               "host threads clocking the NCs' APUs, 1..1024 (default: the host's idle cores now, at least 1); the frame, the "
                "statistics and every simulated time are the same for any N");
 }
 

@@ -24,6 +24,7 @@
 #include "png_writer.hpp"
 #include "refrender.hpp"
 #include "frame_profile.hpp"
+#include "apu_pool.hpp"
 #include "frame_steps.hpp"
 #include "host_clock.hpp"
 #include "report_profile.hpp"
@@ -690,13 +691,16 @@ int cmd_bench_render(const CLI::App& cmd) {
   apply_params(cmd, base.timing);
   const Parsed a(cmd);
   threads_option(a, base);
+  const bool told = base.threads != 0;
+  if (!told) base.threads = nc::ApuPool::default_threads();  // one count for every run, chosen now
+  std::printf("host threads: %u (%s)\n", base.threads, told ? "--threads" : "the host's idle cores now");
   const BenchOptions o = bench_options(a, base);
   BenchRuns bench(base, o.scene);
   BenchTimes t = run_bench(bench, o);
 
   std::ostringstream json;
   json << "{\"schema\": \"mc1-bench-render/1\", \"scene\": " << mc1::json::quote(o.scene)
-       << ", \"block\": " << base.block_w << ", \"runs\": [";
+       << ", \"block\": " << base.block_w << ", \"threads\": " << base.threads << ", \"runs\": [";
   runs_json(json, bench.runs());
   speedup_summary(json, o, t);
   efficiency_summary(json, o, t);

@@ -314,6 +314,7 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
   SystemConfig base = machine_config();
   apply_params(cmd, base.timing);
   threads_option(a, base);
+  if (!base.threads) base.threads = nc::ApuPool::default_threads();  // one count for every point, chosen now
   const Grid g = read_grid(a, cmd);
   std::uint64_t k = 1, n = 1;
   if (a.has("shard")) std::tie(k, n) = shard::parse_shard("--shard", a.get("shard"));
@@ -347,7 +348,7 @@ int run_sweep(const CLI::App& cmd, const Parsed& a) {
   std::ostringstream j;
   j << "{\n  \"schema\": \"mc1-sweep/1\",\n  \"grid\": " << grid_json(g, base.timing)
     << ",\n  \"points_total\": " << g.points() << ",\n  \"shard\": \"" << k << "/" << n << "\",\n  \"threads\": "
-    << (base.threads ? base.threads : nc::ApuPool::default_threads()) << ",\n  \"wall_seconds\": " << num(wall)
+    << base.threads << ",\n  \"wall_seconds\": " << num(wall)
     << ",\n  \"points\": [\n"
     << points.str() << (end > first ? "\n" : "") << "  ],\n  \"passed\": " << (passed ? "true" : "false") << "\n}\n";
   if (a.has("json")) out.add(a.get("json"), j.str());

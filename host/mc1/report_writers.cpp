@@ -82,6 +82,7 @@ void host_json(std::ostream& o, const FrameReport& r) {
     apu_cycles += n.apu_cycles;
   }
   o << "  \"host\": {\"seconds\": " << num(r.host_seconds) << ", \"cpu_seconds\": " << num(r.host_cpu_seconds)
+    << ", \"threads\": " << r.host_threads
     << ", \"apu_engine_seconds\": " << num(apu_host)
     << ", \"apu_engine_share\": " << num(r.host_seconds > 0 ? apu_host / r.host_seconds : 0)
     << ", \"apu_cycles\": " << apu_cycles << "},\n";

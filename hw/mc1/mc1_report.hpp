@@ -108,6 +108,7 @@ struct FrameReport {
   Picos apu_cycle_ps = 0;  // from the timing table
   double host_seconds = 0;      // wall clock of the simulation
   double host_cpu_seconds = 0;  // the process's CPU time over it, every thread's
+  unsigned host_threads = 0;    // the host threads that clocked the APUs (SystemConfig::threads, or the default)
   std::vector<NcReport> ncs;
   HdlcReport hdlc;
   BusReport bus;

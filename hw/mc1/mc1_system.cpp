@@ -260,6 +260,7 @@ FrameReport Mc1System::report(double host_seconds, double host_cpu_seconds) {
   r.blocks = static_cast<unsigned>(rc_->schedule().size());
   r.host_seconds = host_seconds;
   r.host_cpu_seconds = host_cpu_seconds;
+  r.host_threads = pool_->threads();
 
   // The frame ends when the RC has every block back and every live NC is
   // told (an NC that never asked: taken as dead, docs/platform.md).

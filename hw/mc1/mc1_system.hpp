@@ -75,8 +75,9 @@ struct SystemConfig {
   // Called with every NC once it is built, before the frame runs (a stall
   // profile or a waveform's kernel names attach to its APU driver here).
   std::function<void(nc::NodeComputer&)> attach;
-  // Host threads clocking the NCs' APUs (nc::ApuPool); 0: the machine's
-  // cores. No simulated figure depends on it.
+  // Host threads clocking the NCs' APUs (nc::ApuPool); 0: the host's idle
+  // cores when the machine is built (nc::ApuPool::default_threads). No
+  // simulated figure depends on it.
   unsigned threads = 0;
   TimingParams timing;
 };

@@ -1,6 +1,11 @@
 #include "apu_pool.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -106,9 +111,42 @@ void ApuPool::stop_workers() {
   workers_.clear();
 }
 
-unsigned ApuPool::default_threads() {
+unsigned ApuPool::usable_cpus() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return static_cast<unsigned>(CPU_COUNT(&set));
   const unsigned n = std::thread::hardware_concurrency();
   return n ? n : 1;
+}
+
+double ApuPool::other_runnable() {
+  constexpr int kSamples = 5;
+  double sum = 0;
+  int got = 0;
+  for (int i = 0; i < kSamples; ++i) {
+    if (i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    std::ifstream in("/proc/loadavg");
+    double l1, l5, l15;
+    unsigned runnable = 0, tasks = 0;
+    char slash = 0;
+    if (in >> l1 >> l5 >> l15 >> runnable >> slash >> tasks && slash == '/' && runnable >= 1) {
+      sum += runnable - 1;  // this thread, reading, is one of them
+      ++got;
+    }
+  }
+  return got ? sum / got : -1;
+}
+
+unsigned ApuPool::threads_for(unsigned cpus, double others) {
+  if (cpus <= 1) return 1;
+  if (others < 0) return cpus;  // no load figure: every core
+  const double idle = static_cast<double>(cpus) - others;
+  return static_cast<unsigned>(std::clamp(std::floor(idle + 0.25), 1.0, static_cast<double>(cpus)));
+}
+
+unsigned ApuPool::default_threads() {
+  const unsigned cpus = usable_cpus();
+  return cpus <= 1 ? 1 : threads_for(cpus, other_runnable());
 }
 
 std::shared_ptr<ApuJob> ApuPool::post(ApuJob::Stretch stretch) {

@@ -89,8 +89,24 @@ class ApuPool {
   unsigned threads() const { return threads_; }
   std::shared_ptr<ApuJob> post(ApuJob::Stretch stretch);
 
-  // The host's cores (at least 1).
+  // The host threads a frame takes when not told (--threads): as many as
+  // the host has idle cores now, at least 1. A second thread pays only
+  // with a core of its own: on a 2-core host with one other busy process
+  // two threads took 1.4x the wall time of one (docs/platform.md "Host
+  // threads"). It is threads_for(usable_cpus(), other_runnable()).
   static unsigned default_threads();
+  // The CPUs this process may run on (its affinity mask; at least 1).
+  static unsigned usable_cpus();
+  // The host's other runnable threads now: /proc/loadavg's count of
+  // runnable tasks less the reading thread, the mean of 5 reads 1 ms
+  // apart (about 5 ms); -1 if it cannot be read. An instant figure, not
+  // the load average, which still counts a job that ended a minute ago
+  // (this process's own last frame among them).
+  static double other_runnable();
+  // `cpus` CPUs with `others` of them busy (-1: unknown, all idle):
+  // floor(cpus - others + 1/4), within 1..cpus, so that a core busy a
+  // quarter of the time or more is not counted as idle.
+  static unsigned threads_for(unsigned cpus, double others);
 
  private:
   friend class ApuJob;
