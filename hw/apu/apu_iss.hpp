@@ -53,7 +53,9 @@ struct alignas(64) DecodedWord {  // one cache line: a shift indexes the bank
   // a JMP's target, in the bank) with no fetch miss: run() clocks its
   // cycles whole (Iss::plain_cycle).
   std::uint16_t next = 0;
-  bool plain = false;
+  // run()'s body from this address: an index into Iss::BodyBank::bodies, or
+  // Iss::kBodyUnknown / kNoBody (found in the line the word is read from).
+  std::int16_t body = -1;
   std::uint64_t src = 0;     // F registers read (raw)
   std::uint64_t hazard = 0;  // src | the F registers written: a word touching none in flight cannot stall on raw/waw
   // Each F write (waw): a write with latency L must land after every write
@@ -68,6 +70,7 @@ struct alignas(64) DecodedWord {  // one cache line: a shift indexes the bank
   // F and D slots (its shape, an index into Iss's table), so that a cycle
   // tests none of them.
   std::uint8_t shape = 0;
+  bool plain = false;
 
   // The word at program address addr.
   static DecodedWord from(const Encoded& e, std::uint32_t addr);
@@ -167,9 +170,9 @@ class Iss final : public ApuEngine {
   Stall stall_reason(const DecodedWord& dw) const;
   // The sequencer's next PC (1024 when it would run off the bank) and the
   // fault, if any, that keeps the word from issuing.
-  std::uint32_t next_pc(const DecodedWord& dw) const;
+  std::uint32_t next_pc(const SeqSlot& s) const;
   // Whether `next` is not the word the sequencer fetched behind this one.
-  bool fetch_missed(const DecodedWord& dw, std::uint32_t next) const;
+  bool fetch_missed(const SeqSlot& s, std::uint32_t next) const;
   Fault check_fault(const DecodedWord& dw, std::uint32_t next) const;
   // kShape: the word's slots as DecodedWord::shape, or kAnyShape
   // (read from the word). kPlain: the word is plain (DecodedWord::plain):
@@ -208,46 +211,59 @@ class Iss final : public ApuEngine {
   // the body, or a prefix of it; any other goes cycle by cycle. A write
   // that lands within the body goes straight to the state (no bucket, no
   // scoreboard); one that lands after it goes to the ring as on any cycle.
+  // A body's hot data is compact and its own: run_body reads one Body (a
+  // cache line) and its words, each with a copy of what its issue reads (no
+  // DecodedWord); the bounds only when a write they bound is in flight, the
+  // per-word counts only for a prefix.
   struct BodyWord {
+    MicroWord w;
     std::uint16_t pc;        // in the body's bank
     std::uint16_t t;         // issue cycle, from the body's first
     std::uint16_t land;      // t + the longest latency of its FP writes and CC (t + 1 without)
-    std::uint8_t shape;
+    std::uint8_t shape, kind, lat_a, lat_f;  // as DecodedWord's
     std::uint8_t branch;     // the body's last word is a conditional branch (not plain)
-    std::uint32_t raw, waw, cc;  // the body's stall cycles up to this word, by reason
-    std::uint32_t ops[3];    // the body's unit ops up to this word (this one's included)
+  };
+  struct BodyCounts {        // the body's stall cycles by reason and unit ops up to a word (its own included)
+    std::uint32_t raw = 0, waw = 0, cc = 0, ops[3] = {0, 0, 0};
   };
   struct MemCheck {  // the LD/ST of a body on one base register: its least and greatest displacement
     std::uint8_t base;
     std::int8_t lo, hi;
   };
-  struct Body {
+  struct alignas(64) Body {
     std::uint64_t early = 0;                 // the registers with a bound below kMaxLatency - 1
-    std::uint32_t first = 0, n = 0;          // words in BodyBank::words
+    std::uint32_t first = 0, n = 0;          // words in BodyBank::words (and counts)
     std::uint32_t direct = 0;                // the words before this one land every write within the body
     std::uint32_t cycles = 0;                // its cycles (from its first to its last word's issue)
+    std::uint32_t next = 0;                  // the pc after it when its last word is not a branch
     std::uint32_t mem_first = 0, nmem = 0;   // data addresses in BodyBank::mem
     std::uint64_t cc_at = ~std::uint64_t{0}; // the issue cycle of its BCC/BNCC (no CMP of before may be in flight)
-    std::array<std::uint8_t, kNumFRegs> bound{};
+    BodyCounts total;                        // the counts of its last word
   };
-  static constexpr std::int32_t kBodyUnknown = -1, kNoBody = -2;
+  static constexpr std::int16_t kBodyUnknown = -1, kNoBody = -2;
   static constexpr int kMaxBodyWords = 48;
   struct BodyBank {
-    std::vector<std::int32_t> at;  // by address: an index into bodies, or kBodyUnknown / kNoBody
+    std::vector<std::uint16_t> heads;  // the addresses whose DecodedWord::body is known
     std::vector<Body> bodies;
+    std::vector<std::array<std::uint8_t, kNumFRegs>> bounds;  // by body
     std::vector<BodyWord> words;
+    std::vector<BodyCounts> counts;  // by word
     std::vector<MemCheck> mem;
     bool stale = true;
   };
   struct BodySchedule;
   std::uint64_t run_body(std::uint64_t avail);
-  bool body_may_start(const BodyBank& bb, const Body& body, std::uint64_t e) const;
-  void body_branch(const BodyWord& w, const DecodedWord& dw, std::uint64_t e, std::uint64_t end);
-  std::int32_t build_body(int bank, std::uint32_t pc);
+  void renew_bodies(int bank);
+  bool body_may_start(const BodyBank& bb, std::size_t index, std::uint64_t e) const;
+  void body_branch(const BodyWord& w, std::uint64_t e, std::uint64_t end);
+  std::int16_t build_body(int bank, std::uint32_t pc);
   static void add_mem_check(BodyBank& bb, const Body& body, const DecodedWord& dw);
-  using BodyIssue = void (*)(Iss&, const DecodedWord&, std::uint64_t);
+  // One body at pc_, or its prefix within avail cycles; adds its counts to
+  // the given ones instead of counters_. Returns its cycles, 0 if none.
+  std::uint64_t one_body(std::uint64_t avail, BodyCounts& sum, std::uint64_t& issued);
+  using BodyIssue = void (*)(Iss&, const BodyWord&, std::uint64_t);
   template <int kShape, bool kTail>
-  static void body_issue(Iss& iss, const DecodedWord& dw, std::uint64_t end);
+  static void body_issue(Iss& iss, const BodyWord& dw, std::uint64_t end);
   template <bool kTail>
   void body_write(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags,
                   std::uint64_t end);
@@ -266,7 +282,7 @@ class Iss final : public ApuEngine {
   void int_op(const DecodedWord& dw);
   // The I slot's A register result (its reads see the state before the
   // word's writes); false if it writes no A register.
-  bool int_value(const DecodedWord& dw, std::uint16_t& value) const;
+  bool int_value(const IntSlot& i, std::uint16_t& value) const;
   void seq_op(const DecodedWord& dw);
   // An F write and the flags of the op that makes it; pending: the
   // scoreboard before the word. Returns the register's scoreboard bit.

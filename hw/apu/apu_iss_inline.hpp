@@ -150,8 +150,7 @@ MC1_HOT Stall Iss::stall_reason(const DecodedWord& dw) const {
   return Stall::None;
 }
 
-MC1_HOT std::uint32_t Iss::next_pc(const DecodedWord& dw) const {
-  const SeqSlot& s = dw.w.s;
+MC1_HOT std::uint32_t Iss::next_pc(const SeqSlot& s) const {
   const std::uint32_t fall = pc_ + 1u;
   if (s.op == SeqOp::Next) return fall;
   const std::uint16_t ar = a_[s.r & 15];
@@ -175,8 +174,7 @@ MC1_HOT std::uint32_t Iss::next_pc(const DecodedWord& dw) const {
 // (docs/apu-isa.md "Timing"): JMP, CALL and RET exactly, a conditional branch
 // as taken iff its target is not after it; a SWAPP's next word only once it
 // has issued (from the new bank). Any other next word costs kBranchMissCycles.
-MC1_HOT bool Iss::fetch_missed(const DecodedWord& dw, std::uint32_t next) const {
-  const SeqSlot& s = dw.w.s;
+MC1_HOT bool Iss::fetch_missed(const SeqSlot& s, std::uint32_t next) const {
   if (s.op == SeqOp::Swapp) return true;
   const std::uint32_t predicted = s.target <= pc_ ? s.target : pc_ + 1u;
   return next != predicted;
@@ -292,7 +290,7 @@ MC1_HOT void Iss::issue(const DecodedWord& dw, std::uint32_t next, CycleRecord* 
     set |= push_f<kEarly>(kSlotMov, kLoadLatency, w.i.d, v, 0, pending);
   }
   pending_ = pending | set;
-  if (!kPlain && (dw.kind & DecodedWord::kRefetch) && fetch_missed(dw, next)) fetching_ = kBranchMissCycles;
+  if (!kPlain && (dw.kind & DecodedWord::kRefetch) && fetch_missed(dw.w.s, next)) fetching_ = kBranchMissCycles;
   pc_ = static_cast<std::uint16_t>(next);
   counters_.unit_ops[0] += m_en;
   counters_.unit_ops[1] += a_en;
@@ -316,8 +314,7 @@ bool Iss::plain_cycle(Iss& iss, const DecodedWord& dw) {
   return true;
 }
 
-MC1_HOT bool Iss::int_value(const DecodedWord& dw, std::uint16_t& v) const {
-  const IntSlot& i = dw.w.i;
+MC1_HOT bool Iss::int_value(const IntSlot& i, std::uint16_t& v) const {
   const std::uint32_t s = a_[i.s], t = a_[i.t], imm = i.imm;
   switch (i.op) {
     case IntOp::Li: v = static_cast<std::uint16_t>(imm); return true;
@@ -339,7 +336,7 @@ MC1_HOT bool Iss::int_value(const DecodedWord& dw, std::uint16_t& v) const {
 // The I slot (its reads see the state before the word's writes).
 MC1_HOT void Iss::int_op(const DecodedWord& dw) {
   std::uint16_t v;
-  if (int_value(dw, v)) push_a(kSlotI, kIntLatency, dw.w.i.d & 15, v);
+  if (int_value(dw.w.i, v)) push_a(kSlotI, kIntLatency, dw.w.i.d & 15, v);
 }
 
 // The sequencer's effects beyond the next pc.
@@ -382,7 +379,7 @@ MC1_HOT Stall Iss::execute(CycleRecord* rec) {
     if constexpr (kRecord) rec->stall = s;
     return s;
   }
-  const std::uint32_t next = next_pc(dw);
+  const std::uint32_t next = next_pc(dw.w.s);
   // Most words can fault only on their data address, if at all.
   Fault f = Fault::None;
   if (__builtin_expect((dw.kind & (DecodedWord::kReserved | DecodedWord::kStack)) || next >= kProgramWords, 0))

@@ -120,14 +120,18 @@ void Iss::add_mem_check(BodyBank& bb, const Body& body, const DecodedWord& dw) {
 // kMaxBodyWords words, or before a LD/ST whose base register an earlier
 // word of it writes (so that its data addresses are known, and checked,
 // when it starts).
-std::int32_t Iss::build_body(int bank, std::uint32_t pc) {
+std::int16_t Iss::build_body(int bank, std::uint32_t pc) {
   BodyBank& bb = body_[bank];
+  DecodedWord& head = decoded_[bank][pc];
+  bb.heads.push_back(static_cast<std::uint16_t>(pc));
   Body body;
   body.first = static_cast<std::uint32_t>(bb.words.size());
   body.mem_first = static_cast<std::uint32_t>(bb.mem.size());
-  body.bound.fill(255);
+  std::array<std::uint8_t, kNumFRegs> bound;
+  bound.fill(255);
   BodySchedule sched;
-  std::uint32_t a_written = 0, ops[3] = {0, 0, 0};
+  std::uint32_t a_written = 0;
+  BodyCounts sum;
   std::uint32_t p = pc;
   while (body.n < static_cast<std::uint32_t>(kMaxBodyWords)) {
     const DecodedWord& dw = decoded_[bank][p];
@@ -135,36 +139,53 @@ std::int32_t Iss::build_body(int bank, std::uint32_t pc) {
     if (!dw.plain && !branch) break;
     const bool mem = dw.w.d.op != MemOp::None;
     if (mem && ((a_written >> dw.w.d.base) & 1)) break;
-    const int land = sched.issue(dw, body.bound);
+    const int land = sched.issue(dw, bound);
     if (dw.kind & DecodedWord::kCcBranch) body.cc_at = static_cast<std::uint64_t>(sched.t);
-    ops[0] += dw.w.m.en;
-    ops[1] += dw.w.a.en;
-    ops[2] += dw.w.f.en;
-    bb.words.push_back({static_cast<std::uint16_t>(p), static_cast<std::uint16_t>(sched.t),
-                        static_cast<std::uint16_t>(land), dw.shape, branch, sched.raw, sched.waw, sched.cc,
-                        {ops[0], ops[1], ops[2]}});
+    sum.ops[0] += dw.w.m.en;
+    sum.ops[1] += dw.w.a.en;
+    sum.ops[2] += dw.w.f.en;
+    sum.raw = sched.raw;
+    sum.waw = sched.waw;
+    sum.cc = sched.cc;
+    bb.words.push_back({dw.w, static_cast<std::uint16_t>(p), static_cast<std::uint16_t>(sched.t),
+                        static_cast<std::uint16_t>(land), dw.shape, dw.kind, dw.lat_a, dw.lat_f, branch});
+    bb.counts.push_back(sum);
     if (mem) add_mem_check(bb, body, dw);
     std::uint16_t v;
-    if (int_value(dw, v)) a_written |= 1u << (dw.w.i.d & 15);
+    if (int_value(dw.w.i, v)) a_written |= 1u << (dw.w.i.d & 15);
     if (dw.w.s.op == SeqOp::Dbnz) a_written |= 1u << (dw.w.s.r & 15);
-    p = dw.next;
+    p = body.next = dw.next;
     ++body.n;
     if (branch) break;
   }
   if (body.n == 0) {
-    bb.at[pc] = kNoBody;
+    head.body = kNoBody;
     return kNoBody;
   }
   body.nmem = static_cast<std::uint32_t>(bb.mem.size()) - body.mem_first;
+  body.total = sum;
   const BodyWord* words = bb.words.data() + body.first;
   body.cycles = words[body.n - 1].t + 1u;
   while (body.direct < body.n && words[body.direct].land <= body.cycles) ++body.direct;
   for (int r = 0; r < kNumFRegs; ++r)
-    if (body.bound[r] < kMaxLatency - 1) body.early |= bit(static_cast<unsigned>(r));
+    if (bound[r] < kMaxLatency - 1) body.early |= bit(static_cast<unsigned>(r));
   bb.bodies.push_back(body);
-  const auto index = static_cast<std::int32_t>(bb.bodies.size() - 1);
-  bb.at[pc] = index;
-  return index;
+  bb.bounds.push_back(bound);
+  head.body = static_cast<std::int16_t>(bb.bodies.size() - 1);
+  return head.body;
+}
+
+// A bank's program changed: its bodies are built anew as run() meets them.
+void Iss::renew_bodies(int bank) {
+  BodyBank& bb = body_[bank];
+  for (const std::uint16_t pc : bb.heads) decoded_[bank][pc].body = kBodyUnknown;
+  bb.heads.clear();
+  bb.bodies.clear();
+  bb.bounds.clear();
+  bb.words.clear();
+  bb.counts.clear();
+  bb.mem.clear();
+  bb.stale = false;
 }
 
 // kTail: the write may land after the body's end (then into the ring).
@@ -184,7 +205,7 @@ MC1_HOT void Iss::body_write(FSlot slot, int latency, std::uint32_t index, std::
 // in the next cycle, always within the body. kTail: cycle_ is the word's
 // issue cycle.
 template <int kShape, bool kTail>
-void Iss::body_issue(Iss& iss, const DecodedWord& dw, std::uint64_t end) {
+void Iss::body_issue(Iss& iss, const BodyWord& dw, std::uint64_t end) {
   constexpr bool m_en = (kShape & 1) != 0, a_en = (kShape & 6) != 0, f_en = (kShape & 8) != 0;
   constexpr auto d_op = static_cast<MemOp>(kShape >> 4);
   const MicroWord& w = dw.w;
@@ -209,7 +230,7 @@ void Iss::body_issue(Iss& iss, const DecodedWord& dw, std::uint64_t end) {
     }
   }
   std::uint16_t av = 0;
-  const bool a_write = w.i.op != IntOp::None && iss.int_value(dw, av);  // MOVFA reads F
+  const bool a_write = w.i.op != IntOp::None && iss.int_value(w.i, av);  // MOVFA reads F
   std::uint32_t mov = 0;
   if (dw.kind & DecodedWord::kMovF) mov = w.i.op == IntOp::Movaf ? iss.a_[w.i.s] : (std::uint32_t{w.i.imm} << 8) & kMask24;
 
@@ -244,10 +265,14 @@ void Iss::body_issue(Iss& iss, const DecodedWord& dw, std::uint64_t end) {
 // lands no later than its bound, no CMP is in flight at its BCC/BNCC, and
 // every data address is in range without a wrap (else cycle by cycle: a
 // fault, or a wrap that lands in range).
-MC1_HOT bool Iss::body_may_start(const BodyBank& bb, const Body& body, std::uint64_t e) const {
-  for (std::uint64_t m = pending_ & body.early; m != 0; m &= m - 1) {
-    const int r = __builtin_ctzll(m);
-    if (land_[r] - e > body.bound[r]) return false;
+MC1_HOT bool Iss::body_may_start(const BodyBank& bb, std::size_t index, std::uint64_t e) const {
+  const Body& body = bb.bodies[index];
+  if (const std::uint64_t early = pending_ & body.early) {
+    const std::array<std::uint8_t, kNumFRegs>& bound = bb.bounds[index];
+    for (std::uint64_t m = early; m != 0; m &= m - 1) {
+      const int r = __builtin_ctzll(m);
+      if (land_[r] - e > bound[r]) return false;
+    }
   }
   if (cmp_done_ > e + body.cc_at) return false;
   const MemCheck* mc = bb.mem.data() + body.mem_first;
@@ -260,44 +285,50 @@ MC1_HOT bool Iss::body_may_start(const BodyBank& bb, const Body& body, std::uint
 
 // A body's closing conditional branch issues in cycle e + w.t: its reads
 // (A[r], CC) see the state before its own writes.
-MC1_HOT void Iss::body_branch(const BodyWord& w, const DecodedWord& dw, std::uint64_t e, std::uint64_t end) {
+MC1_HOT void Iss::body_branch(const BodyWord& w, std::uint64_t e, std::uint64_t end) {
   pc_ = w.pc;
-  const std::uint32_t next = next_pc(dw);
-  if (fetch_missed(dw, next)) fetching_ = kBranchMissCycles;
-  const std::uint32_t r = dw.w.s.r & 15;
+  const SeqSlot& s = w.w.s;
+  const std::uint32_t next = next_pc(s);
+  if (fetch_missed(s, next)) fetching_ = kBranchMissCycles;
+  const std::uint32_t r = s.r & 15;
   const auto dec_r = static_cast<std::uint16_t>(a_[r] - 1);
   cycle_ = e + w.t;
-  (e + w.land <= end ? kBodyDirect : kBodyTail)[w.shape](*this, dw, end);
-  if (dw.w.s.op == SeqOp::Dbnz && r != 0) a_[r] = dec_r;
+  (e + w.land <= end ? kBodyDirect : kBodyTail)[w.shape](*this, w, end);
+  if (s.op == SeqOp::Dbnz && r != 0) a_[r] = dec_r;
   pc_ = next;
 }
 
 // The body at pc, or its longest prefix that fits in avail cycles, when
 // body_may_start: returns the cycles clocked, 0 if none. As many cycles of
-// run() (none of them its last) would leave the state, the ring and the
-// counters.
-MC1_HOT std::uint64_t Iss::run_body(std::uint64_t avail) {
+// run() (none of them its last) would leave the state and the ring; the
+// counts go to sum and issued.
+MC1_HOT std::uint64_t Iss::one_body(std::uint64_t avail, BodyCounts& sum, std::uint64_t& issued) {
   const int bank = psel_;
   BodyBank& bb = body_[bank];
-  std::int32_t index = bb.at[pc_];
+  const auto& dec = decoded_[bank];
+  const DecodedWord& head = dec[pc_];
+  std::int32_t index = head.body;
   if (index < 0) {
     if (index == kNoBody) return 0;
     index = build_body(bank, pc_);
     if (index < 0) return 0;
   }
-  const Body& body = bb.bodies[static_cast<std::size_t>(index)];
+  const auto bi = static_cast<std::size_t>(index);
   const std::uint64_t e = cycle_;
-  if (!body_may_start(bb, body, e)) return 0;
+  if (!body_may_start(bb, bi, e)) return 0;
+  const Body& body = bb.bodies[bi];
   const BodyWord* words = bb.words.data() + body.first;
   std::uint32_t n = body.n;
   std::uint64_t cycles = body.cycles;
   std::uint32_t direct = body.direct;  // the words before it land every write within the body
+  const BodyCounts* counts = &body.total;
   if (__builtin_expect(cycles > avail, 0)) {  // the call ends first: a prefix
     while (n > 0 && words[n - 1].t + 1u > avail) --n;
     if (n == 0) return 0;
     cycles = words[n - 1].t + 1u;
     direct = 0;
     while (direct < n && words[direct].land <= cycles) ++direct;
+    counts = &bb.counts[body.first + n - 1];
   }
   const std::uint64_t end = e + cycles;
   // The writes in flight that land within the body enter the state first
@@ -307,41 +338,60 @@ MC1_HOT std::uint64_t Iss::run_body(std::uint64_t avail) {
       apply_bucket<false, true>(ring_[c % kRing]);
     }
   }
-  const auto& dec = decoded_[bank];
   const BodyWord& last = words[n - 1];
   const std::uint32_t m = n - last.branch;
   std::uint32_t i = 0;
-  for (; i < std::min(direct, m); ++i) kBodyDirect[words[i].shape](*this, dec[words[i].pc], end);
+  for (; i < std::min(direct, m); ++i) kBodyDirect[words[i].shape](*this, words[i], end);
   for (; i < m; ++i) {
     const BodyWord& w = words[i];
     if (e + w.land <= end) {
-      kBodyDirect[w.shape](*this, dec[w.pc], end);
+      kBodyDirect[w.shape](*this, w, end);
     } else {
       cycle_ = e + w.t;
-      kBodyTail[w.shape](*this, dec[w.pc], end);
+      kBodyTail[w.shape](*this, w, end);
     }
   }
   if (last.branch) {
-    body_branch(last, dec[last.pc], e, end);
+    body_branch(last, e, end);
   } else {
-    pc_ = dec[last.pc].next;
+    pc_ = n == body.n ? body.next : words[n].pc;
   }
   cycle_ = end;
-  // A branch that missed the fetch: its cycles with no word to issue
-  // (Stall::Fetch; each applies its bucket, as any cycle of run).
-  while (fetching_ > 0 && cycles < avail) {
-    --fetching_;
-    ++counters_.stalls[static_cast<int>(Stall::Fetch)];
-    ++cycles;
-    ++cycle_;
-    apply_next<false, true>();
-  }
-  counters_.issued += n;
-  for (int u = 0; u < 3; ++u) counters_.unit_ops[u] += last.ops[u];
-  counters_.stalls[static_cast<int>(Stall::Raw)] += last.raw;
-  counters_.stalls[static_cast<int>(Stall::Waw)] += last.waw;
-  counters_.stalls[static_cast<int>(Stall::Cc)] += last.cc;
+  issued += n;
+  sum.raw += counts->raw;
+  sum.waw += counts->waw;
+  sum.cc += counts->cc;
+  for (int u = 0; u < 3; ++u) sum.ops[u] += counts->ops[u];
   return cycles;
+}
+
+// Bodies one after another from pc, as long as each may start and the call
+// has cycles left (avail: none of them its last): a body that ends in a
+// branch goes on to the next with no return to run_fast's loop. A branch
+// that missed the fetch: its cycles with no word to issue (Stall::Fetch;
+// each applies its bucket, as any cycle of run). Returns the cycles
+// clocked, 0 if none.
+std::uint64_t Iss::run_body(std::uint64_t avail) {
+  BodyCounts sum;
+  std::uint64_t issued = 0, done = 0, fetch = 0;
+  while (const std::uint64_t k = one_body(avail - done, sum, issued)) {
+    done += k;
+    while (fetching_ > 0 && done < avail) {
+      --fetching_;
+      ++fetch;
+      ++done;
+      ++cycle_;
+      apply_next<false, true>();
+    }
+    if (fetching_ > 0 || done == avail) break;
+  }
+  counters_.issued += issued;
+  for (int u = 0; u < 3; ++u) counters_.unit_ops[u] += sum.ops[u];
+  counters_.stalls[static_cast<int>(Stall::Raw)] += sum.raw;
+  counters_.stalls[static_cast<int>(Stall::Waw)] += sum.waw;
+  counters_.stalls[static_cast<int>(Stall::Cc)] += sum.cc;
+  counters_.stalls[static_cast<int>(Stall::Fetch)] += fetch;
+  return done;
 }
 
 template <bool kUntilDataTaken>
@@ -350,22 +400,17 @@ std::uint64_t Iss::run_fast(std::uint64_t max_cycles) {
   int cc = kNoCommit, flags = kNoCommit;
   take_due<false>(nullptr, cc, flags);  // what the last clock applied (nothing records it now)
   writes_early();
-  for (BodyBank& bb : body_) {
-    if (!bb.stale) continue;
-    bb.at.assign(kProgramWords, kBodyUnknown);
-    bb.bodies.clear();
-    bb.words.clear();
-    bb.mem.clear();
-    bb.stale = false;
-  }
+  for (int bank = 0; bank < 2; ++bank)
+    if (body_[bank].stale) renew_bodies(bank);
   for (std::uint64_t n = 1;; ++n) {
     if (fetching_ == 0 && n < max_cycles) {
-      if (const std::uint64_t k = run_body(max_cycles - n)) {
-        n += k - 1;
-        continue;
+      // After bodies (run_body goes on while one may start), the cycle
+      // after them.
+      n += run_body(max_cycles - n);
+      if (fetching_ == 0 && n < max_cycles) {
+        const DecodedWord& dw = decoded_[psel_][pc_];
+        if (dw.plain && !(dw.hazard & pending_) && kPlainCycle[dw.shape](*this, dw)) continue;
       }
-      const DecodedWord& dw = decoded_[psel_][pc_];
-      if (dw.plain && !(dw.hazard & pending_) && kPlainCycle[dw.shape](*this, dw)) continue;
     }
     const Stall s = execute<false>(nullptr);
     ++cycle_;
