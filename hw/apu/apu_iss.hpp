@@ -221,49 +221,77 @@ class Iss final : public ApuEngine {
     std::uint16_t t;         // issue cycle, from the body's first
     std::uint16_t land;      // t + the longest latency of its FP writes and CC (t + 1 without)
     std::uint8_t shape, kind, lat_a, lat_f;  // as DecodedWord's
-    std::uint8_t branch;     // the body's last word is a conditional branch (not plain)
   };
   struct BodyCounts {        // the body's stall cycles by reason and unit ops up to a word (its own included)
-    std::uint32_t raw = 0, waw = 0, cc = 0, ops[3] = {0, 0, 0};
+    std::uint16_t raw = 0, waw = 0, cc = 0;
+    std::uint8_t ops[3] = {0, 0, 0};
   };
   struct MemCheck {  // the LD/ST of a body on one base register: its least and greatest displacement
     std::uint8_t base;
     std::int8_t lo, hi;
   };
+  static constexpr int kMaxBodyBases = 4;  // base registers of a body's LD/ST
+  static constexpr int kMaxBodyWords = 48;
+  // What a body's start reads, in one cache line: the successors too, so
+  // that a chain of bodies (run_body) goes from one to the next with no
+  // look-up by address once it has run.
   struct alignas(64) Body {
     std::uint64_t early = 0;                 // the registers with a bound below kMaxLatency - 1
-    std::uint32_t first = 0, n = 0;          // words in BodyBank::words (and counts)
-    std::uint32_t direct = 0;                // the words before this one land every write within the body
-    std::uint32_t cycles = 0;                // its cycles (from its first to its last word's issue)
-    std::uint32_t next = 0;                  // the pc after it when its last word is not a branch
-    std::uint32_t mem_first = 0, nmem = 0;   // data addresses in BodyBank::mem
-    std::uint64_t cc_at = ~std::uint64_t{0}; // the issue cycle of its BCC/BNCC (no CMP of before may be in flight)
+    std::uint32_t cc_at = ~0u;               // the issue cycle of its BCC/BNCC (no CMP of before may be in flight)
+    std::uint32_t first = 0;                 // its words in BodyBank::words (and counts)
+    std::uint16_t cycles = 0;                // its cycles (from its first to its last word's issue)
+    std::uint16_t next = 0;                  // the pc after it when its last word is not a branch
+    std::uint8_t n = 0;
+    std::uint8_t direct = 0;                 // the words before this one land every write within the body
+    std::uint8_t nmem = 0;
+    std::uint8_t branch = 0;                 // its last word is a conditional branch
+    // That branch's test, as body_branch evaluates it with no switch:
+    // taken iff ((CC or A[r] less 1 or A[r]) & test_mask) != 0, inverted or not.
+    std::uint8_t test = 0;                   // kTest* bits
+    std::uint16_t test_mask = 0;
+    // The bodies that can follow it (0: a branch's target or next; 1: the
+    // branch's next address), kBodyUnknown until a chain has looked them
+    // up, and their first words (for a prefetch).
+    std::int16_t succ[2] = {-1, -1};
     BodyCounts total;                        // the counts of its last word
+    MemCheck mem[kMaxBodyBases] = {};        // its data addresses
+    std::uint32_t succ_first[2] = {0, 0};
   };
+  enum : std::uint8_t {
+    kTestCc = 1,         // BCC/BNCC: CC
+    kTestDec = 2,        // DBNZ: A[r] - 1
+    kTestInvert = 4,     // BZ, BNCC
+    kTestDbnzWrite = 8,  // DBNZ to A1..A15
+    kMissTaken = 16,     // taken, the next word missed the fetch
+    kMissFall = 32,      // not taken, the same
+  };
+  static_assert(sizeof(Body) == 64, "a body's start reads one cache line");
   static constexpr std::int16_t kBodyUnknown = -1, kNoBody = -2;
-  static constexpr int kMaxBodyWords = 48;
   struct BodyBank {
     std::vector<std::uint16_t> heads;  // the addresses whose DecodedWord::body is known
     std::vector<Body> bodies;
     std::vector<std::array<std::uint8_t, kNumFRegs>> bounds;  // by body
     std::vector<BodyWord> words;
     std::vector<BodyCounts> counts;  // by word
-    std::vector<MemCheck> mem;
     bool stale = true;
   };
   struct BodySchedule;
   std::uint64_t run_body(std::uint64_t avail);
   void renew_bodies(int bank);
   bool body_may_start(const BodyBank& bb, std::size_t index, std::uint64_t e) const;
-  void body_branch(const BodyWord& w, std::uint64_t e, std::uint64_t end);
+  int body_branch(const Body& body, const BodyWord& w, std::uint64_t e, std::uint64_t end);
+  static void branch_test(Body& body, const DecodedWord& dw, std::uint32_t pc);
   std::int16_t build_body(int bank, std::uint32_t pc);
-  static void add_mem_check(BodyBank& bb, const Body& body, const DecodedWord& dw);
-  // One body at pc_, or its prefix within avail cycles; adds its counts to
-  // the given ones instead of counters_. Returns its cycles, 0 if none.
-  std::uint64_t one_body(std::uint64_t avail, BodyCounts& sum, std::uint64_t& issued);
+  static bool add_mem_check(Body& body, const DecodedWord& dw);
+  std::int16_t body_at(int bank, std::uint32_t pc);
+  struct BodySums;
+  std::uint64_t one_body(const Body& body, std::uint64_t avail, BodySums& sum, int& succ);
   using BodyIssue = void (*)(Iss&, const BodyWord&, std::uint64_t);
   template <int kShape, bool kTail>
   static void body_issue(Iss& iss, const BodyWord& dw, std::uint64_t end);
+  template <int kShape, bool kTail>
+  static void body_word(Iss& iss, const BodyWord& dw, std::uint64_t end);
+  void body_direct_words(const BodyWord* w, std::uint32_t count, std::uint64_t end);
   template <bool kTail>
   void body_write(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags,
                   std::uint64_t end);

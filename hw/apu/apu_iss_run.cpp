@@ -102,16 +102,21 @@ struct Iss::BodySchedule {
 };
 
 // The LD/ST of a body on one base register: their displacements' range.
-void Iss::add_mem_check(BodyBank& bb, const Body& body, const DecodedWord& dw) {
+// False if it would be a base beyond kMaxBodyBases (the body ends before it).
+bool Iss::add_mem_check(Body& body, const DecodedWord& dw) {
   const std::int8_t d = dw.w.d.disp;
-  const auto it = std::find_if(bb.mem.begin() + body.mem_first, bb.mem.end(),
-                               [&dw](const MemCheck& c) { return c.base == dw.w.d.base; });
-  if (it == bb.mem.end()) {
-    bb.mem.push_back({static_cast<std::uint8_t>(dw.w.d.base), d, d});
-  } else {
+  MemCheck* const end = body.mem + body.nmem;
+  MemCheck* const it = std::find_if(body.mem, end, [&dw](const MemCheck& c) { return c.base == dw.w.d.base; });
+  if (it != end) {
     it->lo = std::min(it->lo, d);
     it->hi = std::max(it->hi, d);
+  } else if (body.nmem == kMaxBodyBases) {
+    return false;
+  } else {
+    *it = {static_cast<std::uint8_t>(dw.w.d.base), d, d};
+    ++body.nmem;
   }
+  return true;
 }
 
 // The body from pc: its words, their schedule and the bounds on the writes
@@ -119,53 +124,52 @@ void Iss::add_mem_check(BodyBank& bb, const Body& body, const DecodedWord& dw) {
 // that is neither plain nor ends_body() (after one that is), after
 // kMaxBodyWords words, or before a LD/ST whose base register an earlier
 // word of it writes (so that its data addresses are known, and checked,
-// when it starts).
+// when it starts) or that would be its base beyond kMaxBodyBases.
 std::int16_t Iss::build_body(int bank, std::uint32_t pc) {
   BodyBank& bb = body_[bank];
   DecodedWord& head = decoded_[bank][pc];
   bb.heads.push_back(static_cast<std::uint16_t>(pc));
   Body body;
   body.first = static_cast<std::uint32_t>(bb.words.size());
-  body.mem_first = static_cast<std::uint32_t>(bb.mem.size());
   std::array<std::uint8_t, kNumFRegs> bound;
   bound.fill(255);
   BodySchedule sched;
   std::uint32_t a_written = 0;
   BodyCounts sum;
   std::uint32_t p = pc;
-  while (body.n < static_cast<std::uint32_t>(kMaxBodyWords)) {
+  while (body.n < kMaxBodyWords) {
     const DecodedWord& dw = decoded_[bank][p];
     const bool branch = !dw.plain && ends_body(dw, p);
     if (!dw.plain && !branch) break;
-    const bool mem = dw.w.d.op != MemOp::None;
-    if (mem && ((a_written >> dw.w.d.base) & 1)) break;
+    if (dw.w.d.op != MemOp::None && (((a_written >> dw.w.d.base) & 1) || !add_mem_check(body, dw))) break;
     const int land = sched.issue(dw, bound);
-    if (dw.kind & DecodedWord::kCcBranch) body.cc_at = static_cast<std::uint64_t>(sched.t);
-    sum.ops[0] += dw.w.m.en;
-    sum.ops[1] += dw.w.a.en;
-    sum.ops[2] += dw.w.f.en;
-    sum.raw = sched.raw;
-    sum.waw = sched.waw;
-    sum.cc = sched.cc;
+    if (dw.kind & DecodedWord::kCcBranch) body.cc_at = static_cast<std::uint32_t>(sched.t);
+    sum.ops[0] = static_cast<std::uint8_t>(sum.ops[0] + dw.w.m.en);
+    sum.ops[1] = static_cast<std::uint8_t>(sum.ops[1] + dw.w.a.en);
+    sum.ops[2] = static_cast<std::uint8_t>(sum.ops[2] + dw.w.f.en);
+    sum.raw = static_cast<std::uint16_t>(sched.raw);
+    sum.waw = static_cast<std::uint16_t>(sched.waw);
+    sum.cc = static_cast<std::uint16_t>(sched.cc);
     bb.words.push_back({dw.w, static_cast<std::uint16_t>(p), static_cast<std::uint16_t>(sched.t),
-                        static_cast<std::uint16_t>(land), dw.shape, dw.kind, dw.lat_a, dw.lat_f, branch});
+                        static_cast<std::uint16_t>(land), dw.shape, dw.kind, dw.lat_a, dw.lat_f});
     bb.counts.push_back(sum);
-    if (mem) add_mem_check(bb, body, dw);
     std::uint16_t v;
     if (int_value(dw.w.i, v)) a_written |= 1u << (dw.w.i.d & 15);
     if (dw.w.s.op == SeqOp::Dbnz) a_written |= 1u << (dw.w.s.r & 15);
-    p = body.next = dw.next;
     ++body.n;
-    if (branch) break;
+    if (branch) {
+      branch_test(body, dw, p);
+      break;
+    }
+    p = body.next = dw.next;
   }
   if (body.n == 0) {
     head.body = kNoBody;
     return kNoBody;
   }
-  body.nmem = static_cast<std::uint32_t>(bb.mem.size()) - body.mem_first;
   body.total = sum;
   const BodyWord* words = bb.words.data() + body.first;
-  body.cycles = words[body.n - 1].t + 1u;
+  body.cycles = static_cast<std::uint16_t>(words[body.n - 1].t + 1u);
   while (body.direct < body.n && words[body.direct].land <= body.cycles) ++body.direct;
   for (int r = 0; r < kNumFRegs; ++r)
     if (bound[r] < kMaxLatency - 1) body.early |= bit(static_cast<unsigned>(r));
@@ -173,6 +177,27 @@ std::int16_t Iss::build_body(int bank, std::uint32_t pc) {
   bb.bounds.push_back(bound);
   head.body = static_cast<std::int16_t>(bb.bodies.size() - 1);
   return head.body;
+}
+
+// A body's closing branch at pc, for body_branch: next_pc() and
+// fetch_missed() worked out once.
+void Iss::branch_test(Body& body, const DecodedWord& dw, std::uint32_t pc) {
+  const SeqSlot& s = dw.w.s;
+  body.branch = 1;
+  const bool cc = s.op == SeqOp::Bcc || s.op == SeqOp::Bncc;
+  body.test_mask = cc ? s.r : s.op == SeqOp::Bltz ? 0x8000 : 0xFFFF;
+  body.test = static_cast<std::uint8_t>((cc ? kTestCc : 0) | (s.op == SeqOp::Dbnz ? kTestDec : 0) |
+                                        (s.op == SeqOp::Bz || s.op == SeqOp::Bncc ? kTestInvert : 0) |
+                                        (s.op == SeqOp::Dbnz && (s.r & 15) != 0 ? kTestDbnzWrite : 0));
+  const std::uint32_t predicted = s.target <= pc ? s.target : pc + 1u;
+  if (s.target != predicted) body.test |= kMissTaken;
+  if (pc + 1u != predicted) body.test |= kMissFall;
+}
+
+// The body at pc (built when first met), or kNoBody.
+std::int16_t Iss::body_at(int bank, std::uint32_t pc) {
+  const std::int16_t index = decoded_[bank][pc].body;
+  return index == kBodyUnknown ? build_body(bank, pc) : index;
 }
 
 // A bank's program changed: its bodies are built anew as run() meets them.
@@ -184,7 +209,6 @@ void Iss::renew_bodies(int bank) {
   bb.bounds.clear();
   bb.words.clear();
   bb.counts.clear();
-  bb.mem.clear();
   bb.stale = false;
 }
 
@@ -205,7 +229,7 @@ MC1_HOT void Iss::body_write(FSlot slot, int latency, std::uint32_t index, std::
 // in the next cycle, always within the body. kTail: cycle_ is the word's
 // issue cycle.
 template <int kShape, bool kTail>
-void Iss::body_issue(Iss& iss, const BodyWord& dw, std::uint64_t end) {
+MC1_HOT void Iss::body_word(Iss& iss, const BodyWord& dw, std::uint64_t end) {
   constexpr bool m_en = (kShape & 1) != 0, a_en = (kShape & 6) != 0, f_en = (kShape & 8) != 0;
   constexpr auto d_op = static_cast<MemOp>(kShape >> 4);
   const MicroWord& w = dw.w;
@@ -261,6 +285,35 @@ void Iss::body_issue(Iss& iss, const BodyWord& dw, std::uint64_t end) {
   if (a_write && (w.i.d & 15) != 0) iss.a_[w.i.d & 15] = av;
 }
 
+template <int kShape, bool kTail>
+void Iss::body_issue(Iss& iss, const BodyWord& dw, std::uint64_t end) {
+  body_word<kShape, kTail>(iss, dw, end);
+}
+
+// The first count words of a body, all landing within it, as threaded code:
+// each word's issue is in line and ends with its own jump to the next
+// word's, so that the host predicts each from the one before, with no call.
+void Iss::body_direct_words(const BodyWord* w, std::uint32_t count, std::uint64_t end) {
+#define MC1_SHAPES(X)                                                                                  \
+  X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16) X(17)  \
+  X(18) X(19) X(20) X(21) X(22) X(23) X(24) X(25) X(26) X(27) X(28) X(29) X(30) X(31) X(32) X(33) \
+  X(34) X(35) X(36) X(37) X(38) X(39) X(40) X(41) X(42) X(43) X(44) X(45) X(46) X(47)
+#define MC1_LABEL(k) &&shape_##k,
+#define MC1_WORD(k)                   \
+  shape_##k:                          \
+  body_word<k, false>(*this, *w, end); \
+  if (++w == stop) return;            \
+  goto* kWord[w->shape];
+  static_assert(kShapes == 48, "MC1_SHAPES lists every shape");
+  static const void* const kWord[kShapes] = {MC1_SHAPES(MC1_LABEL)};
+  const BodyWord* const stop = w + count;
+  goto* kWord[w->shape];
+  MC1_SHAPES(MC1_WORD)
+#undef MC1_WORD
+#undef MC1_LABEL
+#undef MC1_SHAPES
+}
+
 // Whether the state lets the body start at cycle e: every write in flight
 // lands no later than its bound, no CMP is in flight at its BCC/BNCC, and
 // every data address is in range without a wrap (else cycle by cycle: a
@@ -275,48 +328,49 @@ MC1_HOT bool Iss::body_may_start(const BodyBank& bb, std::size_t index, std::uin
     }
   }
   if (cmp_done_ > e + body.cc_at) return false;
-  const MemCheck* mc = bb.mem.data() + body.mem_first;
   for (std::uint32_t i = 0; i < body.nmem; ++i) {
-    const int a = a_[mc[i].base];
-    if (a + mc[i].lo < 0 || a + mc[i].hi >= kDataWords) return false;
+    const int a = a_[body.mem[i].base];
+    if (a + body.mem[i].lo < 0 || a + body.mem[i].hi >= kDataWords) return false;
   }
   return true;
 }
 
 // A body's closing conditional branch issues in cycle e + w.t: its reads
 // (A[r], CC) see the state before its own writes.
-MC1_HOT void Iss::body_branch(const BodyWord& w, std::uint64_t e, std::uint64_t end) {
-  pc_ = w.pc;
-  const SeqSlot& s = w.w.s;
-  const std::uint32_t next = next_pc(s);
-  if (fetch_missed(s, next)) fetching_ = kBranchMissCycles;
-  const std::uint32_t r = s.r & 15;
-  const auto dec_r = static_cast<std::uint16_t>(a_[r] - 1);
+// Returns the successor it leads to (0 taken, 1 not).
+MC1_HOT int Iss::body_branch(const Body& body, const BodyWord& w, std::uint64_t e, std::uint64_t end) {
+  const std::uint32_t test = body.test;
+  const std::uint32_t ar = a_[w.w.s.r & 15];
+  const std::uint32_t v = (test & kTestCc) ? cc_ : ar - ((test & kTestDec) ? 1u : 0u);
+  const bool taken = ((v & body.test_mask) != 0) != ((test & kTestInvert) != 0);
+  if (test & (taken ? kMissTaken : kMissFall)) fetching_ = kBranchMissCycles;
   cycle_ = e + w.t;
   (e + w.land <= end ? kBodyDirect : kBodyTail)[w.shape](*this, w, end);
-  if (s.op == SeqOp::Dbnz && r != 0) a_[r] = dec_r;
-  pc_ = next;
+  if (test & kTestDbnzWrite) a_[w.w.s.r & 15] = static_cast<std::uint16_t>(ar - 1);
+  pc_ = taken ? w.w.s.target : w.pc + 1u;
+  return taken ? 0 : 1;
 }
 
-// The body at pc, or its longest prefix that fits in avail cycles, when
-// body_may_start: returns the cycles clocked, 0 if none. As many cycles of
-// run() (none of them its last) would leave the state and the ring; the
-// counts go to sum and issued.
-MC1_HOT std::uint64_t Iss::one_body(std::uint64_t avail, BodyCounts& sum, std::uint64_t& issued) {
-  const int bank = psel_;
-  BodyBank& bb = body_[bank];
-  const auto& dec = decoded_[bank];
-  const DecodedWord& head = dec[pc_];
-  std::int32_t index = head.body;
-  if (index < 0) {
-    if (index == kNoBody) return 0;
-    index = build_body(bank, pc_);
-    if (index < 0) return 0;
+// What a chain of bodies adds to the counters.
+struct Iss::BodySums {
+  std::uint64_t issued = 0, raw = 0, waw = 0, cc = 0, fetch = 0, ops[3] = {0, 0, 0};
+  void add(const BodyCounts& c, std::uint32_t n) {
+    issued += n;
+    raw += c.raw;
+    waw += c.waw;
+    cc += c.cc;
+    for (int u = 0; u < 3; ++u) ops[u] += c.ops[u];
   }
-  const auto bi = static_cast<std::size_t>(index);
+};
+
+// The body at pc, or its longest prefix that fits in avail cycles (it may
+// start: body_may_start): returns the cycles clocked, 0 if none. As many
+// cycles of run() (none of them its last) would leave the state and the
+// ring; the counts go to sum, and succ is the successor it leads to (-1
+// for a prefix).
+MC1_HOT std::uint64_t Iss::one_body(const Body& body, std::uint64_t avail, BodySums& sum, int& succ) {
+  const BodyBank& bb = body_[psel_];
   const std::uint64_t e = cycle_;
-  if (!body_may_start(bb, bi, e)) return 0;
-  const Body& body = bb.bodies[bi];
   const BodyWord* words = bb.words.data() + body.first;
   std::uint32_t n = body.n;
   std::uint64_t cycles = body.cycles;
@@ -338,10 +392,20 @@ MC1_HOT std::uint64_t Iss::one_body(std::uint64_t avail, BodyCounts& sum, std::u
       apply_bucket<false, true>(ring_[c % kRing]);
     }
   }
-  const BodyWord& last = words[n - 1];
-  const std::uint32_t m = n - last.branch;
+  // The bodies that can follow are fetched while this one runs.
+  for (int s = 0; s < 2; ++s) {
+    if (body.succ[s] >= 0) {
+      __builtin_prefetch(&bb.bodies[static_cast<std::size_t>(body.succ[s])]);
+      __builtin_prefetch(&bb.words[body.succ_first[s]]);
+    }
+  }
+  const bool branch = n == body.n && body.branch;
+  const std::uint32_t m = n - branch;
   std::uint32_t i = 0;
-  for (; i < std::min(direct, m); ++i) kBodyDirect[words[i].shape](*this, words[i], end);
+  if (direct > 0 && m > 0) {
+    i = std::min(direct, m);
+    body_direct_words(words, i, end);
+  }
   for (; i < m; ++i) {
     const BodyWord& w = words[i];
     if (e + w.land <= end) {
@@ -351,46 +415,60 @@ MC1_HOT std::uint64_t Iss::one_body(std::uint64_t avail, BodyCounts& sum, std::u
       kBodyTail[w.shape](*this, w, end);
     }
   }
-  if (last.branch) {
-    body_branch(last, e, end);
+  if (branch) {
+    succ = body_branch(body, words[m], e, end);
+  } else if (n == body.n) {
+    pc_ = body.next;
+    succ = 0;
   } else {
-    pc_ = n == body.n ? body.next : words[n].pc;
+    pc_ = words[n].pc;
+    succ = -1;
   }
   cycle_ = end;
-  issued += n;
-  sum.raw += counts->raw;
-  sum.waw += counts->waw;
-  sum.cc += counts->cc;
-  for (int u = 0; u < 3; ++u) sum.ops[u] += counts->ops[u];
+  sum.add(*counts, n);
   return cycles;
 }
 
 // Bodies one after another from pc, as long as each may start and the call
-// has cycles left (avail: none of them its last): a body that ends in a
-// branch goes on to the next with no return to run_fast's loop. A branch
-// that missed the fetch: its cycles with no word to issue (Stall::Fetch;
-// each applies its bucket, as any cycle of run). Returns the cycles
-// clocked, 0 if none.
+// has cycles left (avail: none of them its last): a body goes on to the
+// next through its successor links, with no return to run_fast's loop. A
+// branch that missed the fetch: its cycles with no word to issue
+// (Stall::Fetch; each applies its bucket, as any cycle of run). Returns the
+// cycles clocked, 0 if none.
 std::uint64_t Iss::run_body(std::uint64_t avail) {
-  BodyCounts sum;
-  std::uint64_t issued = 0, done = 0, fetch = 0;
-  while (const std::uint64_t k = one_body(avail - done, sum, issued)) {
+  const int bank = psel_;
+  BodyBank& bb = body_[bank];
+  BodySums sum;
+  std::uint64_t done = 0;
+  for (std::int16_t index = body_at(bank, pc_); index >= 0;) {
+    const auto bi = static_cast<std::size_t>(index);
+    if (!body_may_start(bb, bi, cycle_)) break;
+    int s = -1;
+    const std::uint64_t k = one_body(bb.bodies[bi], avail - done, sum, s);
+    if (k == 0) break;
     done += k;
     while (fetching_ > 0 && done < avail) {
       --fetching_;
-      ++fetch;
+      ++sum.fetch;
       ++done;
       ++cycle_;
       apply_next<false, true>();
     }
     if (fetching_ > 0 || done == avail) break;
+    if (s < 0) {
+      index = body_at(bank, pc_);
+    } else if ((index = bb.bodies[bi].succ[s]) == kBodyUnknown) {
+      index = body_at(bank, pc_);  // may build a body: bodies moves
+      bb.bodies[bi].succ[s] = index;
+      if (index >= 0) bb.bodies[bi].succ_first[s] = bb.bodies[static_cast<std::size_t>(index)].first;
+    }
   }
-  counters_.issued += issued;
+  counters_.issued += sum.issued;
   for (int u = 0; u < 3; ++u) counters_.unit_ops[u] += sum.ops[u];
   counters_.stalls[static_cast<int>(Stall::Raw)] += sum.raw;
   counters_.stalls[static_cast<int>(Stall::Waw)] += sum.waw;
   counters_.stalls[static_cast<int>(Stall::Cc)] += sum.cc;
-  counters_.stalls[static_cast<int>(Stall::Fetch)] += fetch;
+  counters_.stalls[static_cast<int>(Stall::Fetch)] += sum.fetch;
   return done;
 }
 
