@@ -138,6 +138,9 @@ void Iss::reset() {
 void Iss::write_program(std::uint16_t addr, const Encoded& word) {
   const int bank = psel_ ^ 1;
   addr %= kProgramWords;
+  // The same word again (a kernel loaded anew) changes nothing: its decode
+  // and the bank's bodies stand.
+  if (program_[bank][addr] == word) return;
   program_[bank][addr] = word;
   decoded_[bank][addr] = DecodedWord::from(word, addr);
   body_[bank].stale = true;

@@ -221,7 +221,9 @@ class Iss final : public ApuEngine {
     std::uint16_t t;         // issue cycle, from the body's first
     std::uint16_t land;      // t + the longest latency of its FP writes and CC (t + 1 without)
     std::uint8_t shape, kind, lat_a, lat_f;  // as DecodedWord's
+    std::uint8_t islot;      // its I slot: kISlotNone, kISlotA (an A1..A15 write) or kISlotF (MOVAF, LIF)
   };
+  enum : std::uint8_t { kISlotNone, kISlotA, kISlotF };
   struct BodyCounts {        // the body's stall cycles by reason and unit ops up to a word (its own included)
     std::uint16_t raw = 0, waw = 0, cc = 0;
     std::uint8_t ops[3] = {0, 0, 0};
@@ -250,12 +252,10 @@ class Iss final : public ApuEngine {
     std::uint8_t test = 0;                   // kTest* bits
     std::uint16_t test_mask = 0;
     // The bodies that can follow it (0: a branch's target or next; 1: the
-    // branch's next address), kBodyUnknown until a chain has looked them
-    // up, and their first words (for a prefetch).
+    // branch's next address), kBodyUnknown until a chain has looked them up.
     std::int16_t succ[2] = {-1, -1};
     BodyCounts total;                        // the counts of its last word
     MemCheck mem[kMaxBodyBases] = {};        // its data addresses
-    std::uint32_t succ_first[2] = {0, 0};
   };
   enum : std::uint8_t {
     kTestCc = 1,         // BCC/BNCC: CC
@@ -265,7 +265,7 @@ class Iss final : public ApuEngine {
     kMissTaken = 16,     // taken, the next word missed the fetch
     kMissFall = 32,      // not taken, the same
   };
-  static_assert(sizeof(Body) == 64, "a body's start reads one cache line");
+  static_assert(sizeof(Body) <= 64, "a body's start reads one cache line");
   static constexpr std::int16_t kBodyUnknown = -1, kNoBody = -2;
   struct BodyBank {
     std::vector<std::uint16_t> heads;  // the addresses whose DecodedWord::body is known

@@ -150,11 +150,15 @@ std::int16_t Iss::build_body(int bank, std::uint32_t pc) {
     sum.raw = static_cast<std::uint16_t>(sched.raw);
     sum.waw = static_cast<std::uint16_t>(sched.waw);
     sum.cc = static_cast<std::uint16_t>(sched.cc);
-    bb.words.push_back({dw.w, static_cast<std::uint16_t>(p), static_cast<std::uint16_t>(sched.t),
-                        static_cast<std::uint16_t>(land), dw.shape, dw.kind, dw.lat_a, dw.lat_f});
-    bb.counts.push_back(sum);
     std::uint16_t v;
-    if (int_value(dw.w.i, v)) a_written |= 1u << (dw.w.i.d & 15);
+    const bool a_write = int_value(dw.w.i, v);
+    const std::uint8_t islot = (dw.kind & DecodedWord::kMovF) ? kISlotF
+                               : a_write && (dw.w.i.d & 15) != 0 ? kISlotA
+                                                                  : kISlotNone;  // A0 drops its writes
+    bb.words.push_back({dw.w, static_cast<std::uint16_t>(p), static_cast<std::uint16_t>(sched.t),
+                        static_cast<std::uint16_t>(land), dw.shape, dw.kind, dw.lat_a, dw.lat_f, islot});
+    bb.counts.push_back(sum);
+    if (a_write) a_written |= 1u << (dw.w.i.d & 15);
     if (dw.w.s.op == SeqOp::Dbnz) a_written |= 1u << (dw.w.s.r & 15);
     ++body.n;
     if (branch) {
@@ -253,10 +257,17 @@ MC1_HOT void Iss::body_word(Iss& iss, const BodyWord& dw, std::uint64_t end) {
       iss.data_[iss.dsel_][addr] = f[w.d.f];
     }
   }
+  // The I slot's result, read before the word's writes (MOVFA reads F):
+  // an A register's value or an F register's.
   std::uint16_t av = 0;
-  const bool a_write = w.i.op != IntOp::None && iss.int_value(w.i, av);  // MOVFA reads F
   std::uint32_t mov = 0;
-  if (dw.kind & DecodedWord::kMovF) mov = w.i.op == IntOp::Movaf ? iss.a_[w.i.s] : (std::uint32_t{w.i.imm} << 8) & kMask24;
+  if (__builtin_expect(dw.islot != kISlotNone, 0)) {
+    if (dw.islot == kISlotA) {
+      iss.int_value(w.i, av);
+    } else {
+      mov = w.i.op == IntOp::Movaf ? iss.a_[w.i.s] : (std::uint32_t{w.i.imm} << 8) & kMask24;
+    }
+  }
 
   if constexpr (m_en) iss.body_write<kTail>(kSlotM, kMulLatency, w.m.d, rm.value, rm.flags, end);
   if constexpr (a_en) {
@@ -281,8 +292,13 @@ MC1_HOT void Iss::body_word(Iss& iss, const BodyWord& dw, std::uint64_t end) {
     iss.body_write<kTail>(slot, dw.lat_f, w.f.d, rf.value, rf.flags, end);
   }
   if constexpr (d_op == MemOp::Ld) iss.f_[w.d.f] = loaded;
-  if (dw.kind & DecodedWord::kMovF) iss.f_[w.i.d] = mov;
-  if (a_write && (w.i.d & 15) != 0) iss.a_[w.i.d & 15] = av;
+  if (__builtin_expect(dw.islot != kISlotNone, 0)) {
+    if (dw.islot == kISlotA) {
+      iss.a_[w.i.d & 15] = av;
+    } else {
+      iss.f_[w.i.d] = mov;
+    }
+  }
 }
 
 template <int kShape, bool kTail>
@@ -392,13 +408,6 @@ MC1_HOT std::uint64_t Iss::one_body(const Body& body, std::uint64_t avail, BodyS
       apply_bucket<false, true>(ring_[c % kRing]);
     }
   }
-  // The bodies that can follow are fetched while this one runs.
-  for (int s = 0; s < 2; ++s) {
-    if (body.succ[s] >= 0) {
-      __builtin_prefetch(&bb.bodies[static_cast<std::size_t>(body.succ[s])]);
-      __builtin_prefetch(&bb.words[body.succ_first[s]]);
-    }
-  }
   const bool branch = n == body.n && body.branch;
   const std::uint32_t m = n - branch;
   std::uint32_t i = 0;
@@ -460,7 +469,6 @@ std::uint64_t Iss::run_body(std::uint64_t avail) {
     } else if ((index = bb.bodies[bi].succ[s]) == kBodyUnknown) {
       index = body_at(bank, pc_);  // may build a body: bodies moves
       bb.bodies[bi].succ[s] = index;
-      if (index >= 0) bb.bodies[bi].succ_first[s] = bb.bodies[static_cast<std::size_t>(index)].first;
     }
   }
   counters_.issued += sum.issued;
