@@ -289,12 +289,13 @@ class Iss final : public ApuEngine {
   using BodyIssue = void (*)(Iss&, const BodyWord&, std::uint64_t);
   template <int kShape, bool kTail>
   static void body_issue(Iss& iss, const BodyWord& dw, std::uint64_t end);
+  // fl: FLAGS, which the word's writes that land within the body OR into.
   template <int kShape, bool kTail>
-  static void body_word(Iss& iss, const BodyWord& dw, std::uint64_t end);
+  static void body_word(Iss& iss, const BodyWord& dw, std::uint64_t end, std::uint32_t& fl);
   void body_direct_words(const BodyWord* w, std::uint32_t count, std::uint64_t end);
   template <bool kTail>
   void body_write(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags,
-                  std::uint64_t end);
+                  std::uint64_t end, std::uint32_t& fl);
   template <int... kShape>
   static constexpr std::array<BodyIssue, sizeof...(kShape)> body_table(std::integer_sequence<int, kShape...>,
                                                                        std::false_type) {

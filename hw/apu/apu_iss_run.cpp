@@ -219,13 +219,13 @@ void Iss::renew_bodies(int bank) {
 // kTail: the write may land after the body's end (then into the ring).
 template <bool kTail>
 MC1_HOT void Iss::body_write(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags,
-                             std::uint64_t end) {
+                             std::uint64_t end, std::uint32_t& fl) {
   if (kTail && cycle_ + latency > end) {
     pending_ |= push_f<true>(slot, latency, index, value, flags, pending_);
     return;
   }
   f_[index] = value;
-  flags_ |= flags;
+  fl |= flags;
 }
 
 // A word of a body issues: as issue(), with writes that land within the
@@ -233,7 +233,7 @@ MC1_HOT void Iss::body_write(FSlot slot, int latency, std::uint32_t index, std::
 // in the next cycle, always within the body. kTail: cycle_ is the word's
 // issue cycle.
 template <int kShape, bool kTail>
-MC1_HOT void Iss::body_word(Iss& iss, const BodyWord& dw, std::uint64_t end) {
+MC1_HOT void Iss::body_word(Iss& iss, const BodyWord& dw, std::uint64_t end, std::uint32_t& fl) {
   constexpr bool m_en = (kShape & 1) != 0, a_en = (kShape & 6) != 0, f_en = (kShape & 8) != 0;
   constexpr auto d_op = static_cast<MemOp>(kShape >> 4);
   const MicroWord& w = dw.w;
@@ -269,7 +269,7 @@ MC1_HOT void Iss::body_word(Iss& iss, const BodyWord& dw, std::uint64_t end) {
     }
   }
 
-  if constexpr (m_en) iss.body_write<kTail>(kSlotM, kMulLatency, w.m.d, rm.value, rm.flags, end);
+  if constexpr (m_en) iss.body_write<kTail>(kSlotM, kMulLatency, w.m.d, rm.value, rm.flags, end, fl);
   if constexpr (a_en) {
     if ((kShape & 6) == 6 && w.a.op == AddOp::Cmp) {
       if (kTail && iss.cycle_ + dw.lat_a > end) {
@@ -281,15 +281,15 @@ MC1_HOT void Iss::body_word(Iss& iss, const BodyWord& dw, std::uint64_t end) {
         iss.ring_last_ = std::max(iss.ring_last_, iss.cmp_done_);
       } else {
         iss.cc_ = ra.value;  // lands within the body: no CMP in flight after it
-        iss.flags_ |= ra.flags;
+        fl |= ra.flags;
       }
     } else {
-      iss.body_write<kTail>(kSlotA, dw.lat_a, w.a.d, ra.value, ra.flags, end);
+      iss.body_write<kTail>(kSlotA, dw.lat_a, w.a.d, ra.value, ra.flags, end, fl);
     }
   }
   if constexpr (f_en) {
     const FSlot slot = w.f.op == FuncOp::Sin || w.f.op == FuncOp::Cos ? kSlotTrig : kSlotRsq;
-    iss.body_write<kTail>(slot, dw.lat_f, w.f.d, rf.value, rf.flags, end);
+    iss.body_write<kTail>(slot, dw.lat_f, w.f.d, rf.value, rf.flags, end, fl);
   }
   if constexpr (d_op == MemOp::Ld) iss.f_[w.d.f] = loaded;
   if (__builtin_expect(dw.islot != kISlotNone, 0)) {
@@ -303,7 +303,7 @@ MC1_HOT void Iss::body_word(Iss& iss, const BodyWord& dw, std::uint64_t end) {
 
 template <int kShape, bool kTail>
 void Iss::body_issue(Iss& iss, const BodyWord& dw, std::uint64_t end) {
-  body_word<kShape, kTail>(iss, dw, end);
+  body_word<kShape, kTail>(iss, dw, end, iss.flags_);
 }
 
 // The first count words of a body, all landing within it, as threaded code:
@@ -315,16 +315,19 @@ void Iss::body_direct_words(const BodyWord* w, std::uint32_t count, std::uint64_
   X(18) X(19) X(20) X(21) X(22) X(23) X(24) X(25) X(26) X(27) X(28) X(29) X(30) X(31) X(32) X(33) \
   X(34) X(35) X(36) X(37) X(38) X(39) X(40) X(41) X(42) X(43) X(44) X(45) X(46) X(47)
 #define MC1_LABEL(k) &&shape_##k,
-#define MC1_WORD(k)                   \
-  shape_##k:                          \
-  body_word<k, false>(*this, *w, end); \
-  if (++w == stop) return;            \
+#define MC1_WORD(k)                        \
+  shape_##k:                               \
+  body_word<k, false>(*this, *w, end, fl); \
+  if (++w == stop) goto done;              \
   goto* kWord[w->shape];
   static_assert(kShapes == 48, "MC1_SHAPES lists every shape");
   static const void* const kWord[kShapes] = {MC1_SHAPES(MC1_LABEL)};
   const BodyWord* const stop = w + count;
+  std::uint32_t fl = flags_;  // in a register across the words
   goto* kWord[w->shape];
   MC1_SHAPES(MC1_WORD)
+done:
+  flags_ = fl;
 #undef MC1_WORD
 #undef MC1_LABEL
 #undef MC1_SHAPES
