@@ -222,7 +222,11 @@ class Iss final : public ApuEngine {
     std::uint16_t land;      // t + the longest latency of its FP writes and CC (t + 1 without)
     std::uint8_t shape, kind, lat_a, lat_f;  // as DecodedWord's
     std::uint8_t islot;      // its I slot: kISlotNone, kISlotA (an A1..A15 write) or kISlotF (MOVAF, LIF)
+    // Its entry in body_direct_words: its shape, or for a closing branch
+    // that can land within the body (no M, A or F op) kBranchEntry + D slot.
+    std::uint8_t entry;
   };
+  static constexpr int kBranchEntry = 48;
   enum : std::uint8_t { kISlotNone, kISlotA, kISlotF };
   struct BodyCounts {        // the body's stall cycles by reason and unit ops up to a word (its own included)
     std::uint16_t raw = 0, waw = 0, cc = 0;
@@ -280,6 +284,10 @@ class Iss final : public ApuEngine {
   void renew_bodies(int bank);
   bool body_may_start(const BodyBank& bb, std::size_t index, std::uint64_t e) const;
   int body_branch(const Body& body, const BodyWord& w, std::uint64_t e, std::uint64_t end);
+  // A body's closing branch: taken or not, from A[r] (ar) and CC before its
+  // word's writes; after them, its own effects. Returns the successor.
+  bool branch_taken(const Body& body, const BodyWord& w, std::uint32_t& ar) const;
+  int branch_done(const Body& body, const BodyWord& w, bool taken, std::uint32_t ar);
   static void branch_test(Body& body, const DecodedWord& dw, std::uint32_t pc);
   std::int16_t build_body(int bank, std::uint32_t pc);
   static bool add_mem_check(Body& body, const DecodedWord& dw);
@@ -292,7 +300,9 @@ class Iss final : public ApuEngine {
   // fl: FLAGS, which the word's writes that land within the body OR into.
   template <int kShape, bool kTail>
   static void body_word(Iss& iss, const BodyWord& dw, std::uint64_t end, std::uint32_t& fl);
-  void body_direct_words(const BodyWord* w, std::uint32_t count, std::uint64_t end);
+  // body: for a closing branch among the words (taken, ar: branch_taken's).
+  void body_direct_words(const BodyWord* w, std::uint32_t count, std::uint64_t end, const Body* body, bool& taken,
+                         std::uint32_t& ar);
   template <bool kTail>
   void body_write(FSlot slot, int latency, std::uint32_t index, std::uint32_t value, std::uint32_t flags,
                   std::uint64_t end, std::uint32_t& fl);

@@ -155,8 +155,10 @@ std::int16_t Iss::build_body(int bank, std::uint32_t pc) {
     const std::uint8_t islot = (dw.kind & DecodedWord::kMovF) ? kISlotF
                                : a_write && (dw.w.i.d & 15) != 0 ? kISlotA
                                                                   : kISlotNone;  // A0 drops its writes
+    const std::uint8_t entry = branch && (dw.shape & 15) == 0 ? static_cast<std::uint8_t>(kBranchEntry + (dw.shape >> 4))
+                                                               : dw.shape;
     bb.words.push_back({dw.w, static_cast<std::uint16_t>(p), static_cast<std::uint16_t>(sched.t),
-                        static_cast<std::uint16_t>(land), dw.shape, dw.kind, dw.lat_a, dw.lat_f, islot});
+                        static_cast<std::uint16_t>(land), dw.shape, dw.kind, dw.lat_a, dw.lat_f, islot, entry});
     bb.counts.push_back(sum);
     if (a_write) a_written |= 1u << (dw.w.i.d & 15);
     if (dw.w.s.op == SeqOp::Dbnz) a_written |= 1u << (dw.w.s.r & 15);
@@ -309,7 +311,8 @@ void Iss::body_issue(Iss& iss, const BodyWord& dw, std::uint64_t end) {
 // The first count words of a body, all landing within it, as threaded code:
 // each word's issue is in line and ends with its own jump to the next
 // word's, so that the host predicts each from the one before, with no call.
-void Iss::body_direct_words(const BodyWord* w, std::uint32_t count, std::uint64_t end) {
+void Iss::body_direct_words(const BodyWord* w, std::uint32_t count, std::uint64_t end, const Body* body, bool& taken,
+                            std::uint32_t& ar) {
 #define MC1_SHAPES(X)                                                                                  \
   X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16) X(17)  \
   X(18) X(19) X(20) X(21) X(22) X(23) X(24) X(25) X(26) X(27) X(28) X(29) X(30) X(31) X(32) X(33) \
@@ -319,13 +322,23 @@ void Iss::body_direct_words(const BodyWord* w, std::uint32_t count, std::uint64_
   shape_##k:                               \
   body_word<k, false>(*this, *w, end, fl); \
   if (++w == stop) goto done;              \
-  goto* kWord[w->shape];
-  static_assert(kShapes == 48, "MC1_SHAPES lists every shape");
-  static const void* const kWord[kShapes] = {MC1_SHAPES(MC1_LABEL)};
+  goto* kWord[w->entry];
+  static_assert(kShapes == 48 && kBranchEntry == kShapes, "MC1_SHAPES lists every shape");
+  // A closing branch with no M, A or F op: D slot none, LD or ST.
+  static const void* const kWord[kShapes + 3] = {MC1_SHAPES(MC1_LABEL) &&branch_0, &&branch_16, &&branch_32};
   const BodyWord* const stop = w + count;
   std::uint32_t fl = flags_;  // in a register across the words
-  goto* kWord[w->shape];
+  goto* kWord[w->entry];
   MC1_SHAPES(MC1_WORD)
+branch_0:
+  taken = branch_taken(*body, *w, ar);
+  goto shape_0;
+branch_16:
+  taken = branch_taken(*body, *w, ar);
+  goto shape_16;
+branch_32:
+  taken = branch_taken(*body, *w, ar);
+  goto shape_32;
 done:
   flags_ = fl;
 #undef MC1_WORD
@@ -356,18 +369,29 @@ MC1_HOT bool Iss::body_may_start(const BodyBank& bb, std::size_t index, std::uin
 
 // A body's closing conditional branch issues in cycle e + w.t: its reads
 // (A[r], CC) see the state before its own writes.
-// Returns the successor it leads to (0 taken, 1 not).
-MC1_HOT int Iss::body_branch(const Body& body, const BodyWord& w, std::uint64_t e, std::uint64_t end) {
+MC1_HOT bool Iss::branch_taken(const Body& body, const BodyWord& w, std::uint32_t& ar) const {
   const std::uint32_t test = body.test;
-  const std::uint32_t ar = a_[w.w.s.r & 15];
+  ar = a_[w.w.s.r & 15];
   const std::uint32_t v = (test & kTestCc) ? cc_ : ar - ((test & kTestDec) ? 1u : 0u);
-  const bool taken = ((v & body.test_mask) != 0) != ((test & kTestInvert) != 0);
+  return ((v & body.test_mask) != 0) != ((test & kTestInvert) != 0);
+}
+
+MC1_HOT int Iss::branch_done(const Body& body, const BodyWord& w, bool taken, std::uint32_t ar) {
+  const std::uint32_t test = body.test;
   if (test & (taken ? kMissTaken : kMissFall)) fetching_ = kBranchMissCycles;
-  cycle_ = e + w.t;
-  (e + w.land <= end ? kBodyDirect : kBodyTail)[w.shape](*this, w, end);
   if (test & kTestDbnzWrite) a_[w.w.s.r & 15] = static_cast<std::uint16_t>(ar - 1);
   pc_ = taken ? w.w.s.target : w.pc + 1u;
   return taken ? 0 : 1;
+}
+
+// The closing branch's word issues in cycle e + w.t. Returns the successor
+// it leads to (0 taken, 1 not).
+MC1_HOT int Iss::body_branch(const Body& body, const BodyWord& w, std::uint64_t e, std::uint64_t end) {
+  std::uint32_t ar;
+  const bool taken = branch_taken(body, w, ar);
+  cycle_ = e + w.t;
+  (e + w.land <= end ? kBodyDirect : kBodyTail)[w.shape](*this, w, end);
+  return branch_done(body, w, taken, ar);
 }
 
 // What a chain of bodies adds to the counters.
@@ -413,10 +437,19 @@ MC1_HOT std::uint64_t Iss::one_body(const Body& body, std::uint64_t avail, BodyS
   }
   const bool branch = n == body.n && body.branch;
   const std::uint32_t m = n - branch;
+  bool taken = false;
+  std::uint32_t ar = 0;
+  if (branch && direct == n && words[m].entry >= kBranchEntry) {  // every word lands within the body: one threaded run
+    body_direct_words(words, n, end, &body, taken, ar);
+    succ = branch_done(body, words[m], taken, ar);
+    cycle_ = end;
+    sum.add(*counts, n);
+    return cycles;
+  }
   std::uint32_t i = 0;
   if (direct > 0 && m > 0) {
     i = std::min(direct, m);
-    body_direct_words(words, i, end);
+    body_direct_words(words, i, end, nullptr, taken, ar);
   }
   for (; i < m; ++i) {
     const BodyWord& w = words[i];
