@@ -151,7 +151,8 @@ def assert_modules():
 
 
 def deps(module):
-    """The apu_rtl modules `module` instantiates, itself last (read order)."""
+    """The apu_rtl modules `module` instantiates and the packages it names,
+    itself last (read order)."""
     known = set(rtl_modules())
     order, seen = [], set()
 
@@ -161,7 +162,9 @@ def deps(module):
         seen.add(m)
         with open(os.path.join(RTL, m + ".sv"), encoding="utf-8") as f:
             text = re.sub(r"//[^\n]*", "", f.read())
-        for name in re.findall(r"^\s*(\w+)\s*(?:#\s*\(|\w+\s*\()", text, re.M):
+        # The packages it names (pkg::X) and the modules it instantiates.
+        used = re.findall(r"\b(\w+)::", text) + re.findall(r"^\s*(\w+)\s*(?:#\s*\(|\w+\s*\()", text, re.M)
+        for name in used:
             if name in known and name != m:
                 visit(name)
         order.append(m)
