@@ -51,6 +51,12 @@ void add_param_options(CLI::App& cmd) {
   list_option(cmd, "param", "key=value", "one timing figure; repeatable, in order with --params");
 }
 
+std::string pct(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1f %%", 100 * x);
+  return b;
+}
+
 void apply_params(const CLI::App& cmd, TimingParams& t) {
   // CLI11 keeps each option's values apart; its parse order interleaves them
   // again, so that a later --param overrides an earlier --params file and

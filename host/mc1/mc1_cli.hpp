@@ -42,6 +42,8 @@ std::string default_scene();
 // The timing table: --params and --param applied in the order given, as one
 // sequence, then validated.
 void apply_params(const CLI::App& cmd, TimingParams& t);
+// A share as the printouts give it: 0.765 -> "76.5 %".
+std::string pct(double x);
 
 // The options of a parsed command, by name without the dashes.
 class Parsed {
