@@ -92,8 +92,8 @@ class ApuPool {
   // The host threads a frame takes when not told (--threads): as many as
   // the host has idle cores now, at least 1. A second thread pays only
   // with a core of its own: on a 2-core host with one other busy process
-  // two threads took 1.4x the wall time of one (docs/platform.md "Host
-  // threads"). It is threads_for(usable_cpus(), other_runnable()).
+  // two threads took 0.98-1.25x the wall time of one (docs/platform.md
+  // "Host threads"). It is threads_for(usable_cpus(), other_runnable()).
   static unsigned default_threads();
   // The CPUs this process may run on (its affinity mask; at least 1).
   static unsigned usable_cpus();
