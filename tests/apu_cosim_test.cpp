@@ -263,16 +263,11 @@ TEST(ApuCosim, IssRunAgreesWithItsStepsOnRandomPrograms) {
 // run() clocks most words in bodies (Iss::run_body: whole straight runs,
 // their prefixes where a call ends, their closing branches), and with
 // single cycles between, so that bodies start with writes in flight.
-// plan_min_ops: Iss::set_plan_min_ops for the fast ISS (1: every body with
-// a MUL or ADD/SUB among its direct words runs them as a plan); plans: the
-// plans it ran.
-void bodies_agree_with_steps(int plan_min_ops, std::uint64_t stream, std::uint64_t& plans) {
+TEST(ApuCosim, IssRunBodiesAgreeWithStepsOnRandomPrograms) {
   std::uint64_t compared = 0;
-  plans = 0;
   for (std::uint64_t i = 0; i < 300; ++i) {
-    const RandomCase c = make_random_case(case_seed(stream, i));
+    const RandomCase c = make_random_case(case_seed(13, i));
     auto stepped = std::make_unique<Iss>(), fast = std::make_unique<Iss>();
-    fast->set_plan_min_ops(plan_min_ops);
     ApuEngine* both[2] = {stepped.get(), fast.get()};
     RandomMpu mpu(c);
     mpu.boot(both, 2);
@@ -317,24 +312,8 @@ void bodies_agree_with_steps(int plan_min_ops, std::uint64_t stream, std::uint64
     stepped->read_data_block(0, bank_s.data(), kDataWords);
     fast->read_data_block(0, bank_f.data(), kDataWords);
     EXPECT_EQ(bank_f, bank_s) << c.describe();
-    plans += fast->plans_run();
   }
   EXPECT_GT(compared, 5000u);
-}
-
-TEST(ApuCosim, IssRunBodiesAgreeWithStepsOnRandomPrograms) {
-  std::uint64_t plans;
-  bodies_agree_with_steps(Iss::kPlanMinOps, 13, plans);
-}
-
-// Every body with a MUL or an ADD/SUB runs its direct words as a plan
-// (Iss::PlanStep: dataflow order, eight ops at a time), and none does.
-TEST(ApuCosim, IssRunPlansAgreeWithStepsOnRandomPrograms) {
-  std::uint64_t plans;
-  bodies_agree_with_steps(1, 19, plans);
-  EXPECT_GT(plans, 5000u);
-  bodies_agree_with_steps(1000, 23, plans);
-  EXPECT_EQ(plans, 0u);
 }
 
 // A program from 0 on two ISSs: `stepped` a cycle at a time up to its end
@@ -406,38 +385,6 @@ TEST(ApuCosim, IssRunBodyClosedByDbnzOnA0LeavesA0Zero) {
   EXPECT_EQ(stepped.areg(3), 0);  // the word after the DBNZ was skipped: taken
   EXPECT_EQ(stepped.areg(4), 5);  // A1 + A0
   EXPECT_EQ(fast.counters().issued, stepped.counters().issued);
-}
-
-// A plan runs a LD/ST before a later I-slot write to its base register,
-// even where the dataflow would let that write go first: here the ST waits
-// for the MUL's product and the ADDI behind it reads nothing made in the
-// body. (BNZ A0 is never taken; it ends the first body, so that the LI's
-// write to A1 is not within the planned one.) The LDs read the ST's word
-// back (F4) and the one it would reach with A1 moved first (F5).
-TEST(ApuCosim, IssRunPlanKeepsAnAccessBeforeItsBaseMoves) {
-  using namespace apu_test;
-  const std::vector<MicroWord> prog = {li(1, 100),
-                                       lif(2, 0x4000),
-                                       seq(SeqOp::Bnz, 0, 0),
-                                       mul(3, 2, 2),
-                                       nop(),
-                                       mem(MemOp::St, 3, 1, 5),
-                                       ialu(IntOp::Addi, 1, 1, 0, 7),
-                                       mem(MemOp::Ld, 4, 0, 105),
-                                       mem(MemOp::Ld, 5, 0, 112),
-                                       nop(),
-                                       halt()};
-  Iss stepped, fast;
-  fast.set_plan_min_ops(1);
-  EXPECT_EQ(run_and_steps(prog, stepped, fast), 0);
-  ASSERT_EQ(stepped.state(), RunState::Halted);
-  EXPECT_EQ(fast.state(), RunState::Halted);
-  EXPECT_GT(fast.plans_run(), 0u);
-  EXPECT_EQ(stepped.areg(1), 107);
-  EXPECT_EQ(fast.areg(1), 107);
-  EXPECT_EQ(stepped.freg(4), 0x410000u);  // 4.0, stored at A1 + 5 = 105 and loaded back
-  EXPECT_EQ(fast.freg(4), stepped.freg(4));
-  EXPECT_EQ(fast.freg(5), stepped.freg(5));
 }
 
 // The RTL engine's counters against the ISS's.

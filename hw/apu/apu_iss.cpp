@@ -120,7 +120,6 @@ void Iss::reset() {
   state_ = RunState::Idle;
   fault_ = Fault::None;
   cycle_ = 0;
-  plans_run_ = 0;
   fetching_ = 0;
   for (int b = 0; b < 2; ++b) {
     program_[b].fill(Encoded{});

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "apu_engine.hpp"
-#include "fp24_lanes.hpp"
 #include "microword.hpp"
 
 namespace mc1::apu {
@@ -124,18 +123,6 @@ class Iss final : public ApuEngine {
   }
 
   using Counters = ApuCounters;
-
-  // A body runs as a plan (the MULs and ADD/SUBs of its direct words eight
-  // at a time) when its direct words hold at least this many of them. Tests
-  // set 1 (every body with one) or a number above any body's (none); bodies
-  // are built anew for the next run().
-  static constexpr int kPlanMinOps = 6;
-  void set_plan_min_ops(int n) {
-    plan_min_ops_ = n;
-    for (BodyBank& bb : body_) bb.stale = true;
-  }
-  // The bodies run() has run as plans since the power-on state.
-  std::uint64_t plans_run() const { return plans_run_; }
 
  private:
   // 32-bit fields throughout: a byte store could alias any member and make
@@ -273,7 +260,6 @@ class Iss final : public ApuEngine {
     std::int16_t succ[2] = {-1, -1};
     BodyCounts total;                        // the counts of its last word
     MemCheck mem[kMaxBodyBases] = {};        // its data addresses
-    std::int16_t plan = -1;                  // its plan in BodyBank::plans, or -1
   };
   enum : std::uint8_t {
     kTestCc = 1,         // BCC/BNCC: CC
@@ -285,39 +271,12 @@ class Iss final : public ApuEngine {
   };
   static_assert(sizeof(Body) <= 64, "a body's start reads one cache line");
   static constexpr std::int16_t kBodyUnknown = -1, kNoBody = -2;
-  // A body's direct words as dataflow (apu_iss_plan.cpp, docs/apu-tools.md
-  // "Plans"): each value a word makes has a slot of vals_ (slots 0..63 are
-  // the F registers at the body's start), each op reads the slots its
-  // operands name in program order, and the MULs and the ADD/SUBs ready at
-  // one depth of the dataflow go through fp24::lanes eight at a time. The
-  // other ops (LD, ST, the I slot, CMP and the adder's and function unit's
-  // other ops) run one by one in program order, at a depth no earlier than
-  // the one before; at the end each F register the words write gets its
-  // last value. Built with the body when its direct words hold at least
-  // plan_min_ops_ MULs and ADD/SUBs.
-  struct PlanStep {
-    std::uint8_t kind;  // kPlan*
-    std::uint8_t word;  // the word, from the body's first
-    std::uint16_t a, b;  // operand slots; for a batch, a is its index in BodyBank::batches
-    std::uint16_t dst;   // the result's slot (a batch's lanes: dst .. dst + 7)
-  };
-  enum : std::uint8_t { kPlanMul, kPlanAdd, kPlanLd, kPlanSt, kPlanAddUnit, kPlanCmp, kPlanFunc, kPlanIntA, kPlanMovF, kPlanMul1, kPlanAdd1, kPlanSub1 };
-  struct Plan {
-    std::uint32_t first_step = 0, first_batch = 0, first_back = 0;  // in BodyBank::steps, batches, back
-    std::uint16_t nsteps = 0, nback = 0;
-    std::uint8_t words = 0;  // the body's first words it runs (all of them direct)
-  };
-  static constexpr int kPlanSlots = 1024;  // vals_: the registers, then the values a plan makes
   struct BodyBank {
     std::vector<std::uint16_t> heads;  // the addresses whose DecodedWord::body is known
     std::vector<Body> bodies;
     std::vector<std::array<std::uint8_t, kNumFRegs>> bounds;  // by body
     std::vector<BodyWord> words;
     std::vector<BodyCounts> counts;  // by word
-    std::vector<Plan> plans;
-    std::vector<PlanStep> steps;
-    std::vector<fp24::lanes::Batch> batches;
-    std::vector<std::uint16_t> back;  // pairs: F register, the slot of its value at the plan's end
     bool stale = true;
   };
   struct BodySchedule;
@@ -331,8 +290,6 @@ class Iss final : public ApuEngine {
   int branch_done(const Body& body, const BodyWord& w, bool taken, std::uint32_t ar);
   static void branch_test(Body& body, const DecodedWord& dw, std::uint32_t pc);
   std::int16_t build_body(int bank, std::uint32_t pc);
-  void build_plan(BodyBank& bb, Body& body) const;
-  void run_plan(const BodyBank& bb, const Plan& plan, const BodyWord* words);
   static bool add_mem_check(Body& body, const DecodedWord& dw);
   std::int16_t body_at(int bank, std::uint32_t pc);
   struct BodySums;
@@ -403,9 +360,6 @@ class Iss final : public ApuEngine {
   std::array<std::array<std::uint32_t, kDataWords>, 2> data_{};
   std::array<std::array<Encoded, kProgramWords>, 2> program_{};
   std::array<BodyBank, 2> body_{};
-  int plan_min_ops_ = kPlanMinOps;
-  std::uint64_t plans_run_ = 0;
-  alignas(64) std::array<std::uint32_t, kPlanSlots> vals_{};
 };
 
 }  // namespace mc1::apu

@@ -177,7 +177,6 @@ std::int16_t Iss::build_body(int bank, std::uint32_t pc) {
   const BodyWord* words = bb.words.data() + body.first;
   body.cycles = static_cast<std::uint16_t>(words[body.n - 1].t + 1u);
   while (body.direct < body.n && words[body.direct].land <= body.cycles) ++body.direct;
-  build_plan(bb, body);
   for (int r = 0; r < kNumFRegs; ++r)
     if (bound[r] < kMaxLatency - 1) body.early |= bit(static_cast<unsigned>(r));
   bb.bodies.push_back(body);
@@ -216,10 +215,6 @@ void Iss::renew_bodies(int bank) {
   bb.bounds.clear();
   bb.words.clear();
   bb.counts.clear();
-  bb.plans.clear();
-  bb.steps.clear();
-  bb.batches.clear();
-  bb.back.clear();
   bb.stale = false;
 }
 
@@ -444,18 +439,15 @@ MC1_HOT std::uint64_t Iss::one_body(const Body& body, std::uint64_t avail, BodyS
   const std::uint32_t m = n - branch;
   bool taken = false;
   std::uint32_t ar = 0;
-  std::uint32_t i = 0;
-  if (body.plan >= 0 && n == body.n) {  // its direct words as a plan
-    const Plan& plan = bb.plans[static_cast<std::size_t>(body.plan)];
-    run_plan(bb, plan, words);
-    i = plan.words;
-  } else if (branch && direct == n && words[m].entry >= kBranchEntry) {  // every word lands within the body: one threaded run
+  if (branch && direct == n && words[m].entry >= kBranchEntry) {  // every word lands within the body: one threaded run
     body_direct_words(words, n, end, &body, taken, ar);
     succ = branch_done(body, words[m], taken, ar);
     cycle_ = end;
     sum.add(*counts, n);
     return cycles;
-  } else if (direct > 0 && m > 0) {
+  }
+  std::uint32_t i = 0;
+  if (direct > 0 && m > 0) {
     i = std::min(direct, m);
     body_direct_words(words, i, end, nullptr, taken, ar);
   }
