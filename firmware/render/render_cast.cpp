@@ -2,7 +2,6 @@
 // their candidate lists, the lists' primitives in chunks of the bank's
 // slots. r_inside (render_solid.cpp) batches its rays the same way.
 #include <algorithm>
-#include <set>
 #include <stdexcept>
 
 #include "render_internal.hpp"
@@ -35,22 +34,25 @@ std::vector<RenderFirmware::BatchPlan> RenderFirmware::plan_batches(
       ++p.n;
       ++i;
     }
-    std::set<int> all;
+    // The keys' primitives, ascending and distinct (sorted in one buffer,
+    // not a set: a node per primitive was most of a frame's allocations).
+    std::vector<int>& sorted = sorted_buf_;
+    sorted.clear();
     for (int key : p.keys) {
       const std::vector<int>& prims = prims_of(key);
-      all.insert(prims.begin(), prims.end());
+      sorted.insert(sorted.end(), prims.begin(), prims.end());
       cost.list_elements += prims.size();
     }
-    std::vector<int> chunk;
-    for (int prim : all) {
-      chunk.push_back(prim);
-      if (static_cast<int>(chunk.size()) == kPrimSlots) p.chunks.push_back(std::move(chunk)), chunk.clear();
-    }
-    if (!chunk.empty() || (always_run && p.chunks.empty())) p.chunks.push_back(chunk);
+    std::sort(sorted.begin(), sorted.end());
+    sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+    constexpr auto kSlots = static_cast<std::size_t>(kPrimSlots);
+    for (std::size_t at = 0; at < sorted.size(); at += kSlots)
+      p.chunks.emplace_back(sorted.begin() + static_cast<std::ptrdiff_t>(at),
+                            sorted.begin() + static_cast<std::ptrdiff_t>(std::min(at + kSlots, sorted.size())));
+    if (always_run && p.chunks.empty()) p.chunks.emplace_back();
     // Each key's list split by chunk once (its positions in the chunk, in
     // list order), not searched again for every chunk: a list of L
     // primitives cost L log L per chunk, L^2 / kPrimSlots for the batch.
-    const std::vector<int> sorted(all.begin(), all.end());
     p.split.resize(p.keys.size());
     for (std::size_t k = 0; k < p.keys.size(); ++k) {
       p.split[k].resize(p.chunks.size());

@@ -376,6 +376,7 @@ class RenderFirmware {
   int mpu_bank_ = 0;  // which of banks_ the MPU owns (relative naming)
   std::vector<std::uint32_t> read_buf_;   // read()'s words
   std::vector<std::uint32_t> list_buf_;   // write_lists()' list
+  std::vector<int> sorted_buf_;           // plan_batches()' primitives of a batch
   int step_ = -1;     // the step last told to the link (enter_step)
   std::string apu_prog_, mpu_prog_;
   std::unique_ptr<const KernelTable> kernels_;  // null: the library's copy
