@@ -308,6 +308,9 @@ elseif(PROGRAM STREQUAL "apu-bench")
   expect(kernel_faults RC 1 ERR "^apu-bench: APU fault data-address" ARGS --kernel fault.apu --engines iss --iss-cycles 1000)
   expect(kernel_not_image RC 2 ERR "^apu-bench: .*README.md: not an APU image" ARGS --kernel ${SRC}/README.md --engines iss)
   expect_stdout_full(stdout_full --engines iss --iss-cycles 1000)
+  # The ISS's row comes with the arithmetic alone, checked like an engine.
+  expect(arithmetic_alone RC 0 OUT "\narithmetic alone \\(no engine[^\n]*: ok, 1000 vertices, [^\n]*the ISS [0-9.]+ of it\n"
+         ARGS --engines iss --iss-cycles 16000)
 elseif(PROGRAM STREQUAL "mc1-ref")
   expect(missing_scene RC 2 ERR "SCENE: none.json: No such file" ARGS none.json --out r.png)
   expect(scene_directory RC 2 ERR "SCENE: ${docs}: is a directory" ARGS ${docs} --out r.png)

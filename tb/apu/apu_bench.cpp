@@ -2,7 +2,8 @@
 // transform of a vertex stream, double buffered) on the ISS and the RTL core:
 // APU cycles, unit utilization, host cycles per second and the ISS/RTL speed
 // ratio (docs/apu-tools.md). The results of one block are checked against
-// FP24 model arithmetic first, on every engine.
+// FP24 model arithmetic first, on every engine. With the ISS, the stream's
+// arithmetic alone is timed too (arithmetic_floor).
 #include <time.h>
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 #include "apu_random.hpp"
 #include "apu_tools.hpp"
 #include "fp24.hpp"
+#include "fp24_arith_inline.hpp"
 
 // firmware/kernels/xform4.apu, assembled at build time (tb/apu/CMakeLists.txt).
 extern const unsigned char mc1_xform4_kernel_image[];
@@ -37,7 +39,8 @@ constexpr const char* kDescription =
     "apu-bench: the xform4 vertex-transform stream (blocks of 1000 vertices; the built-in\n"
     "firmware/kernels/xform4.apu, or --kernel's .apu/.bin with its interface) on each engine through\n"
     "the MPU driver, the MPU polling every 64 cycles. Prints APU cycles, cycles per vertex, unit\n"
-    "utilization and host speed.";
+    "utilization and host speed; with the ISS, also the speed of the stream's FP24 arithmetic alone\n"
+    "(no engine), which bounds the ISS's.";
 
 constexpr int kVertices = 1000;  // per block (the kernel allows up to 1015)
 constexpr int kCount = 0, kMatrix = 16, kVerts = 32;
@@ -156,6 +159,49 @@ Result bench(const std::string& name, const std::vector<Encoded>& kernel, std::u
   return r;
 }
 
+// The timed stream's arithmetic alone: each vertex's 16 MULs and 12 ADDs
+// by the FP24 model's inline ops (the ones the ISS calls), in a plain loop,
+// no engine. An engine that clocked the kernel could cost no less than
+// this if the arithmetic were all it did; the ISS against it shows what
+// its own work adds (docs/apu-tools.md "apu-bench").
+struct Floor {
+  std::uint64_t vertices = 0;
+  double cpu_seconds = 0;
+  bool correct = false;
+};
+
+Floor arithmetic_floor(std::uint64_t cycles_wanted) {
+  const int blocks = static_cast<int>(std::max<std::uint64_t>(1, cycles_wanted / (16 * kVertices + 64)));
+  const Stream s = make_stream(11, blocks);
+  Floor f;
+  std::vector<std::uint32_t> out(4 * kVertices);
+  std::uint32_t flags = 0, sum = 0;
+  const double c0 = thread_cpu_seconds();
+  for (const Block& b : s.blocks) {
+    const int n = static_cast<int>(b.words[kCount]);
+    const std::uint32_t* m = &b.words[kMatrix];
+    for (int i = 0; i < n; ++i) {
+      const std::uint32_t* v = &b.words[kVerts + 4 * i];
+      for (int r = 0; r < 4; ++r) {
+        const fp::Result p0 = fp::inl::mul24(m[4 * r], v[0]), p1 = fp::inl::mul24(m[4 * r + 1], v[1]);
+        const fp::Result p2 = fp::inl::mul24(m[4 * r + 2], v[2]), p3 = fp::inl::mul24(m[4 * r + 3], v[3]);
+        const fp::Result s01 = fp::inl::add24(p0.value, p1.value), s23 = fp::inl::add24(p2.value, p3.value);
+        const fp::Result y = fp::inl::add24(s01.value, s23.value);
+        out[static_cast<std::size_t>(4 * i + r)] = y.value;
+        sum += y.value;
+        flags |= p0.flags | p1.flags | p2.flags | p3.flags | s01.flags | s23.flags | y.flags;
+      }
+    }
+    f.vertices += static_cast<std::uint64_t>(n);
+  }
+  f.cpu_seconds = thread_cpu_seconds() - c0;
+  // out holds the last real block's results (the end block has none).
+  f.correct = out == reference(s.blocks[s.blocks.size() - 2]);
+  static volatile std::uint32_t sink;
+  sink = sink + (sum ^ flags);  // every block's results are used
+  return f;
+}
+
 struct Options {
   std::string kernel_path;  // empty: the embedded xform4.apu
   std::vector<std::string> engines = {"iss", "rtl"};
@@ -228,6 +274,18 @@ int run(Options o) {
       for (int k = 1; k < kStallKinds; ++k)
         std::printf(" %s %llu", stall_name(static_cast<Stall>(k)), static_cast<unsigned long long>(r.stalls[k]));
       std::printf("\n");
+    }
+    for (const Result& r : results) {
+      if (r.engine != "iss") continue;
+      const Floor f = arithmetic_floor(o.iss_cycles);
+      const double per_vertex = double(r.cycles) / r.vertices;
+      const double floor_rate = f.vertices / f.cpu_seconds * per_vertex;
+      std::printf("arithmetic alone (no engine: 16 MUL, 12 ADD a vertex, the FP24 inline ops): %s, %llu vertices, "
+                  "%.3f cpu s, %.3g cycles/cpu s at %.2f cycles a vertex; the ISS %.2f of it\n",
+                  f.correct ? "ok" : "WRONG", static_cast<unsigned long long>(f.vertices), f.cpu_seconds, floor_rate,
+                  per_vertex, r.cpu_seconds > 0 ? (r.cycles / r.cpu_seconds) / floor_rate : 0.0);
+      if (!f.correct) ok = false;
+      break;
     }
     if (results.size() == 2)
       std::printf("speed ratio %s/%s: %.1f\n", results[0].engine.c_str(), results[1].engine.c_str(),
