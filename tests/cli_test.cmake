@@ -188,6 +188,12 @@ elseif(PROGRAM STREQUAL "apu-run")
   # FST writer's writes fail past 100 KB): exit 1, and neither the FST nor
   # any of its side files goes in place (the side files are committed after it).
   file(WRITE ${WORK_DIR}/long.apu "  li a1, 3000\nouter:\n  li a2, 100\ninner:\n  add f1, f1, f2 | dbnz a2, inner\n  dbnz a1, outer\n  halt\n")
+  # The work directory outlives a run: what an earlier run left must not
+  # pass for this one's.
+  file(GLOB stale_cut_files ${WORK_DIR}/cut.fst*)
+  if(stale_cut_files)
+    file(REMOVE ${stale_cut_files})
+  endif()
   execute_process(COMMAND sh -c "trap '' XFSZ; ulimit -f 200; exec \"$0\" long.apu --engine rtl --trace cut.fst" ${P}
                   WORKING_DIRECTORY ${WORK_DIR} OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
   if(NOT rc EQUAL 1 OR NOT err MATCHES "cut.fst: the waveform was not written whole")

@@ -46,9 +46,12 @@ long long first_marker(const std::string& markers) {
   return t;
 }
 
-// The MPU's side (TOP.mc1.*, hw/apu_rtl_engine/apu_trace_top.sv) as a group.
+// The MPU's side (TOP.mc1.*, hw/apu_rtl_engine/apu_trace_top.sv) as a group:
+// the NC's processor in mc1 render, in apu-run the tool that loads the
+// banks. Its title is short: GTKWave sizes the signal pane's name column to
+// the longest label, and a long one leaves no room for the values.
 std::string mpu_group(const std::string& filter_prefix) {
-  const std::string title = "-MPU (the NC's processor; apu-run: the tool that loads the banks)";
+  const std::string title = "-MPU";
   return "@800200\n" + title + "\n@2022\n^17 " + filter_prefix + "mpu_doing.txt\nTOP.mc1.mpu_doing[3:0]\n" +
          "@2022\n^18 " + filter_prefix + "mpu_step.txt\nTOP.mc1.mpu_step[15:0]\n" +
          "@24\nTOP.mc1.mpu_detail[31:0]\nTOP.mc1.mpu_words_left[15:0]\nTOP.mc1.mpu_block[31:0]\n" +
