@@ -313,6 +313,25 @@ module apu_interlock #(
   `APU_ASSERT_IF(IlkIdleMulHasNoBusyBit, !(|fl[0 +: D_MUL]), mul_ge == '0)
   `APU_ASSERT_IF(IlkIdleAdderHasNoBusyBit, !(|fl[O_ADD +: D_ADD]), add_ge == '0)
   `APU_ASSERT_BC_IF(IlkIdleFuncHasNoBusyBit, !fu_in_flight, fu_ge == '0)
+  // The caller's obligation (apu_core issues a word only with waw_hazard
+  // clear, IssueNoWawHazard there): an op issued now lands after every op
+  // in flight to its register, in any unit (none has rem >= its latency).
+  // Assumed, by name, where this module is proved alone (tools/formal.py);
+  // asserted where apu_core is. Without it a proof of the module alone
+  // drives a RECIP into a register a SIN lands in at the same edge
+  // (IlkFuPortsWriteDistinctRegisters fails at BMC depth 12).
+`ifdef APU_ASSERT_ON
+  // (assigned to its name: Yosys 0.23 reads no `return` of an expression)
+  function automatic logic lands_no_later(input logic [ADDR_W-1:0] r, input logic [LAT_W-1:0] l);
+    lands_no_later = (l <= LAT_W'(R_MUL) && mul_ge[IW_MUL'({l - LAT_W'(1), r})])
+                  || (l <= LAT_W'(R_ADD) && add_ge[IW_ADD'({l - LAT_W'(1), r})])
+                  || (l <= LAT_W'(R_FU) && fu_ge[IW_FU'({l - LAT_W'(1), r})]);
+  endfunction
+`endif
+  `APU_ASSERT_BC_IF(IlkIssueLandsLast, mul_issue || (add_issue && !add_cmp) || fu_issue,
+                    !(mul_issue && lands_no_later(mul_d, LAT_W'(LAT_MUL)))
+                    && !(add_issue && !add_cmp && lands_no_later(add_d, LAT_W'(LAT_ADD)))
+                    && !(fu_issue && lands_no_later(fu_d, fu_lat)))
   // The function unit's two completion ports never write one register in
   // one cycle (waw holds back the later issue), and a CMP completes on the
   // adder's port with no F register.

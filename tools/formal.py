@@ -113,8 +113,10 @@ PROOFS = {
 # default does not suit; params from the package (name -> apu_pkg name).
 ASSERT_DEFAULT = dict(bmc=4, ind=4, labels="formal", timeout=600)
 ASSERT_TABLE = {
+    # IlkIssueLandsLast: apu_core's obligation (it issues only with waw clear)
     "apu_interlock": dict(pkg_params={"LAT_MUL": "LAT_MUL", "LAT_ADD": "LAT_ADD", "LAT_FUNC": "LAT_FUNC",
-                                      "LAT_TRIG": "LAT_TRIG"}, bmc=12, ind=11, labels="formal,long", timeout=14400),
+                                      "LAT_TRIG": "LAT_TRIG"}, bmc=12, ind=11, labels="formal,long", timeout=14400,
+                          input_rules=["IlkIssueLandsLast"]),
     # rules about a module's inputs (its caller's obligations) are assumed
     # where the module is the top and proved in its parent (apu_core, long)
     "apu_callstack": dict(input_rules=["CallStackPushNotFull", "CallStackPopNotEmpty", "CallStackPushOrPop"]),
@@ -298,7 +300,10 @@ def prove(name, p, args):
     if p.get("context"):
         ok = True
         for ctx in p["context"]:
+            # the parent's own input rules (its caller's obligations) are
+            # assumed there too
             q = dict(p, top=ctx, rtl=deps(ctx), context=None,
+                     input_rules=ASSERT_TABLE.get(ctx, {}).get("input_rules", []),
                      what=p["what"] + f", in its parent {ctx} (its inputs are the parent's)")
             ok = prove(f"{name}.{ctx}", q, args) and ok
         return ok
