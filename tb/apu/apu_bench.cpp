@@ -102,6 +102,11 @@ std::uint64_t run_stream(ApuDriver& drv, const std::vector<Encoded>& kernel, Str
   return drv.run_until_done(~0ull >> 1, mpu, 64);
 }
 
+// The blocks of a timed run of about `cycles_wanted` APU cycles (16 a vertex).
+int timed_blocks(std::uint64_t cycles_wanted) {
+  return static_cast<int>(std::max<std::uint64_t>(1, cycles_wanted / (16 * kVertices + 64)));
+}
+
 Stream make_stream(std::uint64_t seed, int blocks) {
   Rng rng(seed);
   Stream s;
@@ -146,7 +151,7 @@ Result bench(const std::string& name, const std::vector<Encoded>& kernel, std::u
     for (int k = 0; k < kStallKinds; ++k) r.stalls[k] = prof.stalls(static_cast<Stall>(k));
   }
   // 2. Speed: the fast path, no records.
-  const int blocks = static_cast<int>(std::max<std::uint64_t>(1, cycles_wanted / (16 * kVertices + 64)));
+  const int blocks = timed_blocks(cycles_wanted);
   Stream s = make_stream(11, blocks);
   auto engine = tools::make_engine(name);
   ApuDriver drv(*engine);
@@ -171,8 +176,7 @@ struct Floor {
 };
 
 Floor arithmetic_floor(std::uint64_t cycles_wanted) {
-  const int blocks = static_cast<int>(std::max<std::uint64_t>(1, cycles_wanted / (16 * kVertices + 64)));
-  const Stream s = make_stream(11, blocks);
+  const Stream s = make_stream(11, timed_blocks(cycles_wanted));
   Floor f;
   std::vector<std::uint32_t> out(4 * kVertices);
   std::uint32_t flags = 0, sum = 0;
@@ -279,11 +283,11 @@ int run(Options o) {
       if (r.engine != "iss") continue;
       const Floor f = arithmetic_floor(o.iss_cycles);
       const double per_vertex = double(r.cycles) / r.vertices;
-      const double floor_rate = f.vertices / f.cpu_seconds * per_vertex;
+      const double floor_rate = f.cpu_seconds > 0 ? f.vertices / f.cpu_seconds * per_vertex : 0.0;
       std::printf("arithmetic alone (no engine: 16 MUL, 12 ADD a vertex, the FP24 inline ops): %s, %llu vertices, "
                   "%.3f cpu s, %.3g cycles/cpu s at %.2f cycles a vertex; the ISS %.2f of it\n",
                   f.correct ? "ok" : "WRONG", static_cast<unsigned long long>(f.vertices), f.cpu_seconds, floor_rate,
-                  per_vertex, r.cpu_seconds > 0 ? (r.cycles / r.cpu_seconds) / floor_rate : 0.0);
+                  per_vertex, r.cpu_seconds > 0 && floor_rate > 0 ? (r.cycles / r.cpu_seconds) / floor_rate : 0.0);
       if (!f.correct) ok = false;
       break;
     }
