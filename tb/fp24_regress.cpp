@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <exception>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -480,14 +481,21 @@ Run run_all(const Options& o) {
   std::atomic<std::uint64_t> next{0};
   std::atomic<std::uint64_t> done{0};
   unsigned running = o.threads;  // under `merge`
+  std::exception_ptr failed;      // a worker's first error (under `merge`), thrown once all have ended
   auto work = [&] {
-    Worker w(o, set);
-    for (std::uint64_t k; (k = next.fetch_add(1)) < jobs.jobs;) {
-      const Job job = jobs.job(k);
-      const Stats s = w.run(job);
+    try {
+      Worker w(o, set);
+      for (std::uint64_t k; (k = next.fetch_add(1)) < jobs.jobs;) {
+        const Job job = jobs.job(k);
+        const Stats s = w.run(job);
+        std::lock_guard<std::mutex> lock(merge);
+        run.per_op[int(job.op)].merge(s, o.show);
+        done += job.count;
+      }
+    } catch (...) {  // out of a thread's function it would end the program
+      next = jobs.jobs;  // the others take no more jobs
       std::lock_guard<std::mutex> lock(merge);
-      run.per_op[int(job.op)].merge(s, o.show);
-      done += job.count;
+      if (!failed) failed = std::current_exception();
     }
     std::lock_guard<std::mutex> lock(merge);
     if (--running == 0) finished.notify_all();
@@ -512,6 +520,7 @@ Run run_all(const Options& o) {
   lock.unlock();
   for (std::thread& t : threads) t.join();
   if (tty) std::fputs("\n", stderr);
+  if (failed) std::rethrow_exception(failed);
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return run;
 }
@@ -696,7 +705,7 @@ int main(int argc, char** argv) {
   Run run;
   try {
     run = run_all(o);
-  } catch (const std::runtime_error& e) {  // a thread the host would not start
+  } catch (const std::exception& e) {  // a thread the host would not start, a worker's error
     std::fprintf(stderr, "fp24-regress: %s\n", e.what());
     return cli::kExitFailed;
   }

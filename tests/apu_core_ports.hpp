@@ -4,16 +4,18 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include "Vapu_core.h"
 #include "apu_engine.hpp"
 #include "verilated.h"
+#include "verilated_context.hpp"
 
 namespace mc1::apu {
 
 class CorePorts {
  public:
-  CorePorts() : top(&ctx_) {
+  CorePorts() : top(ctx_.get()) {
     top.rst_n = 0;
     edge();
     top.rst_n = 1;
@@ -79,11 +81,8 @@ class CorePorts {
   }
 
  private:
-  // The ISA's power-on state: every register and word 0.
-  struct ZeroContext : VerilatedContext {
-    ZeroContext() { randReset(0); }
-  };
-  ZeroContext ctx_;  // before top: top is built in it
+  // The ISA's power-on state (every register and word 0), one thread.
+  std::unique_ptr<VerilatedContext> ctx_ = mc1::rtl::new_context();  // before top: top is built in it
 
  public:
   Vapu_core top;

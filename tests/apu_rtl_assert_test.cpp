@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include "Vapu_core.h"
@@ -14,6 +15,7 @@
 #include "apu_rtl_engine.hpp"
 #include "apu_test_program.hpp"
 #include "verilated.h"
+#include "verilated_context.hpp"
 
 namespace mc1::apu {
 namespace {
@@ -22,16 +24,12 @@ using namespace apu_test;
 
 // The core on its own ports, in a context that does not abort on $error.
 struct Core {
-  struct Context : VerilatedContext {
-    Context() {
-      randReset(0);
-      fatalOnError(false);
-    }
-  } ctx;
-  Vapu_core top{&ctx};
+  std::unique_ptr<VerilatedContext> ctx = mc1::rtl::new_context();
+  Vapu_core top{ctx.get()};
 
   Core() {
-    Verilated::threadContextp(&ctx);
+    ctx->fatalOnError(false);
+    Verilated::threadContextp(ctx.get());
     top.rst_n = 0;
     edge();
     top.rst_n = 1;
@@ -75,7 +73,7 @@ TEST(ApuRtlAssert, ABrokenRuleFailsWithItsNameCycleAndPc) {
   for (; cycle < 4; ++cycle) {
     const std::uint16_t pc = t.dbg_pc;
     core.edge();
-    ASSERT_NO_THROW(check_rtl_assertions(core.ctx, cycle, pc)) << "cycle " << cycle;
+    ASSERT_NO_THROW(check_rtl_assertions(*core.ctx, cycle, pc)) << "cycle " << cycle;
   }
   // A fault code while the APU runs: FaultIffFaulted breaks at the next
   // rising edge.
@@ -87,7 +85,7 @@ TEST(ApuRtlAssert, ABrokenRuleFailsWithItsNameCycleAndPc) {
   EXPECT_NE(printed.find("APU_ASSERT FaultIffFaulted failed in TOP.apu_core"), std::string::npos)
       << printed;
   try {
-    check_rtl_assertions(core.ctx, cycle, pc);
+    check_rtl_assertions(*core.ctx, cycle, pc);
     FAIL() << "no RtlAssertionError";
   } catch (const RtlAssertionError& e) {
     EXPECT_EQ(e.cycle(), 4u);

@@ -22,6 +22,7 @@
 #include "rtl_coverage.hpp"
 #include "fp24_bits.hpp"
 #include "verilated.h"
+#include "verilated_context.hpp"
 
 namespace {
 
@@ -57,7 +58,7 @@ bool rtl_exponent_wraps(const Input& in) {
 
 class RtlRound {
  public:
-  RtlRound() : ctx_(std::make_unique<VerilatedContext>()), m_(std::make_unique<Vfp24_round>(ctx_.get(), "TOP")) {
+  RtlRound() : ctx_(mc1::rtl::new_context()), m_(std::make_unique<Vfp24_round>(ctx_.get(), "TOP")) {
     m_->en = 1;
   }
   ~RtlRound() { mc1::rtl_coverage::collect(*ctx_); }  // a coverage build's counts (apu_rtl/rtl_coverage.hpp)

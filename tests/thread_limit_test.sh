@@ -2,7 +2,8 @@
 # A host thread that cannot be created ends a run cleanly (issue 39): run
 # as an unprivileged user under a process limit (RLIMIT_NPROC, which root
 # ignores), `mc1 render --threads 8` and `fp24-regress --threads 8` must
-# exit 1 naming the thread, not hang (ApuPool) or abort (std::system_error).
+# exit 1 naming the thread, not hang (ApuPool) or abort (std::system_error);
+# and fp24-regress's RTL units start no threads of their own.
 # Needs root (to become nobody) and setpriv/prlimit; skipped (77) without.
 #   thread_limit_test.sh MC1 FP24_REGRESS SCENE
 set -u
@@ -30,4 +31,12 @@ rc=$?
 [ "$rc" -ne 124 ] || fail "fp24-regress hung when a thread could not start"
 [ "$rc" -eq 1 ] || fail "fp24-regress: exit $rc, wanted 1: $(cat "$dir/out")"
 grep -q "the host started [0-9]* threads and no more" "$dir/out" || fail "fp24-regress: no message naming the threads: $(cat "$dir/out")"
-echo "thread_limit_test: mc1 render and fp24-regress end cleanly when a thread cannot start"
+
+# Two workers and the main thread are all the threads fp24-regress needs:
+# a verilated model makes no threads of its own (apu_rtl/verilated_context.hpp;
+# Verilator 5 would give each RTL unit's context hardware_concurrency() - 1).
+limited "$regress" --ops float --no-oracle --threads 2 >"$dir/out" 2>&1
+rc=$?
+[ "$rc" -eq 0 ] || fail "fp24-regress --threads 2 under a limit of 3: exit $rc, wanted 0: $(cat "$dir/out")"
+grep -q "engines model rtl" "$dir/out" || fail "fp24-regress --threads 2: the RTL did not run: $(cat "$dir/out")"
+echo "thread_limit_test: mc1 render and fp24-regress end cleanly when a thread cannot start; RTL models start none"

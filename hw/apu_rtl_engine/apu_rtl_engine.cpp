@@ -12,6 +12,7 @@
 #include "Vapu_fast.h"
 #include "rtl_coverage.hpp"
 #include "verilated.h"
+#include "verilated_context.hpp"
 #include "verilated_fst_c.h"
 
 namespace mc1::apu {
@@ -128,10 +129,9 @@ class RtlEngine::ModelOf final : public Model {
 namespace {
 
 // A model with its context: the context first (the model's constructor
-// needs it), all registers and words 0 (the ISA's power-on state).
+// needs it), one thread, all registers and words 0 (verilated_context.hpp).
 std::unique_ptr<VerilatedContext> make_context(bool traced) {
-  auto ctx = std::make_unique<VerilatedContext>();
-  ctx->randReset(0);
+  auto ctx = mc1::rtl::new_context();
   // A failing assertion ($error) must not abort the process: the engine sees
   // gotError() after the edge and throws RtlAssertionError (clock()).
   ctx->fatalOnError(false);

@@ -12,6 +12,7 @@
 #include "Vfp24_units.h"
 #include "rtl_coverage.hpp"
 #include "verilated.h"
+#include "verilated_context.hpp"
 #include "verilated_fst_c.h"
 
 namespace mc1::fp24::tb {
@@ -179,7 +180,7 @@ std::array<Pins, kUnits> units_pins(Vfp24_units& m) {
 template <class Model>
 class Clocked {
  public:
-  Clocked() : ctx_(std::make_unique<VerilatedContext>()), model_(std::make_unique<Model>(ctx_.get(), "TOP")) {
+  Clocked() : ctx_(mc1::rtl::new_context()), model_(std::make_unique<Model>(ctx_.get(), "TOP")) {
     // A failing assertion ($error) must not abort: posedge() throws.
     ctx_->fatalOnError(false);
   }
