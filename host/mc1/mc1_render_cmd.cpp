@@ -12,6 +12,7 @@
 #include <iostream>
 #include <mutex>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 #include "apu_trace_files.hpp"
@@ -89,11 +90,18 @@ std::string ms(Picos t) {
 // host time elapsed and an estimate of what is left (from blocks done).
 // The simulation draws it as blocks complete; a ticker thread redraws it
 // each second meanwhile, so that the broadcast and the block lists before
-// the first block, or a slow block, still show the time going by.
+// the first block, or a slow block, still show the time going by. A ticker
+// the host will not start (a process limit) is done without: the bar is
+// then drawn only as blocks complete, and the frame is rendered all the
+// same (tests/thread_limit_test.sh).
 class ProgressBar {
  public:
   explicit ProgressBar(bool on) : on_(on) {
-    if (on_) ticker_ = std::thread([this] { tick(); });
+    if (!on_) return;
+    try {
+      ticker_ = std::thread([this] { tick(); });
+    } catch (const std::system_error&) {
+    }
   }
   ~ProgressBar() { done(); }
   void update(const rc::Progress& p) {
