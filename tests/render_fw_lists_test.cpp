@@ -265,4 +265,49 @@ TEST(RenderShadows, NarrowedListsKeepEveryFlagInTheRoom) {
   expect_narrowed_shadow_lists_keep_flags("room", 64, 48, 16, 1.6);
 }
 
+// The MPU work the firmware charges through its link (the platform turns it
+// into MPU time: NcApuLink) against the work its statistics count (the
+// report's per-step MPU cycles), class by class, over a whole small frame
+// of many block lists. Copies, sort compares and APU commands agree: each
+// is charged where it is counted (a block list once charged the step's
+// running total of compares, every list's before it too). List elements
+// are counted everywhere a list is walked but charged only in s2's shadow
+// lists (render_s2.cpp): the statistics count more than the MPU is charged.
+TEST(RenderBlockLists, ChargedMpuWorkIsTheCountedWork) {
+  struct Charges final : ApuLink {
+    explicit Charges(apu::ApuDriver& drv) : direct(drv) {}
+    apu::ApuDriver& apu() override { return direct.apu(); }
+    void wait_swap() override { direct.wait_swap(); }
+    void wait_halt() override { direct.wait_halt(); }
+    void copy_words(std::uint64_t n) override { cost.word_copies += n; }
+    void list_elements(std::uint64_t n) override { cost.list_elements += n; }
+    void sort_compares(std::uint64_t n) override { cost.sort_compares += n; }
+    void apu_commands(std::uint64_t n) override { cost.apu_commands += n; }
+    DirectLink direct;
+    StepCost cost;
+  };
+  const scene::Scene sc = scene::parse_scene(kWhitted, "whitted-small.json", ".");
+  apu::Iss iss;
+  apu::ApuDriver drv(iss);
+  Charges link(drv);
+  RenderFirmware fw(link);
+  fw.load_scene(make_scene_image(sc));
+  int lists = 0;
+  for (int y0 = 0; y0 < sc.camera.height; y0 += 8)
+    for (int x0 = 0; x0 < sc.camera.width; x0 += 8) {
+      const Block b{x0, y0, std::min(8, sc.camera.width - x0), std::min(8, sc.camera.height - y0)};
+      fw.render_block(fw.build_block_list(b));
+      ++lists;
+    }
+  StepCost counted;
+  for (const StepCost& c : fw.stats().step) counted += c;
+  ASSERT_EQ(lists, 30);
+  EXPECT_GT(counted.sort_compares, 0u);
+  EXPECT_EQ(link.cost.sort_compares, counted.sort_compares);
+  EXPECT_EQ(link.cost.word_copies, counted.word_copies);
+  EXPECT_EQ(link.cost.apu_commands, counted.apu_commands);
+  EXPECT_GT(link.cost.list_elements, 0u);
+  EXPECT_LT(link.cost.list_elements, counted.list_elements);
+}
+
 }  // namespace

@@ -84,11 +84,13 @@ BlockList RenderFirmware::build_block_list(const Block& block) {
     const std::uint32_t key = (zmax & 0x800000) ? (zmax & 0x7FFFFF) : 0;
     keyed.emplace_back(key, o);
   }
+  std::uint64_t compares = 0;  // this list's: c.sort_compares is the step's, over every list so far
   std::stable_sort(keyed.begin(), keyed.end(), [&](const auto& a, const auto& b) {
-    ++c.sort_compares;
+    ++compares;
     return a.first < b.first;
   });
-  link_.sort_compares(c.sort_compares);
+  c.sort_compares += compares;
+  link_.sort_compares(compares);
   for (const auto& [key, o] : keyed) {
     bl.objects.push_back(o);
     bl.load += view_.objects[o].secondary ? 4 : 1;
