@@ -75,16 +75,18 @@ void faults_json(std::ostream& o, const FrameReport& r) {
 }
 
 void host_json(std::ostream& o, const FrameReport& r) {
-  double apu_host = 0;
+  double apu_host = 0, apu_host_simulation = 0;
   std::uint64_t apu_cycles = 0;
   for (const NcReport& n : r.ncs) {
     apu_host += n.apu_host_seconds;
+    apu_host_simulation += n.apu_host_simulation_seconds;
     apu_cycles += n.apu_cycles;
   }
   o << "  \"host\": {\"seconds\": " << num(r.host_seconds) << ", \"cpu_seconds\": " << num(r.host_cpu_seconds)
     << ", \"threads\": " << r.host_threads
     << ", \"apu_engine_seconds\": " << num(apu_host)
     << ", \"apu_engine_share\": " << num(r.host_seconds > 0 ? apu_host / r.host_seconds : 0)
+    << ", \"apu_engine_seconds_simulation_thread\": " << num(apu_host_simulation)
     << ", \"apu_cycles\": " << apu_cycles << "},\n";
 }
 

@@ -30,6 +30,7 @@ struct NcReport {
   Picos mpu_busy = 0;
   Picos finished_at = 0;
   double apu_host_seconds = 0;  // host time inside the APU engine
+  double apu_host_simulation_seconds = 0;  // the part of it on the simulation's own thread
   std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
   std::array<std::uint64_t, apu::kStallKinds> apu_stalls{};  // by apu::Stall
   std::vector<nc::Span> spans;

@@ -206,6 +206,7 @@ NcReport nc_report(const nc::NodeComputer& n) {
   x.mpu_busy = s.mpu_busy;
   x.finished_at = s.finished_at;
   x.apu_host_seconds = s.apu_host_seconds;
+  x.apu_host_simulation_seconds = s.apu_host_simulation_seconds;
   x.apu_issued = s.apu_issued;
   x.apu_bank_stalls = s.apu_bank_stalls;
   for (int k = 0; k < apu::kStallKinds; ++k) x.apu_stalls[k] = s.apu_stalls[k];

@@ -13,6 +13,7 @@
 namespace mc1::nc {
 namespace {
 thread_local bool t_in_job = false;
+thread_local bool t_on_worker = false;
 
 // A stretch takes some microseconds: a thread out of work spins about as
 // long before it sleeps (a sleep and a wake-up cost more than that).
@@ -57,6 +58,7 @@ void acquire(std::unique_lock<std::mutex>& lock) {
 }  // namespace
 
 bool ApuJob::in_job() { return t_in_job; }
+bool ApuJob::on_worker() { return t_on_worker; }
 
 std::uint64_t ApuJob::known(std::uint64_t cycles) {
   std::uint64_t n = 0;  // decided under the pool's lock: a worker may publish reached_ after help()
@@ -89,7 +91,10 @@ void ApuJob::cancel() {
 // error says which thread failed.
 ApuPool::ApuPool(unsigned threads) : threads_(threads < 1 ? 1 : threads) {
   try {
-    for (unsigned i = 1; i < threads_; ++i) workers_.emplace_back([this] { worker(); });
+    for (unsigned i = 1; i < threads_; ++i) workers_.emplace_back([this] {
+      t_on_worker = true;
+      worker();
+    });
   } catch (const std::system_error& e) {
     const std::size_t started = workers_.size();
     stop_workers();

@@ -59,6 +59,8 @@ class ApuJob {
   // True on a thread while it clocks a stretch (the job's own calls into
   // the driver need no bringing up to date).
   static bool in_job();
+  // True on one of a pool's workers (not the simulation's own thread).
+  static bool on_worker();
 
  private:
   friend class ApuPool;

@@ -19,7 +19,7 @@ namespace {
 // APU's work and SystemC's), read twice per APU run, some 10^5 times a
 // frame: in the cheapest clock there is, the x86 time-stamp counter (a
 // constant rate on the hosts this runs on; elsewhere steady_clock's count),
-// turned into seconds once, when the NC closes the frame (host_seconds).
+// turned into seconds once, when the NC closes the frame (seconds_per_tick).
 std::uint64_t host_ticks() {
 #if defined(__x86_64__) || defined(__i386__)
   return __rdtsc();
@@ -28,28 +28,34 @@ std::uint64_t host_ticks() {
 #endif
 }
 
-// The ticks' rate against steady_clock, from the first timed run to now.
-double host_seconds(std::uint64_t ticks) {
+// Seconds per tick, against steady_clock from the first timed run to now.
+double seconds_per_tick() {
   struct Start {
     std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
     std::uint64_t ticks = host_ticks();
   };
   static const Start start;
-  if (ticks == 0) return 0;
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start.t).count();
   const std::uint64_t n = host_ticks() - start.ticks;
-  return n > 0 ? static_cast<double>(ticks) * s / static_cast<double>(n) : 0;
+  return n > 0 ? s / static_cast<double>(n) : 0;
 }
 
+// Into `all`, and into `simulation` too on the simulation's own thread
+// (not a pool worker's).
 class HostTimer {
  public:
-  explicit HostTimer(std::uint64_t& sink) : sink_(sink), t0_(host_ticks()) {
-    (void)host_seconds(0);  // the rate's start, before the first run ends
+  HostTimer(std::uint64_t& all, std::uint64_t& simulation) : all_(all), simulation_(simulation), t0_(host_ticks()) {
+    (void)seconds_per_tick();  // the rate's start, before the first run ends
   }
-  ~HostTimer() { sink_ += host_ticks() - t0_; }
+  ~HostTimer() {
+    const std::uint64_t t = host_ticks() - t0_;
+    all_ += t;
+    if (!ApuJob::on_worker()) simulation_ += t;
+  }
 
  private:
-  std::uint64_t& sink_;
+  std::uint64_t& all_;
+  std::uint64_t& simulation_;
   std::uint64_t t0_;
 };
 
@@ -244,7 +250,7 @@ void NodeComputer::catch_up_to(Picos t) {
   std::uint64_t n = 0;
   engine_->set_time(apu_time_, cycle_ps_);
   {
-    HostTimer timer(apu_host_ticks_);
+    HostTimer timer(apu_host_ticks_, apu_host_sim_ticks_);
     n = driver_.run(k);
   }
   stats_.apu_cycles += n;
@@ -405,7 +411,7 @@ void NodeComputer::apu_wait_swap() {
   // Up to the cycle the APU takes the bank (the swap interrupt comes in it),
   // in stretches that end where the NC's steps on the pool do.
   const std::uint64_t n = run_on_pool([this, limit, k = std::uint64_t{0}](ApuJob& job) mutable -> std::optional<std::uint64_t> {
-    HostTimer timer(apu_host_ticks_);
+    HostTimer timer(apu_host_ticks_, apu_host_sim_ticks_);
     const auto waiting = [&] { return driver_.data_ready() && engine_->state() == apu::RunState::Running && k < limit; };
     if (waiting()) k += driver_.run_until_data_taken(std::min(limit - k, kPoolStepCycles - (k + 1) % kPoolStepCycles));
     if (!waiting()) return k;
@@ -441,7 +447,7 @@ void NodeComputer::apu_wait_halt() {
   const std::uint64_t c0 = engine_->cycle();
   const std::uint64_t n = run_on_pool([this, &runaway, c0, done = std::uint64_t{0}](
                                           ApuJob& job) mutable -> std::optional<std::uint64_t> {
-    HostTimer timer(apu_host_ticks_);
+    HostTimer timer(apu_host_ticks_, apu_host_sim_ticks_);
     const std::uint64_t max = t_.apu_watchdog_cycles;
     const auto running = [&] { return engine_->state() == apu::RunState::Running && done < max; };
     if (running()) {
@@ -561,7 +567,9 @@ void NodeComputer::close(Picos frame_end) {
   stats_.apu_issued = counted.issued;
   stats_.apu_bank_stalls = counted.stalls[static_cast<int>(apu::Stall::Bank)];
   for (int k = 0; k < apu::kStallKinds; ++k) stats_.apu_stalls[k] = counted.stalls[k];
-  stats_.apu_host_seconds = host_seconds(apu_host_ticks_);
+  const double per_tick = seconds_per_tick();  // one rate for both
+  stats_.apu_host_seconds = static_cast<double>(apu_host_ticks_) * per_tick;
+  stats_.apu_host_simulation_seconds = static_cast<double>(apu_host_sim_ticks_) * per_tick;
   engine_->set_time(std::max(apu_time_, frame_end), cycle_ps_);  // a waveform's idle tail ends with the frame
   for (Picos& p : stats_.time) p = 0;
   for (const Span& s : spans_) stats_.time[static_cast<int>(s.what)] += s.end - s.begin;

@@ -82,6 +82,7 @@ struct NcStats {
   std::vector<std::pair<Picos, std::string>> phases;      // step changes, in time order (phase())
   Picos mpu_busy = 0;               // MPU work annotated (copies, commands, interrupts)
   double apu_host_seconds = 0;      // host time spent clocking the APU engine (set by close())
+  double apu_host_simulation_seconds = 0;  // the part of it on the simulation's own thread
   // The engine's counters (apu::ApuCounters, set by close()): words issued,
   // and cycles stalled on `bank` (the APU waiting for the MPU's hand-over).
   std::uint64_t apu_issued = 0, apu_bank_stalls = 0;
@@ -192,6 +193,7 @@ class NodeComputer : public sc_core::sc_module, public NcPort {
 
   Picos apu_time_ = 0;      // the APU is clocked up to here
   std::uint64_t apu_host_ticks_ = 0;  // host clock ticks spent clocking the APU (HostTimer)
+  std::uint64_t apu_host_sim_ticks_ = 0;  // the part of them on the simulation's thread
   bool apu_open_ = false;   // an ApuSpan is open
   Picos apu_begin_ = 0;
 

@@ -11,6 +11,17 @@ function(run name)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "mc1 ${ARGN}: exit status ${rc}")
   endif()
+  # The APU engines' host time on the simulation's own thread: all of it on
+  # one thread, at most all of it on more (the workers clock the rest).
+  file(READ ${OUT}/${name}.json text)
+  string(JSON all GET "${text}" host apu_engine_seconds)
+  string(JSON sim GET "${text}" host apu_engine_seconds_simulation_thread)
+  string(JSON threads GET "${text}" host threads)
+  if(threads EQUAL 1 AND NOT sim STREQUAL all)
+    message(FATAL_ERROR "mc1 ${ARGN}: one thread, but ${sim} s of the engines' ${all} s on the simulation's thread")
+  elseif(NOT sim LESS_EQUAL all)
+    message(FATAL_ERROR "mc1 ${ARGN}: ${sim} s on the simulation's thread, more than the engines' ${all} s")
+  endif()
   # The host's seconds are the only figures that may differ.
   file(STRINGS ${OUT}/${name}.json lines)
   list(FILTER lines EXCLUDE REGEX "host")
