@@ -283,10 +283,13 @@ void NodeComputer::advance(Picos ps, Picos t) {
   // channel delivers on its own time grid, the NC syncs before it looks at
   // its mailbox, the image bus waits out the request's time): it syncs
   // only so that, while its APU runs, the kernel runs the other NCs as a
-  // worker clocks this one's catch-up. What the APU owes goes to the pool,
-  // and the NC syncs, once it owes kChaseCycles; the job chases the NC's
-  // time as it moves on (chase_due_), and while it runs the NC goes on
-  // (and syncs again before it waits for the job: join_job).
+  // worker clocks this one's catch-up. What the APU owes goes to the pool
+  // once it owes kChaseCycles; the job chases the NC's time as it moves on
+  // (chase_due_), and while it runs the NC goes on with its own work, and
+  // syncs where it would wait for the job, if the job is not over by then
+  // (join_job). A sync here too, after each post, cost the simulation's
+  // thread a kernel round per catch-up job (some 10^5 a frame) and made
+  // two threads 2.6 % slower (farm-bench, 15 pairs).
   // With no worker (one thread) nothing is posted and the NC does not
   // sync: the catch-up is clocked where the APU is next looked at, in one
   // piece.
@@ -310,7 +313,6 @@ void NodeComputer::advance(Picos ps, Picos t) {
     if (engine_->state() != apu::RunState::Running || apu_time_ + cycle_ps_ > due) return 0;
     return std::nullopt;
   });
-  qk_.sync();
 }
 
 void NodeComputer::mpu_is(MpuDoing d, Picos at, std::uint32_t copy_words) {
