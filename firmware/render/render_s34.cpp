@@ -51,6 +51,8 @@ void RenderFirmware::shade(std::vector<Ray>& rays, Step step) {
 // where all agree) gave 19 M and 30 M.
 void RenderFirmware::secondary_candidates(std::vector<Ray>& rays, std::vector<std::vector<int>>& lists) {
   auto& c = cost(Step::Secondary);
+  lists.reserve(lists.size() + rays.size());
+  std::vector<int> list;  // built here, kept at its size: one allocation a ray
   for (Ray& r : rays) {
     std::array<std::int32_t, 3> origin;
     unsigned negative = 0;  // bit a: d_a's sign bit
@@ -63,7 +65,7 @@ void RenderFirmware::secondary_candidates(std::vector<Ray>& rays, std::vector<st
         if ((negative >> a) & 1 ? b[a] > origin[a] : b[3 + a] < origin[a]) return true;
       return false;
     };
-    std::vector<int> list;
+    list.clear();
     for (std::size_t o = 0; o < view_.objects.size(); ++o) {
       const auto& obj = view_.objects[o];
       const bool skip_triangles = behind(object_tri_box_[o]);
@@ -74,7 +76,7 @@ void RenderFirmware::secondary_candidates(std::vector<Ray>& rays, std::vector<st
       }
     }
     r.list = static_cast<int>(lists.size());
-    lists.push_back(std::move(list));
+    lists.emplace_back(list.begin(), list.end());
   }
 }
 
