@@ -112,7 +112,7 @@ PROOFS = {
         base="apu_regfile_f", params={}, labels="formal,long", timeout=14400),
     "apu_regfile_a_full": dict(
         what="apu_regfile_a at the A file's size, 16 x 16",
-        base="apu_regfile_a", params={"ADDR_W": 4, "N_RD": 4, "N_WR": 2, "N_WR_FIRST": 0, "ZERO_REG": 1},
+        base="apu_regfile_a", params={"DATA_W": 16, "ADDR_W": 4, "N_RD": 4, "N_WR": 2, "N_WR_FIRST": 0, "ZERO_REG": 1},
         labels="formal,long", timeout=14400),
     # negative checks: the machinery finds a planted bug
     "fp24_round_mutant": dict(
