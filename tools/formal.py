@@ -102,16 +102,16 @@ PROOFS = {
              "disabled read port returns 0, a read returns the word the highest write-first port writes to it this "
              "cycle, else the last word written (the highest port of a cycle winning), 0 after a reset",
         rtl=["apu_regfile"], harness="apu_regfile_formal.sv", top="apu_regfile_formal",
-        params={"DATA_W": 2, "ADDR_W": 3}, bmc=2, ind=1, memory_map=True, labels="formal", timeout=600),
+        params={"DATA_W": 2, "ADDR_W": 3}, bmc=3, ind=1, memory_map=True, labels="formal", timeout=600),
     "apu_regfile_a": dict(
         what="apu_regfile as the A registers (4 read ports, 2 write ports written at the clock, A0 = 0) at 16 "
              "registers of 2 bits: as apu_regfile_f, and register 0 reads 0 whatever is written to it",
         base="apu_regfile_f", params={"DATA_W": 2, "ADDR_W": 4, "N_RD": 4, "N_WR": 2, "N_WR_FIRST": 0, "ZERO_REG": 1}),
     "apu_regfile_f_full": dict(
         what="apu_regfile_f at the F file's size, 64 x 24",
-        base="apu_regfile_f", params={}, labels="formal,long", timeout=14400),
+        base="apu_regfile_f", params={}, bmc=2, labels="formal,long", timeout=14400),
     "apu_regfile_a_full": dict(
-        what="apu_regfile_a at the A file's size, 16 x 16",
+        what="apu_regfile_a at the A file's size, 16 x 16", bmc=2,
         base="apu_regfile_a", params={"DATA_W": 16, "ADDR_W": 4, "N_RD": 4, "N_WR": 2, "N_WR_FIRST": 0, "ZERO_REG": 1},
         labels="formal,long", timeout=14400),
     # negative checks: the machinery finds a planted bug
@@ -127,7 +127,7 @@ PROOFS = {
         labels="formal", timeout=300),
     "apu_regfile_zero_mutant": dict(
         what="apu_regfile whose register 0 takes writes in a ZERO_REG file (the A file's A0): the proof must fail",
-        base="apu_regfile_a", expect_fail=True, no_induction=True, bmc=3,  # the write is read a cycle later
+        base="apu_regfile_a", expect_fail=True, no_induction=True,
         mutate=[("apu_rtl/apu_regfile.sv", None, "!(ZERO_REG && wr_addr", "!(1'b0 && wr_addr")],
         labels="formal", timeout=300),
     "apu_interlock_mutant": dict(
