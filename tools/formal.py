@@ -65,6 +65,9 @@ HARNESS = os.path.join(ROOT, "tb", "formal")
 # design's memories as registers (z3 with SMT arrays got nowhere on the F
 # register file); params: the top's parameters (a proof's params replace
 # its base's, whole); labels; timeout (s).
+# apu_interlock's tag pipes and busy vectors, probed for the induction invariants
+INTERLOCK_PROBES = ([(f"p_{u}_{r}", f"dut.u_{u}_tags.{r}") for u in ("mul", "add", "fu") for r in ("v", "d", "kind")]
+                    + [(f"p_{u}_ge", f"dut.{u}_ge") for u in ("mul", "add", "fu")])
 PROOFS = {
     "fp24_round": dict(
         what="fp24_round against the rounding rule of docs/fp24.md (nearest-even at 17 bits, OF, UF after rounding, NX), "
@@ -89,16 +92,21 @@ PROOFS = {
         what="apu_interlock + apu_tagpipe at the package's latencies: RAW exactly when a source is written by an op in "
              "flight, WAW by the header's rule, completion and next-cycle tags, cmp_in_flight, pipes_busy",
         rtl=["apu_tagpipe", "apu_interlock"], harness="apu_interlock_formal.sv", top="apu_interlock_formal",
-        probes=[(f"p_{u}_{r}", f"dut.u_{u}_tags.{r}") for u in ("mul", "add", "fu") for r in ("v", "d", "kind")]
-               + [(f"p_{u}_ge", f"dut.{u}_ge") for u in ("mul", "add", "fu")],
-        params={"ADDR_W": 3}, bmc=3, ind=2, labels="formal,long", timeout=14400),
+        probes=INTERLOCK_PROBES, params={"ADDR_W": 3}, bmc=3, ind=2, labels="formal,long", timeout=14400),
     "apu_interlock_tags": dict(
         what="apu_interlock + apu_tagpipe at the package's latencies, all 64 registers: completion and next-cycle tags "
              "(the tag issued L cycles earlier), cmp_in_flight, pipes_busy (the hazards: apu_interlock)",
         base="apu_interlock", params={}, defines=["NO_HAZARDS"], bmc=3, ind=2, labels="formal", timeout=600),
-    "apu_interlock_full": dict(
-        what="apu_interlock as apu_interlock, over all 64 F registers (ADDR_W 6; the default proof takes 8)",
-        base="apu_interlock", params={}, bmc=3, ind=2, labels="formal,long", timeout=14400),
+    "apu_interlock_one": dict(
+        what="apu_interlock's hazards at all 64 registers, one register chosen freely (anyconst): RAW and WAW per "
+             "slot and unit for the slots that name it, that register's bit of every busy vector (the induction "
+             "invariant), raw_*/waw_* as the ORs of the per-unit signals; the tags and completions as apu_interlock",
+        base="apu_interlock", params={}, defines=["ONE_REG"],
+        probes=INTERLOCK_PROBES + [(f"p_{s}_{u}", f"dut.{s}_{u}") for s in ("src", "dst") for u in ("mul", "add", "fu")],
+        bmc=3, ind=2, labels="formal,long", timeout=14400),
+    "apu_interlock_one_small": dict(
+        what="apu_interlock_one at 8 registers (ADDR_W 3)",
+        base="apu_interlock_one", params={"ADDR_W": 3}, bmc=5, labels="formal", timeout=600),
     "apu_regfile_f": dict(
         what="apu_regfile as the F registers (7 read ports; 6 write ports, all write-first) at 8 registers of 2 bits "
              "(a register's logic is the same for each, and the file only moves words), for every register: a "
@@ -132,6 +140,13 @@ PROOFS = {
         what="apu_regfile whose register 0 takes writes in a ZERO_REG file (the A file's A0): the proof must fail",
         base="apu_regfile_a", expect_fail=True, no_induction=True,
         mutate=[("apu_rtl/apu_regfile.sv", None, "!(ZERO_REG && wr_addr", "!(1'b0 && wr_addr")],
+        labels="formal", timeout=300),
+    "apu_interlock_one_mutant": dict(
+        what="apu_interlock whose function unit's busy vectors move down an entry one register off (a wrong stride): "
+             "apu_interlock_one_small must fail",
+        base="apu_interlock_one_small", expect_fail=True, no_induction=True, bmc=5,
+        mutate=[("apu_rtl/apu_interlock.sv", None, "fu_ge <= (fu_ge >> N_REG) | fu_new;",
+                 "fu_ge <= (fu_ge >> (N_REG - 1)) | fu_new;")],
         labels="formal", timeout=300),
     "apu_interlock_mutant": dict(
         what="apu_interlock with the function unit's tag pipe one stage too long for RECIP/SQRT (a wrong latency): the proof must fail",

@@ -23,7 +23,9 @@
 //     F write of the next cycle; a CMP none);
 //   - cmp_in_flight iff a CMP is in flight; pipes_busy iff any op is.
 // With NO_HAZARDS defined (the apu_interlock_tags proof) the RAW/WAW
-// properties and the busy-vector invariants are left out.
+// properties and the busy-vector invariants are left out. With ONE_REG
+// (apu_interlock_one) they are stated for one register chosen freely, at
+// the end of the module: what makes them close at all 64 registers.
 // Induction invariants (white box, so that induction closes at k = 2 and
 // not only past the deepest pipe): the tag pipes' registers and the busy
 // vectors against the record, read through probes tools/formal.py connects
@@ -119,6 +121,7 @@ module apu_interlock_formal #(
   (* keep *) logic [(D_MUL-1)*N_REG-1:0]   p_mul_ge;
   (* keep *) logic [(D_ADD-1)*N_REG-1:0]   p_add_ge;
   (* keep *) logic [(D_FU-1)*N_REG-1:0]    p_fu_ge;
+`ifndef ONE_REG
   logic [(D_MUL-1)*N_REG-1:0] w_mul_ge;
   logic [(D_ADD-1)*N_REG-1:0] w_add_ge;
   logic [(D_FU-1)*N_REG-1:0]  w_fu_ge;
@@ -159,6 +162,7 @@ module apu_interlock_formal #(
     end
     assign w_fu_ge[(ll-1)*N_REG +: N_REG] = acc[D_FU-1];
   end
+`endif
   always_comb begin
     if (!init) begin
       for (int k = 1; k <= D_MUL; k++) begin
@@ -174,30 +178,35 @@ module apu_interlock_formal #(
         if (p_fu_v[k-1]) assert (p_fu_d[(k-1)*A +: A] == hd_fu[k*A +: A] && p_fu_kind[k-1] == hk_fu[k]);
       end
 `ifndef NO_HAZARDS
+`ifndef ONE_REG
       assert (p_mul_ge == w_mul_ge);
       assert (p_add_ge == w_add_ge);
       assert (p_fu_ge == w_fu_ge);
+`endif
 `endif
     end
   end
 
   // ---- the spec ----------------------------------------------------------------
-  // Per unit u (0 mul, 1 add, 2 func) and register: the largest rem of an op
-  // in flight writing it (0: none); per unit: any op in flight.
-  logic [N_SRC-1:0] want_src;
+  // Per slot and unit (the module's src_<u> / dst_<u>): source i reads a
+  // register an op of unit u in flight writes; destination j would land no
+  // later than one; and their ORs. Per unit: any op in flight.
+  logic [N_SRC-1:0] want_src_mul, want_src_add, want_src_fu, want_src;
+  logic [N_DST-1:0] want_dst_mul, want_dst_add, want_dst_fu, want_dst;
   logic [2:0]       want_raw_unit, want_waw_unit;
-  logic [N_DST-1:0] want_dst;
   logic             want_cmp, want_busy;
   logic [A-1:0]     r;
   logic [LAT_W-1:0] l;
 
   always_comb begin
-    want_src      = '0;
-    want_raw_unit = '0;
-    want_dst      = '0;
-    want_waw_unit = '0;
-    want_cmp      = 1'b0;
-    want_busy     = 1'b0;
+    want_src_mul = '0;
+    want_src_add = '0;
+    want_src_fu  = '0;
+    want_dst_mul = '0;
+    want_dst_add = '0;
+    want_dst_fu  = '0;
+    want_cmp     = 1'b0;
+    want_busy    = 1'b0;
     r = '0;
     l = '0;
     for (int k = 1; k < LAT_MUL; k++) if (hv_mul[k]) want_busy = 1'b1;
@@ -209,17 +218,11 @@ module apu_interlock_formal #(
       r = src_addr[i*A +: A];
       if (src_en[i]) begin
         for (int k = 1; k < LAT_MUL; k++)
-          if (hv_mul[k] && hd_mul[k*A +: A] == r) begin
-            want_src[i] = 1'b1; want_raw_unit[0] = 1'b1;
-          end
+          if (hv_mul[k] && hd_mul[k*A +: A] == r) want_src_mul[i] = 1'b1;
         for (int k = 1; k < LAT_ADD; k++)
-          if (hv_add[k] && !hk_add[k] && hd_add[k*A +: A] == r) begin
-            want_src[i] = 1'b1; want_raw_unit[1] = 1'b1;
-          end
+          if (hv_add[k] && !hk_add[k] && hd_add[k*A +: A] == r) want_src_add[i] = 1'b1;
         for (int k = 1; k < D_FU; k++)
-          if (hv_fu[k] && k < (hk_fu[k] ? LAT_TRIG : LAT_FUNC) && hd_fu[k*A +: A] == r) begin
-            want_src[i] = 1'b1; want_raw_unit[2] = 1'b1;
-          end
+          if (hv_fu[k] && k < (hk_fu[k] ? LAT_TRIG : LAT_FUNC) && hd_fu[k*A +: A] == r) want_src_fu[i] = 1'b1;
       end
     end
     for (int j = 0; j < N_DST; j++) begin
@@ -228,26 +231,26 @@ module apu_interlock_formal #(
       if (dst_en[j]) begin
         // rem = L - k >= l
         for (int k = 1; k < LAT_MUL; k++)
-          if (hv_mul[k] && hd_mul[k*A +: A] == r && (LAT_MUL - k) >= l) begin
-            want_dst[j] = 1'b1; want_waw_unit[0] = 1'b1;
-          end
+          if (hv_mul[k] && hd_mul[k*A +: A] == r && (LAT_MUL - k) >= l) want_dst_mul[j] = 1'b1;
         for (int k = 1; k < LAT_ADD; k++)
-          if (hv_add[k] && !hk_add[k] && hd_add[k*A +: A] == r && (LAT_ADD - k) >= l) begin
-            want_dst[j] = 1'b1; want_waw_unit[1] = 1'b1;
-          end
+          if (hv_add[k] && !hk_add[k] && hd_add[k*A +: A] == r && (LAT_ADD - k) >= l) want_dst_add[j] = 1'b1;
         for (int k = 1; k < D_FU; k++)
           if (hv_fu[k] && k < (hk_fu[k] ? LAT_TRIG : LAT_FUNC) && hd_fu[k*A +: A] == r
-              && ((hk_fu[k] ? LAT_TRIG : LAT_FUNC) - k) >= l) begin
-            want_dst[j] = 1'b1; want_waw_unit[2] = 1'b1;
-          end
+              && ((hk_fu[k] ? LAT_TRIG : LAT_FUNC) - k) >= l)
+            want_dst_fu[j] = 1'b1;
       end
     end
   end
+  assign want_src      = want_src_mul | want_src_add | want_src_fu;
+  assign want_dst      = want_dst_mul | want_dst_add | want_dst_fu;
+  assign want_raw_unit = {|want_src_fu, |want_src_add, |want_src_mul};
+  assign want_waw_unit = {|want_dst_fu, |want_dst_add, |want_dst_mul};
 
   always_comb begin
     if (init) assume (!rst_n);
     if (!init) begin
 `ifndef NO_HAZARDS
+`ifndef ONE_REG
       // hazards
       assert (raw_src == want_src);
       assert (raw_unit == want_raw_unit);
@@ -255,6 +258,7 @@ module apu_interlock_formal #(
       assert (waw_dst == want_dst);
       assert (waw_unit == want_waw_unit);
       assert (waw_hazard == |want_dst);
+`endif
 `endif
       assert (cmp_in_flight == want_cmp);
       assert (pipes_busy == want_busy);
@@ -279,4 +283,57 @@ module apu_interlock_formal #(
       if (fu_trig_nx_valid) assert (fu_trig_nx_d == hd_fu[(LAT_TRIG-1)*A +: A]);
     end
   end
+
+`ifdef ONE_REG
+  // ---- one register (ONE_REG: apu_interlock_one) --------------------------------
+  // The register `sel` is chosen freely once (anyconst): every slot that names
+  // it has its hazard per unit checked (the module's src_<u> / dst_<u>,
+  // probed), and sel's bit of each busy vector is the induction invariant;
+  // raw_src, raw_unit, raw_hazard (waw_*) are checked as the ORs of the
+  // per-unit signals, in every cycle. So a proof holds for every register,
+  // with no 64-register vector in the record: the whole scoreboard at the
+  // real size.
+  (* anyconst *) logic [A-1:0] sel;
+  (* keep *) logic [N_SRC-1:0] p_src_mul, p_src_add, p_src_fu;
+  (* keep *) logic [N_DST-1:0] p_dst_mul, p_dst_add, p_dst_fu;
+  // entry ll of <unit>_ge at sel: an op in flight writes sel with rem >= ll
+  logic [D_MUL-1:0] s_mul_ge;
+  logic [D_ADD-1:0] s_add_ge;
+  logic [D_FU-1:0]  s_fu_ge;
+  always_comb begin
+    s_mul_ge = '0;
+    s_add_ge = '0;
+    s_fu_ge  = '0;
+    for (int ll = 1; ll < D_MUL; ll++)
+      for (int k = 1; k < D_MUL; k++)
+        if (hv_mul[k] && hd_mul[k*A +: A] == sel && ll <= LAT_MUL - k) s_mul_ge[ll] = 1'b1;
+    for (int ll = 1; ll < D_ADD; ll++)
+      for (int k = 1; k < D_ADD; k++)
+        if (hv_add[k] && !hk_add[k] && hd_add[k*A +: A] == sel && ll <= LAT_ADD - k) s_add_ge[ll] = 1'b1;
+    for (int ll = 1; ll < D_FU; ll++)
+      for (int k = 1; k < D_FU; k++)
+        if (hv_fu[k] && hd_fu[k*A +: A] == sel && ll <= (hk_fu[k] ? LAT_TRIG : LAT_FUNC) - k) s_fu_ge[ll] = 1'b1;
+  end
+  always_comb begin
+    if (!init) begin
+      for (int ll = 1; ll < D_MUL; ll++) assert (p_mul_ge[(ll-1)*N_REG + sel] == s_mul_ge[ll]);
+      for (int ll = 1; ll < D_ADD; ll++) assert (p_add_ge[(ll-1)*N_REG + sel] == s_add_ge[ll]);
+      for (int ll = 1; ll < D_FU; ll++) assert (p_fu_ge[(ll-1)*N_REG + sel] == s_fu_ge[ll]);
+      for (int i = 0; i < N_SRC; i++)
+        if (src_addr[i*A +: A] == sel)
+          assert (p_src_mul[i] == want_src_mul[i] && p_src_add[i] == want_src_add[i]
+                  && p_src_fu[i] == want_src_fu[i]);
+      for (int j = 0; j < N_DST; j++)
+        if (dst_addr[j*A +: A] == sel)
+          assert (p_dst_mul[j] == want_dst_mul[j] && p_dst_add[j] == want_dst_add[j]
+                  && p_dst_fu[j] == want_dst_fu[j]);
+      assert (raw_src == (p_src_mul | p_src_add | p_src_fu));
+      assert (raw_unit == {|p_src_fu, |p_src_add, |p_src_mul});
+      assert (raw_hazard == |raw_src);
+      assert (waw_dst == (p_dst_mul | p_dst_add | p_dst_fu));
+      assert (waw_unit == {|p_dst_fu, |p_dst_add, |p_dst_mul});
+      assert (waw_hazard == |waw_dst);
+    end
+  end
+`endif
 endmodule
