@@ -331,8 +331,19 @@ class Iss final : public ApuEngine {
   bool fp_in_flight() const;
   void push_a(ASlot slot, int latency, std::uint32_t index, std::uint16_t value);
 
-  // Hot state first: what every cycle reads.
-  std::uint64_t cycle_ = 0;
+  // What the MPU's side reads while the engine runs (the bank of its data
+  // accesses, dsel_; the hand-over flags; state()) on a cache line of its
+  // own, which the engine writes only at a start, a HALT or fault and a
+  // swap: on a pool worker the engine runs on another core than the MPU's
+  // thread, and a line both the MPU's side reads and every cycle writes
+  // (pc_, flags_, the first F registers) went back and forth between the
+  // cores at each of the frame's 3 M MPU data-bank accesses.
+  alignas(64) RunState state_ = RunState::Idle;
+  int psel_ = 0, dsel_ = 0;
+  bool program_ready_ = false, data_ready_ = false;
+
+  // Hot state next: what every cycle reads.
+  alignas(64) std::uint64_t cycle_ = 0;
   // The scoreboard: the F registers with a write in flight (visible after
   // the current cycle), and for each the cycle its last write becomes
   // visible (writes to one register land in issue order: waw).
@@ -340,12 +351,9 @@ class Iss final : public ApuEngine {
   std::uint64_t cmp_done_ = 0;     // first cycle with no CMP in flight
   std::uint64_t ring_last_ = 0;    // no bucket after this cycle's holds anything (the latest write pushed)
   std::uint32_t pc_ = 0;
-  RunState state_ = RunState::Idle;
   // Cycles left with no word to issue (`fetch`): a start's fetch and decode,
   // the bubble after a branch miss or a SWAPP.
   int fetching_ = 0;
-  int psel_ = 0, dsel_ = 0;
-  bool program_ready_ = false, data_ready_ = false;
   std::uint32_t cc_ = 0, flags_ = 0;
   int sp_ = 0;
   Fault fault_ = Fault::None;
