@@ -28,13 +28,19 @@ std::uint64_t host_ticks() {
 #endif
 }
 
+// Both clocks at the first timed run (the rate's start).
+struct RateStart {
+  std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
+  std::uint64_t ticks = host_ticks();
+};
+const RateStart& rate_start() {
+  static const RateStart start;
+  return start;
+}
+
 // Seconds per tick, against steady_clock from the first timed run to now.
 double seconds_per_tick() {
-  struct Start {
-    std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
-    std::uint64_t ticks = host_ticks();
-  };
-  static const Start start;
+  const RateStart& start = rate_start();
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start.t).count();
   const std::uint64_t n = host_ticks() - start.ticks;
   return n > 0 ? s / static_cast<double>(n) : 0;
@@ -45,7 +51,7 @@ double seconds_per_tick() {
 class HostTimer {
  public:
   HostTimer(std::uint64_t& all, std::uint64_t& simulation) : all_(all), simulation_(simulation), t0_(host_ticks()) {
-    (void)seconds_per_tick();  // the rate's start, before the first run ends
+    (void)rate_start();  // the rate's start, before the first run ends (the rate itself reads both clocks)
   }
   ~HostTimer() {
     const std::uint64_t t = host_ticks() - t0_;
