@@ -177,7 +177,7 @@ ASSERT_TABLE = {
                         bmc=12, ind=11, labels="formal,long", timeout=14400),
     "apu_core": dict(bmc=4, ind=None, labels="formal,long", timeout=14400),
     "fp24_func": dict(bmc=6, ind=None, labels="formal,long", timeout=14400),
-    # its pipeline's valid bits and stage data: induction closes at k=6 (2.7 s)
+    # induction closes at k=6 (2.7 s): in the default suite
     "fp24_func_rsq": dict(bmc=6, ind=6, labels="formal", timeout=600),
     "fp24_func_trig": dict(bmc=12, ind=None, labels="formal,long", timeout=14400),
 }

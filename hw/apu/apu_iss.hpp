@@ -337,7 +337,7 @@ class Iss final : public ApuEngine {
   // swap: on a pool worker the engine runs on another core than the MPU's
   // thread, and a line both the MPU's side reads and every cycle writes
   // (pc_, flags_, the first F registers) went back and forth between the
-  // cores at each of the frame's 3 M MPU data-bank accesses.
+  // cores at the MPU's data-bank accesses (about 3 M a frame).
   alignas(64) RunState state_ = RunState::Idle;
   int psel_ = 0, dsel_ = 0;
   bool program_ready_ = false, data_ready_ = false;
